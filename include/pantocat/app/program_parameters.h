@@ -1,0 +1,36 @@
+#pragma once
+
+#include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/io/output_parameters.h>
+#include <pantocat/pantograph/pantograph_parameters.h>
+#include <pantocat/space/discretisation_parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/// What a run computes.
+enum class RunMode
+{
+  static_equilibrium, ///< the initial catenary of Sec. 2.2 / Fig. 5
+  eigenfrequencies    ///< Table 1 of Sec. 6
+};
+
+/// All parameters of one run: one struct per prm subsection.
+struct ProgramParameters
+{
+  RunMode mode = RunMode::static_equilibrium;
+  std::vector<SpaceMethod> eigenfrequency_discretisations = {SpaceMethod::fem,
+                                                             SpaceMethod::fdm};
+  CatenaryParameters catenary;
+  PantographParameters pantograph;
+  DiscretisationParameters discretisation;
+  OutputParameters output;
+
+  static void declare_parameters(dealii::ParameterHandler& prm);
+  /// Reads every subsection and cross-checks them; throws InputError.
+  void parse_parameters(dealii::ParameterHandler& prm);
+};
+} // namespace pantocat

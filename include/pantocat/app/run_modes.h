@@ -1,0 +1,18 @@
+#pragma once
+
+#include <pantocat/app/program_parameters.h>
+
+#include <ostream>
+
+namespace pantocat
+{
+/// Table 1: extreme eigenfrequencies of both wires; writes eigenfrequencies.csv.
+void run_eigenfrequencies(const ProgramParameters& parameters, std::ostream& out);
+
+/**
+ * The initial static catenary (Sec. 2.2, Fig. 5): gravity, clamp loads,
+ * dropper constraints and the contact load lambda_p(0) at x_p(0). Writes
+ * static_profile.csv/.vtu and dropper_forces.csv.
+ */
+void run_static_equilibrium(const ProgramParameters& parameters, std::ostream& out);
+} // namespace pantocat

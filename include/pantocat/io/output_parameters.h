@@ -1,0 +1,17 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace pantocat
+{
+struct OutputParameters
+{
+  std::string directory         = "output"; ///< created if needed
+  unsigned int vtu_subdivisions = 4;        ///< sample points per cell in VTU files
+
+  static void declare_parameters(dealii::ParameterHandler& prm);
+  void parse_parameters(dealii::ParameterHandler& prm);
+};
+} // namespace pantocat

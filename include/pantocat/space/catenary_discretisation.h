@@ -1,0 +1,92 @@
+#pragma once
+
+#include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/space/block_operator.h>
+#include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/space/smoothed_delta.h>
+#include <pantocat/system/sparse_row.h>
+
+#include <memory>
+#include <vector>
+
+namespace pantocat
+{
+/// The two wires of the catenary.
+enum class Wire
+{
+  carrier,
+  contact_wire
+};
+
+/**
+ * Space discretisation of the catenary (Sec. 4): turns the wires of (2), (3)
+ * into the semi-discrete operators (29), (30) and gives the rows that couple
+ * the wires to droppers (31) and to the pantograph (32), (33).
+ *
+ * Unknowns are free coefficients only. The carrier is written as
+ * w_c(x,t) = l_c + u_c(x,t), so that (3) becomes homogeneous for both wires:
+ * the tension operator does not see the constant l_c, which then appears only
+ * in the dropper constraints (5).
+ *
+ * Implementations: FemCatenary (Sec. 4.2), FdmCatenary (Sec. 4.3).
+ */
+class CatenaryDiscretisation
+{
+public:
+  CatenaryDiscretisation(const CatenaryParameters& catenary,
+                         const DiscretisationParameters& discretisation);
+  virtual ~CatenaryDiscretisation() = default;
+
+  virtual SpaceMethod method() const = 0;
+
+  /// Number of free unknowns of @p wire.
+  virtual unsigned int n_dofs(Wire wire) const = 0;
+
+  /**
+   * Mass, damping, stiffness (tension, and bending for the contact wire) and
+   * the distributed gravity load of @p wire. Point loads of clamps and
+   * droppers are added by the system builder through point_row().
+   */
+  virtual void assemble(Wire wire, BlockOperator& op) const = 0;
+
+  /**
+   * Row r with r.q = u(x): the displacement of @p wire at @p x (for the carrier
+   * without the constant l_c). These are the rows of H_c and H_w in (31).
+   */
+  virtual SparseRow point_row(Wire wire, double x) const = 0;
+
+  /**
+   * Row r_k of the contact wire with r_k.q = int delta^{(k)}(x - x_c) w_w(x) dx,
+   * k = 0, 1, 2, for the configured load shape: r_0 is F_w of (33), and
+   * dF_w/dt = -x_p' r_1, d^2F_w/dt^2 = x_p'^2 r_2 - x_p'' r_1.
+   */
+  virtual void load_row(double x_c, unsigned int k, SparseRow& row) const = 0;
+
+  /// The displacement w(x) of @p wire (with l_c for the carrier) for the unknowns @p q of that wire.
+  double displacement(Wire wire, const dealii::Vector<double>& q, double x) const;
+
+  /// Vertices x_0 < ... < x_{N+1} of the grid.
+  std::vector<double> grid_points() const;
+
+  unsigned int n_intervals() const { return discretisation.n_intervals; }
+  double cell_size() const { return catenary.span / discretisation.n_intervals; }
+  const CatenaryParameters& catenary_parameters() const { return catenary; }
+  const DiscretisationParameters& discretisation_parameters() const
+  {
+    return discretisation;
+  }
+  const SmoothedDelta& smoothed_delta() const { return delta; }
+
+protected:
+  const WireParameters& wire_parameters(Wire wire) const;
+
+  CatenaryParameters catenary;
+  DiscretisationParameters discretisation;
+  SmoothedDelta delta;
+};
+
+/// FEM or FDM, as the parameters say.
+std::unique_ptr<CatenaryDiscretisation>
+create_catenary_discretisation(const CatenaryParameters& catenary,
+                               const DiscretisationParameters& discretisation);
+} // namespace pantocat

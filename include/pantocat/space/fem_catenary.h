@@ -1,0 +1,75 @@
+#pragma once
+
+#include <pantocat/fe/fe_cubic_hermite.h>
+#include <pantocat/space/catenary_discretisation.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/grid/tria.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * Finite elements of Sec. 4.2 on deal.II: the carrier with linear Lagrange
+ * elements FE_Q<1>(1), the contact wire with C1 cubic Hermite elements
+ * (FE_CubicHermite, Eq. (27)), both on one equidistant Triangulation<1> of
+ * N+1 cells. The weak form (16)/(17) gives consistent mass, damping, tension
+ * and bending matrices (QGauss(4): exact for the cubic x cubic products).
+ *
+ * Boundary conditions (3): the values at x = 0 and x = L are eliminated; the
+ * slopes of the contact wire stay free (w'' = 0 is natural), so the wire has
+ * 2N+2 unknowns and the carrier N.
+ *
+ * Point rows (droppers) evaluate the shape functions at the true position, so
+ * droppers need not sit on vertices. The contact row (33) is integrated by
+ * Gauss quadrature on the pieces of each cell cut at x_c and x_c +- eps, where
+ * the integrand is a polynomial: the result is exact.
+ */
+class FemCatenary : public CatenaryDiscretisation
+{
+public:
+  FemCatenary(const CatenaryParameters& catenary,
+              const DiscretisationParameters& discretisation);
+
+  SpaceMethod method() const override { return SpaceMethod::fem; }
+  unsigned int n_dofs(Wire wire) const override;
+  void assemble(Wire wire, BlockOperator& op) const override;
+  SparseRow point_row(Wire wire, double x) const override;
+  void load_row(double x_c, unsigned int k, SparseRow& row) const override;
+
+  const dealii::DoFHandler<1>& dof_handler(Wire wire) const;
+  /// Global dof number -> free unknown, or numbers::invalid_unsigned_int for eliminated dofs.
+  const std::vector<unsigned int>& free_index(Wire wire) const;
+
+  /**
+   * The contact-load row (33) over all dofs of the contact wire, including
+   * those that (3) eliminates: r_k(i) = int delta^{(k)}(x - x_c) v_i dx.
+   */
+  void full_load_row(double x_c, unsigned int k, SparseRow& row) const;
+
+private:
+  struct WireSpace
+  {
+    dealii::DoFHandler<1> dofs;
+    std::vector<std::vector<dealii::types::global_dof_index>> cell_dofs; ///< by cell index
+    std::vector<unsigned int> free;
+    unsigned int n_free = 0;
+  };
+
+  /// Index of the cell containing x (the right one at an interior vertex).
+  unsigned int cell_index(double x) const;
+  /// Value of local shape function i (or its k-th x-derivative) on cell @p c at x.
+  double shape(Wire wire, unsigned int c, unsigned int i, unsigned int k, double x) const;
+  const std::vector<dealii::types::global_dof_index>& local_dofs(Wire wire, unsigned int c) const;
+  const WireSpace& space(Wire wire) const;
+
+  dealii::Triangulation<1> triangulation;
+  std::vector<dealii::Triangulation<1>::active_cell_iterator> cells; ///< ordered by x
+  dealii::FE_Q<1> carrier_fe;
+  FE_CubicHermite wire_fe;
+  WireSpace carrier_space;
+  WireSpace wire_space;
+};
+} // namespace pantocat

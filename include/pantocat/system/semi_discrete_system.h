@@ -1,0 +1,56 @@
+#pragma once
+
+#include <pantocat/space/block_operator.h>
+#include <pantocat/system/constraint.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/// A contiguous range of unknowns that belongs to one body.
+struct DofBlock
+{
+  std::string name;
+  unsigned int first = 0;
+  unsigned int size  = 0;
+};
+
+/**
+ * The semi-discrete constrained system (35) that every integrator consumes:
+ *
+ *   M a + D v + K q = f + G(t)^T lambda,   g(t, q) = G(t) q + z(t) >= 0 (or = 0),
+ *
+ * with constant sparse M, D, K (A_Delta = -K), a constant load f, and a list
+ * of scalar constraints. Integrators see only this: no wires, no elements.
+ * The unknowns are ordered by blocks (carrier, contact wire, pantograph, ...).
+ */
+class SemiDiscreteSystem
+{
+public:
+  /// Builds the block-diagonal M, D, K and f from the bodies' operators.
+  void set_blocks(const std::vector<const BlockOperator*>& bodies);
+
+  void add_constraint(std::unique_ptr<Constraint> constraint);
+
+  unsigned int n_dofs() const { return load.size(); }
+  unsigned int n_constraints() const { return constraints.size(); }
+  const DofBlock& block(const std::string& name) const;
+  bool has_block(const std::string& name) const;
+
+  /// Kinetic energy v^T M v / 2 plus strain energy q^T K q / 2 minus f^T q.
+  double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v) const;
+
+  std::vector<DofBlock> blocks;
+  dealii::SparsityPattern sparsity;
+  dealii::SparseMatrix<double> mass, damping, stiffness;
+  dealii::Vector<double> load;
+  bool mass_is_diagonal = true;
+  std::vector<std::unique_ptr<Constraint>> constraints;
+};
+} // namespace pantocat

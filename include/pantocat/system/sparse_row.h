@@ -1,0 +1,60 @@
+#pragma once
+
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * A sparse row vector: a constraint gradient such as H_w, H_c or F_w(t) of
+ * (31)-(33), with a few non-zeros out of many unknowns.
+ */
+struct SparseRow
+{
+  std::vector<unsigned int> index;
+  std::vector<double> value;
+
+  void clear()
+  {
+    index.clear();
+    value.clear();
+  }
+  void add(const unsigned int i, const double v)
+  {
+    index.push_back(i);
+    value.push_back(v);
+  }
+  std::size_t size() const { return index.size(); }
+
+  /// row . x
+  template <typename VectorType>
+  double dot(const VectorType& x) const
+  {
+    double s = 0.;
+    for (std::size_t k = 0; k < index.size(); ++k)
+      s += value[k] * x[index[k]];
+    return s;
+  }
+  /// y += factor * row^T
+  template <typename VectorType>
+  void add_transpose_to(VectorType& y, const double factor) const
+  {
+    for (std::size_t k = 0; k < index.size(); ++k)
+      y[index[k]] += factor * value[k];
+  }
+  /// Shift all indices by @p offset (to place a block row in a global vector).
+  void shift(const unsigned int offset)
+  {
+    for (auto& i : index)
+      i += offset;
+  }
+  double sum() const
+  {
+    double s = 0.;
+    for (double v : value)
+      s += v;
+    return s;
+  }
+};
+} // namespace pantocat

@@ -1,0 +1,10 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages pantocat-fem needs (run as root):
+# deal.II 9.4 (with SUNDIALS, Trilinos, PETSc, MPI, Boost, UMFPACK, LAPACK),
+# the compiler and CMake, GoogleTest, ccache for fast rebuilds.
+set -euo pipefail
+export DEBIAN_FRONTEND=noninteractive
+SUDO=""
+[ "$(id -u)" -eq 0 ] || SUDO="sudo"
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q libdeal.ii-dev cmake g++ make libgtest-dev ccache

@@ -1,0 +1,122 @@
+#include <pantocat/app/application.h>
+#include <pantocat/app/command_line.h>
+#include <pantocat/app/parameter_input.h>
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/app/run_modes.h>
+#include <pantocat/base/input_error.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace pantocat
+{
+namespace
+{
+void print_parameters(const std::string& format)
+{
+  dealii::ParameterHandler prm;
+  ProgramParameters::declare_parameters(prm);
+  prm.print_parameters(std::cout, format == "json" ? dealii::ParameterHandler::JSON
+                                                   : dealii::ParameterHandler::PRM);
+}
+
+/**
+ * Creates the output directory and writes the fully resolved parameters into
+ * it. If the run then stops on bad input, the destructor removes what it
+ * wrote, so that nothing is left that looks like a result.
+ */
+class OutputDirectory
+{
+public:
+  OutputDirectory(const dealii::ParameterHandler& prm, const std::string& dir)
+    : parameters(std::filesystem::path(dir) / "parameters.prm")
+  {
+    std::error_code error;
+    created = std::filesystem::create_directories(dir, error);
+    std::ofstream out(parameters);
+    if (error || !out)
+      throw InputError("Output/Output directory = " + dir +
+                       ": cannot create or write to this directory");
+    prm.print_parameters(out, dealii::ParameterHandler::PRM);
+  }
+  ~OutputDirectory()
+  {
+    if (succeeded || std::uncaught_exceptions() == 0)
+      return;
+    std::error_code ignored;
+    std::filesystem::remove(parameters, ignored);
+    if (created && std::filesystem::is_empty(parameters.parent_path(), ignored))
+      std::filesystem::remove(parameters.parent_path(), ignored);
+  }
+  /// Called when the run has gone past input validation.
+  void keep() { succeeded = true; }
+
+private:
+  std::filesystem::path parameters;
+  bool created   = false;
+  bool succeeded = false;
+};
+
+int run(const CommandLine& cl)
+{
+  if (cl.help)
+  {
+    std::cout << CommandLine::usage();
+    return 0;
+  }
+  if (cl.print_parameters)
+  {
+    print_parameters(*cl.print_parameters);
+    return 0;
+  }
+  dealii::ParameterHandler prm;
+  ProgramParameters::declare_parameters(prm);
+  std::vector<std::string> overrides = cl.overrides;
+  if (cl.output_directory)
+    overrides.push_back("Output/Output directory=" + *cl.output_directory);
+  read_parameter_file(prm, cl.parameter_file, overrides);
+
+  ProgramParameters parameters;
+  parameters.parse_parameters(prm);
+  OutputDirectory output(prm, parameters.output.directory);
+
+  switch (parameters.mode)
+  {
+  case RunMode::eigenfrequencies:
+    run_eigenfrequencies(parameters, std::cout);
+    break;
+  case RunMode::static_equilibrium:
+    run_static_equilibrium(parameters, std::cout);
+    break;
+  }
+  output.keep();
+  return 0;
+}
+} // namespace
+
+int run_application(int argc, char** argv)
+{
+  try
+  {
+    return run(CommandLine::parse(argc, argv));
+  }
+  catch (const InputError& e)
+  {
+    std::cerr << "pantocat-fem: error: " << e.what() << std::endl;
+    return 2;
+  }
+  catch (const SimulationError& e)
+  {
+    std::cerr << "pantocat-fem: simulation failed: " << e.what() << std::endl;
+    return 1;
+  }
+  catch (const std::exception& e)
+  {
+    std::cerr << "pantocat-fem: error: " << one_line_message(e) << std::endl;
+    return 1;
+  }
+}
+} // namespace pantocat

@@ -1,0 +1,48 @@
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/base/input_error.h>
+
+#include <deal.II/base/utilities.h>
+
+namespace pantocat
+{
+void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Run");
+  prm.declare_entry("Mode", "static", dealii::Patterns::Selection("static|eigenfrequencies"),
+                    "static: the initial catenary under gravity, droppers and the contact "
+                    "load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: lowest and "
+                    "highest eigenfrequency of each wire (Table 1).");
+  prm.leave_subsection();
+  prm.enter_subsection("Eigenfrequencies");
+  prm.declare_entry("Discretisations", "fem, fdm",
+                    dealii::Patterns::List(dealii::Patterns::Selection("fem|fdm"), 1),
+                    "Space discretisations compared in eigenfrequency mode.");
+  prm.leave_subsection();
+  CatenaryParameters::declare_parameters(prm);
+  PantographParameters::declare_parameters(prm);
+  DiscretisationParameters::declare_parameters(prm);
+  OutputParameters::declare_parameters(prm);
+}
+
+void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Run");
+  mode = prm.get("Mode") == "eigenfrequencies" ? RunMode::eigenfrequencies
+                                               : RunMode::static_equilibrium;
+  prm.leave_subsection();
+  prm.enter_subsection("Eigenfrequencies");
+  eigenfrequency_discretisations.clear();
+  for (const auto& name : dealii::Utilities::split_string_list(prm.get("Discretisations")))
+    eigenfrequency_discretisations.push_back(space_method_from_string(name));
+  prm.leave_subsection();
+  catenary.parse_parameters(prm);
+  pantograph.parse_parameters(prm);
+  discretisation.parse_parameters(prm);
+  output.parse_parameters(prm);
+
+  discretisation.check(catenary.span);
+  pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
+                                    ? discretisation.load_half_width
+                                    : 0.);
+}
+} // namespace pantocat

@@ -1,0 +1,70 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/io/wire_output.h>
+
+#include <deal.II/dofs/dof_handler.h>
+#include <deal.II/fe/fe_q.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/tria.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <fstream>
+#include <iomanip>
+
+namespace pantocat
+{
+dealii::Vector<double> block_values(const SemiDiscreteSystem& system,
+                                    const dealii::Vector<double>& q,
+                                    const std::string& name)
+{
+  const DofBlock& b = system.block(name);
+  dealii::Vector<double> values(b.size);
+  for (unsigned int i = 0; i < b.size; ++i)
+    values(i) = q(b.first + i);
+  return values;
+}
+
+void write_wire_profiles(const CatenaryDiscretisation& d, const SemiDiscreteSystem& system,
+                         const dealii::Vector<double>& q, const std::string& csv_file,
+                         const std::string& vtu_file, const unsigned int subdivisions,
+                         const double time)
+{
+  const dealii::Vector<double> qc = block_values(system, q, "carrier");
+  const dealii::Vector<double> qw = block_values(system, q, "contact wire");
+
+  std::ofstream csv(csv_file);
+  if (!csv)
+    throw SimulationError("cannot write " + csv_file);
+  csv << "x_m,w_carrier_m,w_contact_wire_m\n" << std::setprecision(12);
+  for (const double x : d.grid_points())
+    csv << x << ',' << d.displacement(Wire::carrier, qc, x) << ','
+        << d.displacement(Wire::contact_wire, qw, x) << '\n';
+
+  // VTU: sample both wires on a finer linear grid.
+  dealii::Triangulation<1> tria;
+  dealii::GridGenerator::subdivided_hyper_cube(tria, d.n_intervals() * subdivisions, 0.,
+                                               d.catenary_parameters().span);
+  dealii::FE_Q<1> fe(1);
+  dealii::DoFHandler<1> dofs(tria);
+  dofs.distribute_dofs(fe);
+  dealii::Vector<double> carrier(dofs.n_dofs()), wire(dofs.n_dofs());
+  for (const auto& cell : dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 2; ++v)
+    {
+      const double x = cell->vertex(v)[0];
+      carrier(cell->vertex_dof_index(v, 0)) = d.displacement(Wire::carrier, qc, x);
+      wire(cell->vertex_dof_index(v, 0)) = d.displacement(Wire::contact_wire, qw, x);
+    }
+  dealii::DataOut<1> data_out;
+  data_out.attach_dof_handler(dofs);
+  data_out.add_data_vector(carrier, "carrier_displacement");
+  data_out.add_data_vector(wire, "contact_wire_displacement");
+  data_out.build_patches();
+  dealii::DataOutBase::VtkFlags flags;
+  flags.time = time;
+  data_out.set_flags(flags);
+  std::ofstream vtu(vtu_file);
+  if (!vtu)
+    throw SimulationError("cannot write " + vtu_file);
+  data_out.write_vtu(vtu);
+}
+} // namespace pantocat

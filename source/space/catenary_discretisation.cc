@@ -1,0 +1,43 @@
+#include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/space/fdm_catenary.h>
+#include <pantocat/space/fem_catenary.h>
+
+namespace pantocat
+{
+CatenaryDiscretisation::CatenaryDiscretisation(const CatenaryParameters& catenary,
+                                               const DiscretisationParameters& discretisation)
+  : catenary(catenary), discretisation(discretisation),
+    delta(discretisation.load_half_width)
+{
+}
+
+const WireParameters& CatenaryDiscretisation::wire_parameters(const Wire wire) const
+{
+  return wire == Wire::carrier ? catenary.carrier : catenary.contact_wire;
+}
+
+double CatenaryDiscretisation::displacement(const Wire wire,
+                                            const dealii::Vector<double>& q,
+                                            const double x) const
+{
+  const double offset = wire == Wire::carrier ? catenary.support_height : 0.;
+  return offset + point_row(wire, x).dot(q);
+}
+
+std::vector<double> CatenaryDiscretisation::grid_points() const
+{
+  std::vector<double> x(n_intervals() + 1);
+  for (unsigned int i = 0; i <= n_intervals(); ++i)
+    x[i] = catenary.span * i / n_intervals();
+  return x;
+}
+
+std::unique_ptr<CatenaryDiscretisation>
+create_catenary_discretisation(const CatenaryParameters& catenary,
+                               const DiscretisationParameters& discretisation)
+{
+  if (discretisation.method == SpaceMethod::fem)
+    return std::make_unique<FemCatenary>(catenary, discretisation);
+  return std::make_unique<FdmCatenary>(catenary, discretisation);
+}
+} // namespace pantocat

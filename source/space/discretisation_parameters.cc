@@ -1,0 +1,56 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/space/discretisation_parameters.h>
+
+namespace pantocat
+{
+const char* to_string(const SpaceMethod method)
+{
+  return method == SpaceMethod::fem ? "fem" : "fdm";
+}
+
+SpaceMethod space_method_from_string(const std::string& name)
+{
+  require(name == "fem" || name == "fdm", "Discretisation/Method", name,
+          "allowed: fem | fdm");
+  return name == "fem" ? SpaceMethod::fem : SpaceMethod::fdm;
+}
+
+void DiscretisationParameters::declare_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Discretisation");
+  prm.declare_entry("Method", "fem", dealii::Patterns::Selection("fem|fdm"),
+                    "fem: linear Lagrange carrier and C1 cubic Hermite contact wire "
+                    "(Sec. 4.2); fdm: second-order finite differences (Sec. 4.3).");
+  prm.declare_entry("Number of intervals", "500", dealii::Patterns::Integer(2),
+                    "N + 1: number of cells of the equidistant grid of each wire.");
+  prm.declare_entry("Load shape", "smoothed delta",
+                    dealii::Patterns::Selection("smoothed delta|point"),
+                    "Distribution of the contact force: the C1 cubic spline delta_eps of "
+                    "(25), or a point load (15)/(16).");
+  prm.declare_entry("Load half-width", "0.2", dealii::Patterns::Double(0.),
+                    "epsilon [m]: delta_eps vanishes outside [-epsilon, epsilon].");
+  prm.leave_subsection();
+}
+
+void DiscretisationParameters::parse_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Discretisation");
+  method          = space_method_from_string(prm.get("Method"));
+  n_intervals     = prm.get_integer("Number of intervals");
+  load_shape      = prm.get("Load shape") == "point" ? LoadShape::point
+                                                     : LoadShape::smoothed_delta;
+  load_half_width = prm.get_double("Load half-width");
+  prm.leave_subsection();
+}
+
+void DiscretisationParameters::check(const double span) const
+{
+  require(n_intervals >= 2, "Discretisation/Number of intervals", n_intervals,
+          "must be >= 2");
+  if (load_shape == LoadShape::smoothed_delta)
+    require(load_half_width > 0. && 2. * load_half_width < span,
+            "Discretisation/Load half-width", load_half_width,
+            "must lie in (0, L/2) = (0, " + number_to_string(span / 2.) + ")");
+}
+} // namespace pantocat

@@ -1,0 +1,115 @@
+#include <pantocat/space/fdm_catenary.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pantocat
+{
+FdmCatenary::FdmCatenary(const CatenaryParameters& catenary,
+                         const DiscretisationParameters& discretisation)
+  : CatenaryDiscretisation(catenary, discretisation)
+{
+}
+
+void FdmCatenary::assemble(const Wire wire, BlockOperator& op) const
+{
+  const WireParameters& p = wire_parameters(wire);
+  const unsigned int n = n_dofs(wire);
+  const double dx = cell_size();
+  const bool beam = wire == Wire::contact_wire && p.bending_stiffness > 0.;
+  const unsigned int bandwidth = beam ? 2 : 1;
+
+  op.name = wire == Wire::carrier ? "carrier" : "contact wire";
+  dealii::DynamicSparsityPattern dsp(n, n);
+  for (unsigned int i = 0; i < n; ++i)
+    for (unsigned int j = (i >= bandwidth ? i - bandwidth : 0);
+         j <= std::min(n - 1, i + bandwidth); ++j)
+      dsp.add(i, j);
+  op.sparsity->copy_from(dsp);
+  op.reinit_matrices(n);
+  op.mass_is_diagonal = true;
+
+  // Tension: -T w'' -> (T/dx) tridiag(-1, 2, -1).
+  const double t = p.tension / dx;
+  // Bending: EI w'''' -> (EI/dx^3) Q^2, Q = tridiag(1, -2, 1) with the
+  // boundary values q''_0 = q''_{N+1} = 0 of (3).
+  const double b = beam ? p.bending_stiffness / (dx * dx * dx) : 0.;
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    op.mass.set(i, i, p.mass_per_length * dx);
+    op.damping.set(i, i, p.damping * dx);
+    const bool first_or_last = (i == 0 || i + 1 == n);
+    op.stiffness.set(i, i, 2. * t + b * (first_or_last ? 5. : 6.));
+    if (i + 1 < n)
+    {
+      op.stiffness.set(i, i + 1, -t - 4. * b);
+      op.stiffness.set(i + 1, i, -t - 4. * b);
+    }
+    if (beam && i + 2 < n)
+    {
+      op.stiffness.set(i, i + 2, b);
+      op.stiffness.set(i + 2, i, b);
+    }
+    op.load(i) = -p.mass_per_length * catenary.gravity * dx;
+  }
+  if (n == 1) // a single unknown: Q = (-2), Q^2 = (4)
+    op.stiffness.set(0, 0, 2. * t + 4. * b);
+}
+
+unsigned int FdmCatenary::control_volume_node(const double x) const
+{
+  const double s = x / cell_size() + 0.5; // node i when i <= s < i + 1
+  const double nearest = std::round(s);
+  const double snapped = std::abs(s - nearest) < 1e-9 * std::max(1., s) ? nearest : s;
+  return static_cast<unsigned int>(std::floor(snapped));
+}
+
+SparseRow FdmCatenary::point_row(const Wire /*wire*/, const double x) const
+{
+  SparseRow row;
+  const unsigned int i = control_volume_node(x);
+  if (i >= 1 && i <= n_intervals() - 1)
+    row.add(i - 1, 1.);
+  return row;
+}
+
+void FdmCatenary::load_row(const double x_c, const unsigned int k, SparseRow& row) const
+{
+  row.clear();
+  const double dx = cell_size();
+  const unsigned int n = n_intervals() - 1;
+  if (discretisation.load_shape == LoadShape::point)
+  {
+    // A point load spread to the two neighbouring nodes by the hat functions.
+    const double s = x_c / dx;
+    const unsigned int left = std::min(static_cast<unsigned int>(std::floor(s)), n);
+    const double xi = s - left;
+    const double value[2] = {1. - xi, xi};
+    const double slope[2] = {-1. / dx, 1. / dx};
+    for (unsigned int m = 0; m < 2; ++m)
+    {
+      const unsigned int node = left + m;
+      if (node < 1 || node > n)
+        continue;
+      // int delta^{(k)}(x - x_c) phi(x) dx = (-1)^k phi^{(k)}(x_c)
+      const double v = k == 0 ? value[m] : (k == 1 ? -slope[m] : 0.);
+      row.add(node - 1, v);
+    }
+    return;
+  }
+  // Control volumes [x_{i-1/2}, x_{i+1/2}] that meet [x_c - eps, x_c + eps].
+  const double eps = delta.epsilon();
+  const int first = std::max(1, static_cast<int>(std::floor((x_c - eps) / dx + 0.5)));
+  const int last = std::min(static_cast<int>(n),
+                            static_cast<int>(std::floor((x_c + eps) / dx + 0.5)));
+  for (int i = first; i <= last; ++i)
+  {
+    const double a = (i - 0.5) * dx - x_c, b = (i + 0.5) * dx - x_c;
+    const double v = k == 0 ? delta.integral_up_to(b) - delta.integral_up_to(a)
+                            : delta.derivative(b, k - 1) - delta.derivative(a, k - 1);
+    row.add(i - 1, v);
+  }
+}
+} // namespace pantocat

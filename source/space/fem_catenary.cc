@@ -1,0 +1,250 @@
+#include <pantocat/space/fem_catenary.h>
+
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pantocat
+{
+namespace
+{
+constexpr unsigned int invalid = dealii::numbers::invalid_unsigned_int;
+}
+
+FemCatenary::FemCatenary(const CatenaryParameters& catenary,
+                         const DiscretisationParameters& discretisation)
+  : CatenaryDiscretisation(catenary, discretisation), carrier_fe(1)
+{
+  dealii::GridGenerator::subdivided_hyper_cube(triangulation, discretisation.n_intervals,
+                                               0., catenary.span);
+  for (const auto& cell : triangulation.active_cell_iterators())
+    cells.push_back(cell);
+  std::sort(cells.begin(), cells.end(),
+            [](const auto& a, const auto& b) { return a->vertex(0)[0] < b->vertex(0)[0]; });
+
+  for (auto* s : {&carrier_space, &wire_space})
+  {
+    s->dofs.reinit(triangulation);
+    s->dofs.distribute_dofs(s == &carrier_space
+                              ? static_cast<const dealii::FiniteElement<1>&>(carrier_fe)
+                              : static_cast<const dealii::FiniteElement<1>&>(wire_fe));
+    // Eliminate the value dof (component 0 of the vertex) at both ends, Eq. (3).
+    std::vector<bool> eliminated(s->dofs.n_dofs(), false);
+    for (const auto& cell : s->dofs.active_cell_iterators())
+      for (unsigned int v = 0; v < 2; ++v)
+        if (cell->at_boundary(v))
+          eliminated[cell->vertex_dof_index(v, 0)] = true;
+    s->cell_dofs.resize(cells.size());
+    for (unsigned int c = 0; c < cells.size(); ++c)
+    {
+      const typename dealii::DoFHandler<1>::active_cell_iterator cell(
+        &triangulation, cells[c]->level(), cells[c]->index(), &s->dofs);
+      s->cell_dofs[c].resize(s->dofs.get_fe().n_dofs_per_cell());
+      cell->get_dof_indices(s->cell_dofs[c]);
+    }
+    s->free.assign(s->dofs.n_dofs(), invalid);
+    for (unsigned int i = 0; i < s->dofs.n_dofs(); ++i)
+      if (!eliminated[i])
+        s->free[i] = s->n_free++;
+  }
+}
+
+const FemCatenary::WireSpace& FemCatenary::space(const Wire wire) const
+{
+  return wire == Wire::carrier ? carrier_space : wire_space;
+}
+
+unsigned int FemCatenary::n_dofs(const Wire wire) const
+{
+  return space(wire).n_free;
+}
+
+const dealii::DoFHandler<1>& FemCatenary::dof_handler(const Wire wire) const
+{
+  return space(wire).dofs;
+}
+
+const std::vector<unsigned int>& FemCatenary::free_index(const Wire wire) const
+{
+  return space(wire).free;
+}
+
+void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
+{
+  const WireParameters& p = wire_parameters(wire);
+  const WireSpace& s = space(wire);
+  const dealii::FiniteElement<1>& fe = s.dofs.get_fe();
+  const unsigned int n_local = fe.n_dofs_per_cell();
+  std::vector<dealii::types::global_dof_index> dofs(n_local);
+
+  op.name = wire == Wire::carrier ? "carrier" : "contact wire";
+  dealii::DynamicSparsityPattern dsp(s.n_free, s.n_free);
+  for (const auto& cell : s.dofs.active_cell_iterators())
+  {
+    cell->get_dof_indices(dofs);
+    for (auto i : dofs)
+      for (auto j : dofs)
+        if (s.free[i] != invalid && s.free[j] != invalid)
+          dsp.add(s.free[i], s.free[j]);
+  }
+  op.sparsity->copy_from(dsp);
+  op.reinit_matrices(s.n_free);
+  op.mass_is_diagonal = false;
+
+  const bool beam = wire == Wire::contact_wire && p.bending_stiffness > 0.;
+  const dealii::QGauss<1> quadrature(4);
+  dealii::FEValues<1> fe_values(fe, quadrature,
+                                dealii::update_values | dealii::update_gradients |
+                                  (beam ? dealii::update_hessians
+                                        : dealii::update_default) |
+                                  dealii::update_JxW_values);
+  for (const auto& cell : s.dofs.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    cell->get_dof_indices(dofs);
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+    {
+      const double jxw = fe_values.JxW(q);
+      for (unsigned int i = 0; i < n_local; ++i)
+      {
+        const unsigned int I = s.free[dofs[i]];
+        if (I == invalid)
+          continue;
+        const double vi = fe_values.shape_value(i, q);
+        op.load(I) -= p.mass_per_length * catenary.gravity * vi * jxw;
+        for (unsigned int j = 0; j < n_local; ++j)
+        {
+          const unsigned int J = s.free[dofs[j]];
+          if (J == invalid)
+            continue;
+          const double vivj = vi * fe_values.shape_value(j, q) * jxw;
+          op.mass.add(I, J, p.mass_per_length * vivj);
+          op.damping.add(I, J, p.damping * vivj);
+          // Weak form (16): T int v' w' + EI int v'' w''.
+          double k = p.tension * fe_values.shape_grad(i, q)[0] *
+                     fe_values.shape_grad(j, q)[0];
+          if (beam)
+            k += p.bending_stiffness * fe_values.shape_hessian(i, q)[0][0] *
+                 fe_values.shape_hessian(j, q)[0][0];
+          op.stiffness.add(I, J, k * jxw);
+        }
+      }
+    }
+  }
+}
+
+unsigned int FemCatenary::cell_index(const double x) const
+{
+  const auto it = std::upper_bound(
+    cells.begin(), cells.end(), x,
+    [](const double value, const auto& cell) { return value < cell->vertex(0)[0]; });
+  const unsigned int c = it == cells.begin() ? 0 : (it - cells.begin()) - 1;
+  return std::min<unsigned int>(c, cells.size() - 1);
+}
+
+const std::vector<dealii::types::global_dof_index>&
+FemCatenary::local_dofs(const Wire wire, const unsigned int c) const
+{
+  return space(wire).cell_dofs[c];
+}
+
+double FemCatenary::shape(const Wire wire, const unsigned int c, const unsigned int i,
+                          const unsigned int k, const double x) const
+{
+  const double x0 = cells[c]->vertex(0)[0];
+  const double h = cells[c]->vertex(1)[0] - x0;
+  const double xi = (x - x0) / h;
+  if (wire == Wire::contact_wire)
+    return wire_fe.shape_derivative_on_cell(i, k, xi, h);
+  // Linear Lagrange: value or slope; higher derivatives vanish inside a cell.
+  if (k == 0)
+    return carrier_fe.shape_value(i, dealii::Point<1>(xi));
+  return k == 1 ? carrier_fe.shape_grad(i, dealii::Point<1>(xi))[0] / h : 0.;
+}
+
+SparseRow FemCatenary::point_row(const Wire wire, const double x) const
+{
+  SparseRow row;
+  const unsigned int c = cell_index(x);
+  const auto& dofs = local_dofs(wire, c);
+  for (unsigned int i = 0; i < dofs.size(); ++i)
+  {
+    const unsigned int I = space(wire).free[dofs[i]];
+    const double v = shape(wire, c, i, 0, x);
+    if (I != invalid && v != 0.)
+      row.add(I, v);
+  }
+  return row;
+}
+
+void FemCatenary::full_load_row(const double x_c, const unsigned int k,
+                                SparseRow& row) const
+{
+  row.clear();
+  if (discretisation.load_shape == LoadShape::point)
+  {
+    // int delta^{(k)}(x - x_c) v(x) dx = (-1)^k v^{(k)}(x_c)
+    const unsigned int c = cell_index(x_c);
+    const auto& dofs = local_dofs(Wire::contact_wire, c);
+    for (unsigned int i = 0; i < dofs.size(); ++i)
+      row.add(dofs[i], (k % 2 ? -1. : 1.) * shape(Wire::contact_wire, c, i, k, x_c));
+    return;
+  }
+  const double eps = delta.epsilon();
+  const dealii::QGauss<1> gauss(4); // degree 3 + 3 = 6 <= 7: exact on each piece
+  const unsigned int first = cell_index(std::max(0., x_c - eps));
+  const unsigned int last = cell_index(std::min(catenary.span, x_c + eps));
+  std::vector<double> local(4);
+  for (unsigned int c = first; c <= last; ++c)
+  {
+    const double x0 = cells[c]->vertex(0)[0], x1 = cells[c]->vertex(1)[0];
+    // Break points: cell ends and the spline knots x_c - eps, x_c, x_c + eps inside the cell.
+    std::vector<double> breaks = {std::max(x0, x_c - eps), std::min(x1, x_c + eps)};
+    for (const double knot : delta.knots())
+      if (x_c + knot > breaks.front() && x_c + knot < breaks.back())
+        breaks.push_back(x_c + knot);
+    std::sort(breaks.begin(), breaks.end());
+    std::fill(local.begin(), local.end(), 0.);
+    for (unsigned int p = 0; p + 1 < breaks.size(); ++p)
+    {
+      const double a = breaks[p], length = breaks[p + 1] - breaks[p];
+      if (length <= 0.)
+        continue;
+      for (unsigned int q = 0; q < gauss.size(); ++q)
+      {
+        const double x = a + length * gauss.point(q)[0];
+        const double weight = length * gauss.weight(q) * delta.derivative(x - x_c, k);
+        for (unsigned int i = 0; i < 4; ++i)
+          local[i] += weight * shape(Wire::contact_wire, c, i, 0, x);
+      }
+    }
+    const auto& dofs = local_dofs(Wire::contact_wire, c);
+    for (unsigned int i = 0; i < 4; ++i)
+      row.add(dofs[i], local[i]);
+  }
+}
+
+void FemCatenary::load_row(const double x_c, const unsigned int k, SparseRow& row) const
+{
+  SparseRow full;
+  full_load_row(x_c, k, full);
+  // Sum duplicates of shared vertex dofs and drop the eliminated ones.
+  row.clear();
+  const auto& free = wire_space.free;
+  for (std::size_t m = 0; m < full.size(); ++m)
+  {
+    const unsigned int I = free[full.index[m]];
+    if (I == invalid)
+      continue;
+    auto it = std::find(row.index.begin(), row.index.end(), I);
+    if (it == row.index.end())
+      row.add(I, full.value[m]);
+    else
+      row.value[it - row.index.begin()] += full.value[m];
+  }
+}
+} // namespace pantocat

@@ -1,0 +1,71 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/system/semi_discrete_system.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+namespace pantocat
+{
+void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bodies)
+{
+  blocks.clear();
+  unsigned int n = 0;
+  mass_is_diagonal = true;
+  for (const BlockOperator* b : bodies)
+  {
+    blocks.push_back({b->name, n, b->size()});
+    n += b->size();
+    mass_is_diagonal = mass_is_diagonal && b->mass_is_diagonal;
+  }
+  dealii::DynamicSparsityPattern dsp(n, n);
+  for (unsigned int k = 0; k < bodies.size(); ++k)
+    for (auto it = bodies[k]->sparsity->begin(); it != bodies[k]->sparsity->end(); ++it)
+      dsp.add(blocks[k].first + it->row(), blocks[k].first + it->column());
+  sparsity.copy_from(dsp);
+  mass.reinit(sparsity);
+  damping.reinit(sparsity);
+  stiffness.reinit(sparsity);
+  load.reinit(n);
+  for (unsigned int k = 0; k < bodies.size(); ++k)
+  {
+    const unsigned int o = blocks[k].first;
+    const BlockOperator& b = *bodies[k];
+    for (const dealii::SparseMatrix<double>* m : {&b.mass, &b.damping, &b.stiffness})
+    {
+      dealii::SparseMatrix<double>& target =
+        m == &b.mass ? mass : (m == &b.damping ? damping : stiffness);
+      for (auto it = m->begin(); it != m->end(); ++it)
+        target.set(o + it->row(), o + it->column(), it->value());
+    }
+    for (unsigned int i = 0; i < b.size(); ++i)
+      load(o + i) = b.load(i);
+  }
+}
+
+void SemiDiscreteSystem::add_constraint(std::unique_ptr<Constraint> constraint)
+{
+  constraints.push_back(std::move(constraint));
+}
+
+bool SemiDiscreteSystem::has_block(const std::string& name) const
+{
+  for (const auto& b : blocks)
+    if (b.name == name)
+      return true;
+  return false;
+}
+
+const DofBlock& SemiDiscreteSystem::block(const std::string& name) const
+{
+  for (const auto& b : blocks)
+    if (b.name == name)
+      return b;
+  throw std::logic_error("no block named '" + name + "' in the semi-discrete system");
+}
+
+double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
+                                  const dealii::Vector<double>& v) const
+{
+  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) -
+         (load * q);
+}
+} // namespace pantocat
