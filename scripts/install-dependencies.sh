@@ -7,4 +7,4 @@ export DEBIAN_FRONTEND=noninteractive
 SUDO=""
 [ "$(id -u)" -eq 0 ] || SUDO="sudo"
 $SUDO apt-get update -q
-$SUDO apt-get install -y -q libdeal.ii-dev cmake g++ make libgtest-dev ccache
+$SUDO apt-get install -y -q libdeal.ii-dev cmake g++ make libgtest-dev ccache gnuplot-nox

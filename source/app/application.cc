@@ -91,6 +91,9 @@ int run(const CommandLine& cl)
   case RunMode::static_equilibrium:
     run_static_equilibrium(parameters, std::cout);
     break;
+  case RunMode::dynamics:
+    run_dynamics(parameters, std::cout);
+    break;
   }
   output.keep();
   return 0;

@@ -8,10 +8,12 @@ namespace pantocat
 void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
-  prm.declare_entry("Mode", "static", dealii::Patterns::Selection("static|eigenfrequencies"),
-                    "static: the initial catenary under gravity, droppers and the contact "
-                    "load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: lowest and "
-                    "highest eigenfrequency of each wire (Table 1).");
+  prm.declare_entry("Mode", "dynamics",
+                    dealii::Patterns::Selection("dynamics|static|eigenfrequencies"),
+                    "dynamics: the coupled pantograph-catenary run from x_p(0) to the final "
+                    "position (Sec. 6); static: the initial catenary under gravity, droppers "
+                    "and the contact load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: "
+                    "lowest and highest eigenfrequency of each wire (Table 1).");
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   prm.declare_entry("Discretisations", "fem, fdm",
@@ -21,14 +23,17 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
   CatenaryParameters::declare_parameters(prm);
   PantographParameters::declare_parameters(prm);
   DiscretisationParameters::declare_parameters(prm);
+  TimeIntegrationParameters::declare_parameters(prm);
   OutputParameters::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
-  mode = prm.get("Mode") == "eigenfrequencies" ? RunMode::eigenfrequencies
-                                               : RunMode::static_equilibrium;
+  const std::string m = prm.get("Mode");
+  mode = m == "eigenfrequencies" ? RunMode::eigenfrequencies
+         : m == "static"         ? RunMode::static_equilibrium
+                                 : RunMode::dynamics;
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   eigenfrequency_discretisations.clear();
@@ -38,6 +43,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   catenary.parse_parameters(prm);
   pantograph.parse_parameters(prm);
   discretisation.parse_parameters(prm);
+  time_integration.parse_parameters(prm);
   output.parse_parameters(prm);
 
   discretisation.check(catenary.span);

@@ -2,11 +2,17 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/json_writer.h>
+#include <pantocat/io/plots.h>
+#include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/wire_output.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace pantocat
 {
@@ -86,5 +92,120 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
     throw SimulationError("cannot write " + dir + "/dropper_forces.csv");
   out << "  wrote static_profile.csv, static_profile.vtu, dropper_forces.csv to " << dir
       << '\n';
+}
+
+namespace
+{
+void write_summary(const std::string& file, const ProgramParameters& p,
+                   const DynamicSimulation& simulation, const DynamicSimulation::Result& r,
+                   const RunStatistics& stats)
+{
+  std::ofstream out(file);
+  JsonWriter json(out);
+  json.begin_object()
+    .value("status", "completed")
+    .value("discretisation", to_string(p.discretisation.method))
+    .value("number_of_intervals", static_cast<unsigned long>(p.discretisation.n_intervals))
+    .value("integrator", to_string(p.time_integration.integrator))
+    .value("time_step", p.time_integration.time_step)
+    .value("speed", p.pantograph.speed)
+    .value("end_time", r.end_time)
+    .value("unknowns", static_cast<unsigned long>(simulation.system().n_dofs()))
+    .value("constraints", static_cast<unsigned long>(simulation.system().n_constraints()));
+  json.begin_object("contact_force")
+    .value("max", stats.contact_force_max())
+    .value("min", stats.contact_force_min())
+    .value("mean", stats.contact_force_mean())
+    .value("std", stats.contact_force_std())
+    .end_object();
+  json.begin_array("dropper_slack_intervals");
+  for (const auto& list : stats.dropper_slack_intervals())
+    json.intervals("", list);
+  json.end_array();
+  json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  json.value("steps", r.integrator.steps)
+    .value("active_set_changes", r.integrator.active_set_changes)
+    .value("active_set_iterations", r.integrator.active_set_iterations);
+  json.begin_object("max_constraint_residual")
+    .value("position", stats.max_position_residual())
+    .value("velocity", stats.max_velocity_residual())
+    .end_object();
+  json.value("stability_limit_explicit", r.stability_limit)
+    .value("time_loop_seconds", r.time_loop_seconds)
+    .end_object();
+  if (!out)
+    throw SimulationError("cannot write " + file);
+}
+
+std::string format_intervals(const std::vector<Interval>& list)
+{
+  if (list.empty())
+    return "none";
+  std::ostringstream s;
+  s << std::setprecision(4);
+  for (std::size_t i = 0; i < list.size(); ++i)
+    s << (i ? ", " : "") << '[' << list[i].first << ", " << list[i].second << ']';
+  return s.str();
+}
+} // namespace
+
+void run_dynamics(const ProgramParameters& p, std::ostream& out)
+{
+  DynamicSimulation simulation(p);
+  simulation.check_step_size(); // before any output is written
+  const std::string& dir = p.output.directory;
+  out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
+      << ", N+1 = " << p.discretisation.n_intervals << ", "
+      << to_string(p.time_integration.integrator) << ", dt = " << p.time_integration.time_step
+      << " s, v_p = " << p.pantograph.speed << " m/s, x_p from "
+      << p.pantograph.initial_position << " to " << p.pantograph.final_position << " m\n"
+      << "  " << simulation.system().n_dofs() << " unknowns, "
+      << simulation.system().n_constraints() << " unilateral constraints\n";
+
+  TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
+  RunStatistics stats;
+  struct FirstPoint : SimulationObserver
+  {
+    void observe(const TimePoint& point) override
+    {
+      if (!seen)
+        t = point.t, lambda_p = point.lambda.back(), seen = true;
+    }
+    bool seen = false;
+    double t = 0., lambda_p = 0.;
+  } first;
+  DynamicSimulation::Result r = simulation.run({&series, &stats, &first});
+  r.stability_limit = simulation.explicit_stability_limit();
+  write_summary(dir + "/summary.json", p, simulation, r, stats);
+
+  out << std::setprecision(6) << "  first time point t = " << first.t
+      << " s: lambda_p = " << first.lambda_p << " N (lambda_p(0) = "
+      << p.pantograph.initial_contact_force << " N)\n"
+      << "  " << r.integrator.steps << " steps in " << std::setprecision(3)
+      << r.time_loop_seconds << " s; active-set changes: " << r.integrator.active_set_changes
+      << '\n'
+      << std::setprecision(5) << "  contact force: max " << stats.contact_force_max()
+      << " N, min " << stats.contact_force_min() << " N, mean "
+      << stats.contact_force_mean() << " N, std " << stats.contact_force_std() << " N\n";
+  const auto slack = stats.dropper_slack_intervals();
+  for (unsigned int j = 0; j < slack.size(); ++j)
+    out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
+  out << "  contact lost: " << format_intervals(stats.contact_loss_intervals()) << '\n'
+      << std::setprecision(3) << "  max constraint residual: position "
+      << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
+      << " m/s\n";
+  if (p.output.plots)
+  {
+    std::ostringstream title;
+    title << to_string(p.discretisation.method) << " + "
+          << to_string(p.time_integration.integrator) << ", v_p = " << p.pantograph.speed
+          << " m/s";
+    if (!plot_time_series(dir, p.catenary.n_droppers(),
+                          simulation.layout().pantograph_coordinates, title.str()))
+      out << "  (gnuplot not found: wrote time_series.gp without PNG plots)\n";
+  }
+  out << "  wrote time_series.csv, summary.json"
+      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png" : "")
+      << " to " << dir << '\n';
 }
 } // namespace pantocat

@@ -11,6 +11,10 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("VTU subdivisions", "4", dealii::Patterns::Integer(1, 64),
                     "Sample points per cell in VTU files (shows the cubic Hermite "
                     "shape between vertices).");
+  prm.declare_entry("Time series interval", "1", dealii::Patterns::Integer(1),
+                    "Write every k-th time step to time_series.csv.");
+  prm.declare_entry("Plots", "true", dealii::Patterns::Bool(),
+                    "Write PNG plots of the time series (needs gnuplot).");
   prm.leave_subsection();
 }
 
@@ -19,6 +23,8 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.enter_subsection("Output");
   directory        = prm.get("Output directory");
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
+  time_series_interval = prm.get_integer("Time series interval");
+  plots = prm.get_bool("Plots");
   prm.leave_subsection();
 }
 } // namespace pantocat

@@ -20,10 +20,11 @@ void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bod
   for (unsigned int k = 0; k < bodies.size(); ++k)
     for (auto it = bodies[k]->sparsity->begin(); it != bodies[k]->sparsity->end(); ++it)
       dsp.add(blocks[k].first + it->row(), blocks[k].first + it->column());
-  sparsity.copy_from(dsp);
-  mass.reinit(sparsity);
-  damping.reinit(sparsity);
-  stiffness.reinit(sparsity);
+  sparsity = std::make_unique<dealii::SparsityPattern>();
+  sparsity->copy_from(dsp);
+  mass.reinit(*sparsity);
+  damping.reinit(*sparsity);
+  stiffness.reinit(*sparsity);
   load.reinit(n);
   for (unsigned int k = 0; k < bodies.size(); ++k)
   {

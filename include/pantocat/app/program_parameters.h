@@ -4,6 +4,7 @@
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/time/time_integration_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
 
@@ -15,7 +16,8 @@ namespace pantocat
 enum class RunMode
 {
   static_equilibrium, ///< the initial catenary of Sec. 2.2 / Fig. 5
-  eigenfrequencies    ///< Table 1 of Sec. 6
+  eigenfrequencies,   ///< Table 1 of Sec. 6
+  dynamics            ///< the coupled run of Sec. 6 (Figs. 6, 7)
 };
 
 /// All parameters of one run: one struct per prm subsection.
@@ -27,6 +29,7 @@ struct ProgramParameters
   CatenaryParameters catenary;
   PantographParameters pantograph;
   DiscretisationParameters discretisation;
+  TimeIntegrationParameters time_integration;
   OutputParameters output;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

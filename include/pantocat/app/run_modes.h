@@ -15,4 +15,11 @@ void run_eigenfrequencies(const ProgramParameters& parameters, std::ostream& out
  * static_profile.csv/.vtu and dropper_forces.csv.
  */
 void run_static_equilibrium(const ProgramParameters& parameters, std::ostream& out);
+
+/**
+ * The coupled run of Sec. 6: writes time_series.csv (streamed), summary.json
+ * and PNG plots of lambda_p, lambda_d and w_p (Figs. 6, 7), and prints a
+ * short summary.
+ */
+void run_dynamics(const ProgramParameters& parameters, std::ostream& out);
 } // namespace pantocat

@@ -47,7 +47,8 @@ public:
   double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v) const;
 
   std::vector<DofBlock> blocks;
-  dealii::SparsityPattern sparsity;
+  /// On the heap, so that the matrices that point to it survive moves of the system.
+  std::unique_ptr<dealii::SparsityPattern> sparsity;
   dealii::SparseMatrix<double> mass, damping, stiffness;
   dealii::Vector<double> load;
   bool mass_is_diagonal = true;

@@ -8,7 +8,9 @@ namespace pantocat
 {
 /**
  * A sparse row vector: a constraint gradient such as H_w, H_c or F_w(t) of
- * (31)-(33), with a few non-zeros out of many unknowns.
+ * (31)-(33), with a few non-zeros out of many unknowns. Constraint rows have
+ * distinct indices (FemCatenary::full_load_row is the one producer of
+ * repeated indices, by design).
  */
 struct SparseRow
 {

@@ -1,0 +1,68 @@
+#pragma once
+
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/coupling/contact_constraint.h>
+#include <pantocat/pantograph/pantograph_model.h>
+#include <pantocat/simulation/time_point.h>
+#include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/semi_discrete_system.h>
+#include <pantocat/time/time_integrator.h>
+
+#include <memory>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * One coupled pantograph-catenary run (Sec. 6): builds the space
+ * discretisation, the pantograph, the semi-discrete system with droppers and
+ * contact, the consistent initial state and the integrator, then integrates
+ * from x_p(0) to the final position and hands every time point to the
+ * observers.
+ */
+class DynamicSimulation
+{
+public:
+  explicit DynamicSimulation(const ProgramParameters& parameters);
+  ~DynamicSimulation();
+
+  struct Result
+  {
+    IntegratorStatistics integrator;
+    double time_loop_seconds  = 0.;
+    double end_time           = 0.;
+    double stability_limit    = 0.; ///< 2/omega_max [s]
+  };
+
+  /// Integrates; throws SimulationError if the run becomes unstable.
+  Result run(const std::vector<SimulationObserver*>& observers);
+
+  const SemiDiscreteSystem& system() const { return coupled; }
+  const SimulationLayout& layout() const { return layout_; }
+  const DynamicState& initial_state() const { return initial; }
+  const CatenaryDiscretisation& discretisation() const { return *space; }
+  /// The step-size limit 2/omega_max of the explicit method for this system (computed once).
+  double explicit_stability_limit() const;
+  /**
+   * Refuses (InputError naming the parameter, the value and the limit) a
+   * half-explicit step above 2/omega_max, or warns if the user forces it.
+   * run() calls it first; call it earlier to check before writing outputs.
+   */
+  void check_step_size() const;
+  /// Builds the time point of a state (gaps and residuals evaluated here).
+  TimePoint time_point(const DynamicState& state) const;
+
+private:
+  ProgramParameters parameters;
+  std::unique_ptr<CatenaryDiscretisation> space;
+  std::unique_ptr<PantographModel> pantograph;
+  SemiDiscreteSystem catenary_only, coupled;
+  const ContactConstraint* contact = nullptr;
+  SimulationLayout layout_;
+  DynamicState initial;
+  mutable double stability_limit = 0.;
+  mutable bool warned = false;
+};
+
+std::unique_ptr<PantographModel> create_pantograph(const PantographParameters& parameters);
+} // namespace pantocat

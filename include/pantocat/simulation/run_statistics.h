@@ -1,0 +1,53 @@
+#pragma once
+
+#include <pantocat/simulation/time_point.h>
+
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace pantocat
+{
+/// A time interval [t0, t1] in seconds.
+using Interval = std::pair<double, double>;
+
+/**
+ * Statistics of a run as summary.json reports them: contact-force statistics,
+ * the intervals in which each dropper is slack and the contact is lost, and
+ * the largest constraint residuals. An interval starts at the first time
+ * point at which the constraint is inactive and ends at the first at which it
+ * is active again (or at the end of the run): resolution one output step.
+ */
+class RunStatistics : public SimulationObserver
+{
+public:
+  void start(const SimulationLayout& layout) override;
+  void observe(const TimePoint& point) override;
+  void finish() override;
+
+  double contact_force_max() const { return max_force; }
+  double contact_force_min() const { return min_force; }
+  double contact_force_mean() const;
+  /// Population standard deviation over the time points (uniform steps).
+  double contact_force_std() const;
+  unsigned long n_points() const { return count; }
+  double max_position_residual() const { return max_pos; }
+  double max_velocity_residual() const { return max_vel; }
+  /// Slack intervals of each dropper, in dropper order.
+  std::vector<std::vector<Interval>> dropper_slack_intervals() const;
+  std::vector<Interval> contact_loss_intervals() const;
+  /// Inactive intervals of constraint i.
+  const std::vector<Interval>& inactive_intervals(unsigned int i) const { return intervals[i]; }
+
+private:
+  SimulationLayout layout;
+  double max_force = -std::numeric_limits<double>::infinity();
+  double min_force = std::numeric_limits<double>::infinity();
+  double mean = 0., m2 = 0.;
+  unsigned long count = 0;
+  double max_pos = 0., max_vel = 0.;
+  double last_t = 0.;
+  std::vector<std::vector<Interval>> intervals;
+  std::vector<double> open_since; ///< start of the open interval, or NaN
+};
+} // namespace pantocat

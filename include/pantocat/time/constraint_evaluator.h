@@ -1,0 +1,28 @@
+#pragma once
+
+#include <pantocat/system/semi_discrete_system.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * The states (G, G_t, G_tt, z, ...) of all constraints at one time point,
+ * reused from step to step: constraints with constant rows (droppers) are
+ * evaluated once, time-dependent ones (the contact) at every call.
+ */
+class ConstraintEvaluator
+{
+public:
+  explicit ConstraintEvaluator(const SemiDiscreteSystem& system);
+
+  /// Evaluates the time-dependent constraints at @p t; returns all states.
+  const std::vector<ConstraintState>& at(double t);
+
+  const std::vector<ConstraintState>& states() const { return cache; }
+
+private:
+  const SemiDiscreteSystem& system;
+  std::vector<ConstraintState> cache;
+};
+} // namespace pantocat

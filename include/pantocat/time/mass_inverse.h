@@ -1,0 +1,46 @@
+#pragma once
+
+#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/sparse_row.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/vector.h>
+
+namespace pantocat
+{
+/**
+ * The inverse of a constant symmetric positive definite matrix such as M or
+ * M + dt/2 D of (39)-(41): a diagonal scaling when the matrix is diagonal
+ * (FDM, lumped pantograph), otherwise a sparse direct factorisation (FEM).
+ *
+ * apply_to_row() computes A^{-1} r^T for a sparse row r. For a diagonal A the
+ * result has the pattern of r and only those entries are touched, so the
+ * column can be used and reset in O(nnz(r)).
+ */
+class MassInverse
+{
+public:
+  void initialize(const dealii::SparseMatrix<double>& matrix, bool is_diagonal,
+                  const std::string& what);
+
+  bool is_diagonal() const { return diagonal; }
+
+  /// x <- A^{-1} x
+  void apply(dealii::Vector<double>& x) const;
+
+  /// column <- A^{-1} row^T (column must be zero outside row's pattern when diagonal).
+  void apply_to_row(const SparseRow& row, dealii::Vector<double>& column) const;
+
+  /// Sets column to zero again after apply_to_row (O(nnz) when diagonal).
+  void reset_column(const SparseRow& row, dealii::Vector<double>& column) const;
+
+  /// y += factor * column, with column = A^{-1} row^T (O(nnz) when diagonal).
+  void add_column(const SparseRow& row, const dealii::Vector<double>& column,
+                  double factor, dealii::Vector<double>& y) const;
+
+private:
+  bool diagonal = false;
+  dealii::Vector<double> inverse_diagonal;
+  SparseDirectSolver factorization;
+};
+} // namespace pantocat

@@ -1,0 +1,28 @@
+#pragma once
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+
+namespace pantocat
+{
+/// The time integrators of Sec. 5.2.
+enum class IntegratorType
+{
+  half_explicit, ///< the reversible half-explicit method (39)-(41)
+  bdf2           ///< two-step BDF on the GGL formulation (38), Richardson start
+};
+
+const char* to_string(IntegratorType type);
+
+struct TimeIntegrationParameters
+{
+  IntegratorType integrator = IntegratorType::half_explicit;
+  double time_step          = 5e-5; ///< Delta t [s]
+  bool force_step_size      = false; ///< run an explicit method above its stability limit
+  unsigned int max_active_set_iterations = 20;
+
+  static void declare_parameters(dealii::ParameterHandler& prm);
+  void parse_parameters(dealii::ParameterHandler& prm);
+};
+} // namespace pantocat

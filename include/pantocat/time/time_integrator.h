@@ -1,0 +1,56 @@
+#pragma once
+
+#include <pantocat/system/semi_discrete_system.h>
+#include <pantocat/time/dynamic_state.h>
+#include <pantocat/time/time_integration_parameters.h>
+
+#include <memory>
+#include <string>
+
+namespace pantocat
+{
+/// Work counters of an integrator run.
+struct IntegratorStatistics
+{
+  unsigned long steps                 = 0;
+  unsigned long active_set_iterations = 0; ///< repeated trial steps (Sec. 5.3)
+  unsigned long active_set_changes    = 0; ///< constraints switched in accepted steps
+};
+
+/**
+ * A fixed-step integrator of the semi-discrete constrained system (35). It
+ * sees only the SemiDiscreteSystem: matrices, loads and constraint rows.
+ *
+ * Usage: initialize() with a consistent state (q, v, a, lambda at t_0), then
+ * advance() repeatedly. latest() is the newest time point at which q, v and
+ * lambda are all known: for the half-explicit method the multipliers of t_n
+ * are computed in the step that leaves t_n, so latest() lags one step behind
+ * the newest positions until finish() computes the last multipliers.
+ */
+class TimeIntegrator
+{
+public:
+  explicit TimeIntegrator(const SemiDiscreteSystem& system) : system(system) {}
+  virtual ~TimeIntegrator() = default;
+
+  virtual std::string name() const = 0;
+  virtual void initialize(const DynamicState& initial) = 0;
+  virtual void advance() = 0;
+  /// Completes the last time point (multipliers) after the final advance().
+  virtual void finish() {}
+  virtual const DynamicState& latest() const = 0;
+  /// True if latest() is the time point before the newest positions (see above).
+  virtual bool multipliers_lag_one_step() const { return false; }
+  /// Time of the newest positions.
+  virtual double time() const = 0;
+
+  const IntegratorStatistics& statistics() const { return stats; }
+
+protected:
+  const SemiDiscreteSystem& system;
+  IntegratorStatistics stats;
+};
+
+std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem& system,
+                                                       const TimeIntegrationParameters& p);
+} // namespace pantocat

@@ -1,0 +1,161 @@
+#include <pantocat/analysis/stability_limit.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/pantograph/two_mass_pantograph.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/initial_state.h>
+#include <pantocat/coupling/coupled_system_builder.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace pantocat
+{
+std::unique_ptr<PantographModel> create_pantograph(const PantographParameters& p)
+{
+  return std::make_unique<TwoMassPantograph>(p.two_mass);
+}
+
+DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
+  : parameters(p), space(create_catenary_discretisation(p.catenary, p.discretisation)),
+    pantograph(create_pantograph(p.pantograph))
+{
+  CoupledSystem built = build_coupled_system(
+    *space, *pantograph, ContactPointMotion{p.pantograph.initial_position, p.pantograph.speed},
+    Constraint::Kind::unilateral, Constraint::Kind::unilateral);
+  catenary_only = std::move(built.catenary_only);
+  coupled = std::move(built.coupled);
+  contact = built.contact;
+
+  for (unsigned int i = 0; i < coupled.n_constraints(); ++i)
+  {
+    layout_.constraint_names.push_back(coupled.constraints[i]->name());
+    if (i + 1 < coupled.n_constraints())
+      layout_.dropper_indices.push_back(i);
+  }
+  layout_.contact_index = coupled.n_constraints() - 1;
+  layout_.pantograph_coordinates = pantograph->coordinate_names();
+
+  initial = consistent_initial_state(catenary_only, coupled, *space, *pantograph, *contact,
+                                     p.pantograph.initial_contact_force,
+                                     p.pantograph.initial_offset);
+}
+
+DynamicSimulation::~DynamicSimulation() = default;
+
+double DynamicSimulation::explicit_stability_limit() const
+{
+  if (stability_limit == 0.)
+    stability_limit = 2. / largest_circular_frequency(coupled);
+  return stability_limit;
+}
+
+void DynamicSimulation::check_step_size() const
+{
+  const auto& ti = parameters.time_integration;
+  if (ti.integrator != IntegratorType::half_explicit)
+    return;
+  const double limit = explicit_stability_limit();
+  if (ti.time_step <= limit)
+    return;
+  std::ostringstream message;
+  message << "above the stability limit 2/omega_max = " << std::setprecision(3) << limit
+          << " s of the half-explicit method for this grid ("
+          << to_string(parameters.discretisation.method)
+          << ", N+1 = " << parameters.discretisation.n_intervals << ")";
+  if (!ti.force_step_size)
+    throw InputError("Time integration/Time step = " + number_to_string(ti.time_step) +
+                     ": " + message.str() +
+                     "; choose a smaller step or set Force step size = true");
+  if (!warned)
+    std::cerr << "pantocat-fem: warning: time step " << ti.time_step << " s is "
+              << message.str() << " (forced)\n";
+  warned = true;
+}
+
+TimePoint DynamicSimulation::time_point(const DynamicState& s) const
+{
+  TimePoint p;
+  p.t = s.t;
+  p.x_p = contact->motion().position(s.t);
+  p.lambda = s.lambda;
+  p.active = s.active;
+  const unsigned int m = coupled.n_constraints();
+  p.gap.resize(m);
+  ConstraintState rows;
+  for (unsigned int i = 0; i < m; ++i)
+  {
+    coupled.constraints[i]->evaluate(s.t, rows);
+    p.gap[i] = rows.position_residual(s.q);
+    if (s.active[i])
+    {
+      p.position_residual = std::max(p.position_residual, std::abs(p.gap[i]));
+      p.velocity_residual =
+        std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
+    }
+  }
+  const DofBlock& b = coupled.block("pantograph");
+  for (unsigned int i = 0; i < b.size; ++i)
+    p.pantograph.push_back(s.q(b.first + i));
+  return p;
+}
+
+namespace
+{
+void check_finite(const DynamicState& s, const unsigned long step)
+{
+  bool finite = std::isfinite(s.q.l2_norm()) && std::isfinite(s.v.l2_norm());
+  for (const double l : s.lambda)
+    finite = finite && std::isfinite(l);
+  if (!finite)
+  {
+    std::ostringstream m;
+    m << "unstable: non-finite positions, velocities or multipliers at t = " << s.t
+      << " s (step " << step << ")";
+    throw SimulationError(m.str());
+  }
+}
+} // namespace
+
+DynamicSimulation::Result DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
+{
+  check_step_size();
+  const auto& ti = parameters.time_integration;
+  auto integrator = create_time_integrator(coupled, ti);
+  Result result;
+  result.end_time = parameters.pantograph.end_time();
+  const auto n_steps =
+    static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
+
+  for (auto* o : observers)
+    o->start(layout_);
+  const auto notify = [&](const DynamicState& s) {
+    const TimePoint p = time_point(s);
+    for (auto* o : observers)
+      o->observe(p);
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  integrator->initialize(initial);
+  const bool lags = integrator->multipliers_lag_one_step();
+  if (!lags)
+    notify(initial);
+  for (unsigned long n = 1; n <= n_steps; ++n)
+  {
+    integrator->advance();
+    check_finite(integrator->latest(), n);
+    notify(integrator->latest());
+  }
+  integrator->finish();
+  if (lags)
+    notify(integrator->latest());
+  result.time_loop_seconds =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.integrator = integrator->statistics();
+  for (auto* o : observers)
+    o->finish();
+  return result;
+}
+} // namespace pantocat

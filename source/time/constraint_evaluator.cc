@@ -1,0 +1,19 @@
+#include <pantocat/time/constraint_evaluator.h>
+
+namespace pantocat
+{
+ConstraintEvaluator::ConstraintEvaluator(const SemiDiscreteSystem& system)
+  : system(system), cache(system.n_constraints())
+{
+  for (unsigned int i = 0; i < cache.size(); ++i)
+    system.constraints[i]->evaluate(0., cache[i]);
+}
+
+const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t)
+{
+  for (unsigned int i = 0; i < cache.size(); ++i)
+    if (system.constraints[i]->depends_on_time())
+      system.constraints[i]->evaluate(t, cache[i]);
+  return cache;
+}
+} // namespace pantocat

@@ -1,0 +1,261 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/time/half_explicit_integrator.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace pantocat
+{
+namespace
+{
+/// Solves the small dense system in place (x <- A^{-1} b); throws if singular.
+void solve_small(dealii::FullMatrix<double>& A, const dealii::Vector<double>& b,
+                 dealii::Vector<double>& x, const double t, const char* what)
+{
+  if (A.m() == 0)
+    return;
+  A.gauss_jordan();
+  A.vmult(x, b);
+  for (const double value : x)
+    if (!std::isfinite(value))
+    {
+      std::ostringstream s;
+      s << "the active constraints are linearly dependent at t = " << t << " s (" << what
+        << ")";
+      throw SimulationError(s.str());
+    }
+}
+} // namespace
+
+HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
+                                               const double time_step,
+                                               const unsigned int max_iterations)
+  : TimeIntegrator(system), dt(time_step), at_n(system), at_half(system), at_next(system),
+    active_set(system, max_iterations)
+{
+  const unsigned int n = system.n_dofs(), m = system.n_constraints();
+  for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new, &r, &tmp})
+    x->reinit(n);
+  for (auto* c : {&Y, &P, &Q, &R})
+    c->assign(m, dealii::Vector<double>(n));
+  lambda.assign(m, 0.);
+  gaps.assign(m, 0.);
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
+  factorize();
+}
+
+void HalfExplicitIntegrator::factorize()
+{
+  // (M + dt/2 D) of (39) with (41); diagonal when M and D are.
+  dealii::SparseMatrix<double> smoothed(*system.sparsity);
+  smoothed.copy_from(system.mass);
+  smoothed.add(0.5 * dt, system.damping);
+  bool diagonal = system.mass_is_diagonal;
+  for (auto it = system.damping.begin(); diagonal && it != system.damping.end(); ++it)
+    diagonal = it->row() == it->column() || it->value() == 0.;
+  smoothed_mass_inverse.initialize(smoothed, diagonal, "matrix M + dt/2 D");
+
+  // Columns of the constant constraint rows, once.
+  const auto& states = at_n.states();
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (!system.constraints[i]->depends_on_time())
+    {
+      Y[i] = 0.;
+      P[i] = 0.;
+      Q[i] = 0.;
+      R[i] = 0.;
+      smoothed_mass_inverse.apply_to_row(states[i].G, Y[i]);
+      mass_inverse.apply_to_row(states[i].G, P[i]);
+      mass_inverse.apply_to_row(states[i].G, R[i]); // G(t_n) = G(t_{n+1/2})
+    }
+}
+
+void HalfExplicitIntegrator::set_time_step(const double time_step)
+{
+  dt = time_step;
+  factorize();
+}
+
+void HalfExplicitIntegrator::initialize(const DynamicState& initial)
+{
+  t = initial.t;
+  q = initial.q;
+  v = initial.v;
+  a = initial.a;
+  // v_{-1} = v_0 - dt a_0.
+  v_prev = initial.v;
+  v_prev.add(-dt, initial.a);
+  active_now = initial.active;
+  reported = initial;
+  step_number = 0;
+}
+
+void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>& vp)
+{
+  v_prev = vp;
+}
+
+void HalfExplicitIntegrator::compute_time_dependent_columns()
+{
+  const auto& sn = at_n.states();
+  const auto& sh = at_half.states();
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (system.constraints[i]->depends_on_time())
+    {
+      smoothed_mass_inverse.apply_to_row(sn[i].G, Y[i]);
+      mass_inverse.apply_to_row(sn[i].G, P[i]);
+      mass_inverse.apply_to_row(sh[i].G_t, Q[i]);
+      mass_inverse.apply_to_row(sh[i].G, R[i]);
+    }
+}
+
+void HalfExplicitIntegrator::reset_time_dependent_columns()
+{
+  const auto& sn = at_n.states();
+  const auto& sh = at_half.states();
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (system.constraints[i]->depends_on_time())
+    {
+      smoothed_mass_inverse.reset_column(sn[i].G, Y[i]);
+      mass_inverse.reset_column(sn[i].G, P[i]);
+      mass_inverse.reset_column(sh[i].G_t, Q[i]);
+      mass_inverse.reset_column(sh[i].G, R[i]);
+    }
+}
+
+void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A)
+{
+  const auto& sn = at_n.states();
+  // r = f - K q_n - D (v_{n-1} + v_n)/2, the smoothed damping term of (41).
+  system.stiffness.vmult(r, q);
+  r.sadd(-1., 1., system.load);
+  tmp = v_prev;
+  tmp += v;
+  system.damping.vmult(a, tmp); // a as scratch: a = D (v_{n-1} + v_n)
+  r.add(-0.5, a);
+  a = r;
+  smoothed_mass_inverse.apply(a);
+
+  const unsigned int m = A.size();
+  small.reinit(m, m);
+  small_rhs.reinit(m);
+  small_solution.reinit(m);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    const ConstraintState& s = sn[A[k]];
+    for (unsigned int l = 0; l < m; ++l)
+      small(k, l) = s.G.dot(Y[A[l]]);
+    // g^(II) = G a + 2 G_t v + G_tt q + z_tt = 0 at t_n.
+    small_rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
+  }
+  solve_small(small, small_rhs, small_solution, t, "acceleration level");
+  std::fill(lambda.begin(), lambda.end(), 0.);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    lambda[A[k]] = small_solution(k);
+    smoothed_mass_inverse.add_column(sn[A[k]].G, Y[A[k]], small_solution(k), a);
+  }
+}
+
+void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
+{
+  const auto& sn = at_n.states();
+  const auto& sh = at_half.states();
+  const auto& s1 = at_next.states();
+  // Unconstrained part: v* = v_{n-1} + 2 dt a_n, q* = q_n + dt (v_n + v*)/2.
+  v_new = v_prev;
+  v_new.add(2. * dt, a);
+  q_new = q;
+  q_new.add(0.5 * dt, v, 0.5 * dt, v_new);
+
+  const unsigned int m = A.size();
+  small.reinit(2 * m, 2 * m);
+  small_rhs.reinit(2 * m);
+  small_solution.reinit(2 * m);
+  const double h = dt;
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    const ConstraintState& s = s1[A[k]];
+    for (unsigned int l = 0; l < m; ++l)
+    {
+      const unsigned int j = A[l];
+      const double GP = s.G.dot(P[j]), GQ = s.G.dot(Q[j]), GR = s.G.dot(R[j]);
+      const double GtP = s.G_t.dot(P[j]), GtQ = s.G_t.dot(Q[j]), GtR = s.G_t.dot(R[j]);
+      small(k, l)         = h * h * GP + h * GQ;                // position row, eta
+      small(k, m + l)     = h * GR;                             // position row, mu
+      small(m + k, l)     = h * h * GtP + h * GtQ + 2. * h * GP; // velocity row, eta
+      small(m + k, m + l) = h * GtR;                            // velocity row, mu
+    }
+    small_rhs(k) = -(s.G.dot(q_new) + s.z);
+    small_rhs(m + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
+  }
+  solve_small(small, small_rhs, small_solution, t + dt, "position/velocity level");
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    const unsigned int j = A[l];
+    const double eta = small_solution(l), mu = small_solution(m + l);
+    mass_inverse.add_column(sn[j].G, P[j], h * h * eta, q_new);
+    mass_inverse.add_column(sh[j].G_t, Q[j], h * eta, q_new);
+    mass_inverse.add_column(sh[j].G, R[j], h * mu, q_new);
+    mass_inverse.add_column(sn[j].G, P[j], 2. * h * eta, v_new);
+  }
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    gaps[i] = s1[i].position_residual(q_new);
+}
+
+void HalfExplicitIntegrator::advance()
+{
+  at_n.at(t);
+  at_half.at(t + 0.5 * dt);
+  at_next.at(t + dt);
+  compute_time_dependent_columns();
+  active_set.start(active_now);
+  for (;;)
+  {
+    compute_acceleration(active_set.active_indices());
+    compute_update(active_set.active_indices());
+    if (active_set.accept(gaps, lambda, t + dt, step_number + 1))
+      break;
+    ++stats.active_set_iterations;
+  }
+  reset_time_dependent_columns();
+  stats.active_set_changes += active_set.changes_in_step();
+
+  // Report t_n: q_n, v_n satisfy the constraints of J_n; lambda_n belongs to
+  // the set J_{n+1} of this step (a constraint closing in this step already
+  // carries its impact force). Then move on to t_{n+1}.
+  reported.t = t;
+  reported.q = q;
+  reported.v = v;
+  reported.a = a;
+  reported.lambda = lambda;
+  reported.active = active_now;
+  active_now = active_set.active();
+  v_prev.swap(v);
+  v.swap(v_new);
+  q.swap(q_new);
+  t += dt;
+  ++step_number;
+  ++stats.steps;
+}
+
+void HalfExplicitIntegrator::finish()
+{
+  // Step 1 alone at the final time: a_N and lambda_N with the current active set.
+  at_n.at(t);
+  at_half.at(t + 0.5 * dt);
+  compute_time_dependent_columns();
+  std::vector<unsigned int> A;
+  for (unsigned int i = 0; i < active_now.size(); ++i)
+    if (active_now[i])
+      A.push_back(i);
+  compute_acceleration(A);
+  reset_time_dependent_columns();
+  reported.t = t;
+  reported.q = q;
+  reported.v = v;
+  reported.a = a;
+  reported.lambda = lambda;
+  reported.active = active_now;
+}
+} // namespace pantocat

@@ -1,0 +1,15 @@
+#include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/half_explicit_integrator.h>
+#include <pantocat/time/time_integrator.h>
+
+namespace pantocat
+{
+std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem& system,
+                                                       const TimeIntegrationParameters& p)
+{
+  if (p.integrator == IntegratorType::bdf2)
+    return std::make_unique<Bdf2Integrator>(system, p.time_step, p.max_active_set_iterations);
+  return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
+                                                  p.max_active_set_iterations);
+}
+} // namespace pantocat

@@ -1,0 +1,345 @@
+// Coupled pantograph-catenary dynamics (Secs. 5, 6): the paper's 32 and
+// 48 m/s runs, agreement of discretisations and integrators, reversibility
+// and energy of the half-explicit method, constraint residuals, step-size guard.
+#include <pantocat/analysis/static_equilibrium.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/coupling/coupled_system_builder.h>
+#include <pantocat/pantograph/two_mass_pantograph.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/run_statistics.h>
+#include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/time/half_explicit_integrator.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+using namespace pantocat;
+
+namespace
+{
+struct Recorder : SimulationObserver
+{
+  void observe(const TimePoint& p) override { points.push_back(p); }
+  std::vector<TimePoint> points;
+};
+
+ProgramParameters benchmark(double speed, SpaceMethod method, IntegratorType integrator)
+{
+  ProgramParameters p;
+  p.mode = RunMode::dynamics;
+  p.pantograph.speed = speed;
+  p.pantograph.initial_offset = speed > 40. ? 0.002 : 0.;
+  p.discretisation.method = method;
+  p.time_integration.integrator = integrator;
+  return p;
+}
+
+struct BenchmarkRun
+{
+  explicit BenchmarkRun(const ProgramParameters& p) : simulation(p)
+  {
+    result = simulation.run({&stats, &record});
+  }
+  DynamicSimulation simulation;
+  RunStatistics stats;
+  Recorder record;
+  DynamicSimulation::Result result;
+};
+
+/// Time of the minimum of constraint i's force in [t0, t1].
+double time_of_minimum(const Recorder& r, unsigned int i, double t0, double t1)
+{
+  double best = 1e300, when = -1.;
+  for (const auto& p : r.points)
+    if (p.t >= t0 && p.t <= t1 && p.lambda[i] < best)
+      best = p.lambda[i], when = p.t;
+  return when;
+}
+} // namespace
+
+TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
+{
+  const BenchmarkRun fdm_he(benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit));
+  const BenchmarkRun fdm_bdf(benchmark(32., SpaceMethod::fdm, IntegratorType::bdf2));
+  const BenchmarkRun fem_bdf(benchmark(32., SpaceMethod::fem, IntegratorType::bdf2));
+
+  // Sec. 2.2: the state is consistent on acceleration level, so the first
+  // multipliers of the half-explicit method reproduce lambda_p(0) = 8.75 N.
+  EXPECT_NEAR(fdm_he.record.points.front().lambda.back(), 8.75, 1e-9);
+  EXPECT_EQ(fdm_he.record.points.front().t, 0.);
+
+  for (const BenchmarkRun* run : {&fdm_he, &fdm_bdf, &fem_bdf})
+  {
+    // Sec. 6: at 32 m/s no dropper slackens and the contact is never lost.
+    for (const auto& intervals : run->stats.dropper_slack_intervals())
+      EXPECT_TRUE(intervals.empty());
+    EXPECT_TRUE(run->stats.contact_loss_intervals().empty());
+    EXPECT_EQ(run->result.integrator.active_set_changes, 0u);
+    // Unilateral constraints that stay active are kept to round-off.
+    EXPECT_LT(run->stats.max_position_residual(), 1e-12);
+    EXPECT_LT(run->stats.max_velocity_residual(), 1e-10);
+    EXPECT_NEAR(run->record.points.back().x_p, 18., 32. * 5e-5);
+  }
+  // Half-explicit vs BDF-2 on the same grid: both second order with dt = 5e-5 s;
+  // the force statistics agree to 0.5 % (max, mean) and 0.3 N (min ~ 5.5 N).
+  const RunStatistics &a = fdm_he.stats, &b = fdm_bdf.stats, &c = fem_bdf.stats;
+  EXPECT_NEAR(b.contact_force_max() / a.contact_force_max(), 1., 0.005);
+  EXPECT_NEAR(b.contact_force_mean() / a.contact_force_mean(), 1., 0.005);
+  EXPECT_NEAR(b.contact_force_min(), a.contact_force_min(), 0.3);
+  // FEM vs FDM (both with BDF-2): the FDM moves the droppers to the nodes of
+  // their control volumes (5.5 -> 5.52 m), which alone shifts the static dropper
+  // forces by 0.4 %; allow 1 % on max and mean and 0.5 N on the minimum.
+  EXPECT_NEAR(c.contact_force_max() / b.contact_force_max(), 1., 0.01);
+  EXPECT_NEAR(c.contact_force_mean() / b.contact_force_mean(), 1., 0.01);
+  EXPECT_NEAR(c.contact_force_min(), b.contact_force_min(), 0.5);
+
+  // The pantograph passes dropper 1 at t = (x_d - 2)/v_p: the dropper force
+  // has its distinct minimum there (a wave travels ahead; within 10 ms).
+  const double t_pass = (5.5 - 2.) / 32.;
+  EXPECT_NEAR(time_of_minimum(fdm_he.record, 0, 0., 0.15), t_pass, 0.01);
+  EXPECT_NEAR(time_of_minimum(fem_bdf.record, 0, 0., 0.15), t_pass, 0.01);
+}
+
+TEST(Benchmark48, SecondDropperSlackensWhenThePantographPassesAndRetensions)
+{
+  const BenchmarkRun run(benchmark(48., SpaceMethod::fdm, IntegratorType::half_explicit));
+  // Sec. 6: lambda_d1 has a distinct minimum when the pantograph passes
+  // dropper 1 at t = 0.0729 s (FDM dropper node at 5.52 m: 0.0733 s); 2 ms.
+  EXPECT_NEAR(time_of_minimum(run.record, 0, 0., 0.15), 0.0729, 0.002);
+  // Dropper 1 stays taut, the contact is not lost.
+  const auto slack = run.stats.dropper_slack_intervals();
+  EXPECT_TRUE(slack[0].empty());
+  EXPECT_TRUE(run.stats.contact_loss_intervals().empty());
+  // Dropper 2 slackens around t = 0.2604 s, when the pantograph reaches it,
+  // for a short interval, and is taut again at the end.
+  ASSERT_FALSE(slack[1].empty());
+  bool around_passage = false;
+  for (const auto& [t0, t1] : slack[1])
+    around_passage = around_passage || (t0 <= 0.2604 + 0.005 && t1 >= 0.2604 - 0.005 &&
+                                        t1 - t0 < 0.02);
+  EXPECT_TRUE(around_passage) << "first slack interval [" << slack[1][0].first << ", "
+                              << slack[1][0].second << "]";
+  EXPECT_TRUE(run.record.points.back().active[1]);
+  EXPECT_GT(run.stats.contact_force_max(), 2. * 112.); // much sharper peaks than at 32 m/s
+}
+
+namespace
+{
+/// Undamped, gravity-free FDM catenary (N+1 = 50) with the two-mass pantograph
+/// without dampers; droppers and contact bilateral.
+struct UndampedBilateral
+{
+  UndampedBilateral()
+  {
+    catenary.gravity = 0.;
+    catenary.carrier.damping = catenary.contact_wire.damping = 0.;
+    catenary.clamp_mass = catenary.dropper_mass_per_length = 0.;
+    DiscretisationParameters d;
+    d.method = SpaceMethod::fdm;
+    d.n_intervals = 50;
+    space = create_catenary_discretisation(catenary, d);
+    TwoMassPantographParameters pp;
+    pp.head_damping = pp.frame_damping = 0.;
+    pp.uplift_force = 0.;
+    pantograph = std::make_unique<TwoMassPantograph>(pp);
+    built = build_coupled_system(*space, *pantograph, ContactPointMotion{2., 32.},
+                                 Constraint::Kind::bilateral, Constraint::Kind::bilateral);
+  }
+
+  /// The catenary deflected by a 100 N contact load, the head on the wire
+  /// moving with it: consistent on position and velocity level.
+  DynamicState initial_state() const
+  {
+    const auto& sys = built.coupled;
+    ConstraintState rows;
+    built.contact->evaluate(0., rows);
+    dealii::Vector<double> load(built.catenary_only.n_dofs());
+    for (std::size_t k = 0; k < rows.G.size(); ++k)
+      if (rows.G.index[k] < load.size())
+        load(rows.G.index[k]) += 100. * rows.G.value[k];
+    const auto rest = solve_static_equilibrium(built.catenary_only, load);
+    DynamicState s;
+    s.q.reinit(sys.n_dofs());
+    s.v.reinit(sys.n_dofs());
+    s.a.reinit(sys.n_dofs());
+    for (unsigned int i = 0; i < rest.q.size(); ++i)
+      s.q(i) = rest.q(i);
+    const unsigned int p = sys.block("pantograph").first;
+    s.q(p) = s.q(p + 1) = rows.G.dot(s.q);
+    s.v(p) = s.v(p + 1) = rows.G_t.dot(s.q);
+    s.lambda.assign(sys.n_constraints(), 0.);
+    s.active.assign(sys.n_constraints(), true);
+    return s;
+  }
+
+  CatenaryParameters catenary;
+  std::unique_ptr<CatenaryDiscretisation> space;
+  std::unique_ptr<PantographModel> pantograph;
+  CoupledSystem built;
+};
+
+double max_difference(const dealii::Vector<double>& a, const dealii::Vector<double>& b)
+{
+  dealii::Vector<double> d(a);
+  d -= b;
+  return d.linfty_norm();
+}
+} // namespace
+
+namespace
+{
+/// Integrates N steps forward from (v_0, q_1, v_1), then N steps back with -dt
+/// from (v_{N+2}, q_{N+1}, v_{N+1}); returns max |q - q_1| and max |v - v_1|.
+std::pair<double, double> forward_and_back(const SemiDiscreteSystem& system,
+                                           const DynamicState& initial, double dt,
+                                           unsigned int steps)
+{
+  HalfExplicitIntegrator integrator(system, dt, 10);
+  integrator.initialize(initial);
+  integrator.advance(); // now on the constraint manifold: (v_0, q_1, v_1)
+  const dealii::Vector<double> q_start = integrator.positions(),
+                               v_start = integrator.velocities();
+  for (unsigned int n = 0; n < steps; ++n)
+    integrator.advance();
+  DynamicState back = initial;
+  back.t = integrator.time();
+  back.q = integrator.positions();
+  back.v = integrator.velocities();
+  integrator.advance();
+  const dealii::Vector<double> v_after = integrator.velocities();
+  integrator.set_time_step(-dt);
+  integrator.initialize(back);
+  integrator.set_previous_velocity(v_after);
+  for (unsigned int n = 0; n < steps; ++n)
+    integrator.advance();
+  return {max_difference(integrator.positions(), q_start),
+          max_difference(integrator.velocities(), v_start)};
+}
+} // namespace
+
+TEST(HalfExplicit, IsReversibleToRoundOffWithFixedBilateralConstraints)
+{
+  // (39)-(41) with D = 0 and the droppers bilateral: 1000 steps forward and
+  // 1000 back return to the start to round-off (q ~ 6e-2 m). Along such a
+  // consistent solution the GGL multipliers eta, mu vanish exactly.
+  UndampedBilateral problem;
+  const SemiDiscreteSystem& catenary = problem.built.catenary_only;
+  dealii::Vector<double> load(catenary.n_dofs());
+  SparseRow F;
+  problem.space->load_row(7., 0, F);
+  F.shift(catenary.block("contact wire").first);
+  F.add_transpose_to(load, 200.);
+  DynamicState s;
+  s.q = solve_static_equilibrium(catenary, load).q;
+  s.v.reinit(catenary.n_dofs());
+  s.a.reinit(catenary.n_dofs());
+  s.active.assign(catenary.n_constraints(), true);
+  s.lambda.assign(catenary.n_constraints(), 0.);
+  const auto [dq, dv] = forward_and_back(catenary, s, 1e-4, 1000);
+  EXPECT_LT(dq, 1e-14);
+  EXPECT_LT(dv, 1e-12);
+}
+
+TEST(HalfExplicit, MovingContactIsReversibleUpToTheGglMultipliers)
+{
+  // With the moving contact the multipliers eta, mu of (40) are of the size
+  // of the discretisation error and the velocity equation takes eta at t_n:
+  // a step back does not undo a step forward exactly. The defect of one step
+  // there and back is of high order in dt (observed >= 5): halving dt
+  // shrinks it by more than 2^4.
+  UndampedBilateral problem;
+  const auto coarse = forward_and_back(problem.built.coupled, problem.initial_state(), 1e-4, 1);
+  const auto fine = forward_and_back(problem.built.coupled, problem.initial_state(), 5e-5, 1);
+  EXPECT_LT(coarse.first, 1e-6);
+  EXPECT_GT(coarse.first / fine.first, 16.);
+}
+
+TEST(HalfExplicit, EnergyStaysBoundedOver100000Steps)
+{
+  // Free vibration of the undamped, gravity-free catenary with bilateral
+  // droppers, released from a deflected state. The method is reversible and
+  // symplectic-like: the energy oscillates by O((omega dt)^2) without drift.
+  CatenaryParameters catenary;
+  catenary.gravity = 0.;
+  catenary.carrier.damping = catenary.contact_wire.damping = 0.;
+  catenary.clamp_mass = catenary.dropper_mass_per_length = 0.;
+  DiscretisationParameters d;
+  d.method = SpaceMethod::fdm;
+  d.n_intervals = 50;
+  const auto space = create_catenary_discretisation(catenary, d);
+  const SemiDiscreteSystem system = build_catenary_system(*space, Constraint::Kind::bilateral);
+  dealii::Vector<double> load(system.n_dofs());
+  SparseRow F;
+  space->load_row(7., 0, F);
+  F.shift(system.block("contact wire").first);
+  F.add_transpose_to(load, 200.);
+  DynamicState s;
+  s.q = solve_static_equilibrium(system, load).q;
+  s.v.reinit(system.n_dofs());
+  s.a.reinit(system.n_dofs());
+  s.active.assign(system.n_constraints(), true);
+  s.lambda.assign(system.n_constraints(), 0.);
+
+  const double dt = 1e-4; // 2/omega_max = 1.3e-3 s
+  HalfExplicitIntegrator integrator(system, dt, 10);
+  integrator.initialize(s);
+  const double e0 = system.energy(s.q, s.v);
+  double lowest = e0, highest = e0, late_highest = 0.;
+  const unsigned int steps = 100000;
+  for (unsigned int n = 1; n <= steps; ++n)
+  {
+    integrator.advance();
+    const double e = system.energy(integrator.positions(), integrator.velocities());
+    lowest = std::min(lowest, e);
+    highest = std::max(highest, e);
+    if (n > steps - 10000)
+      late_highest = std::max(late_highest, e);
+  }
+  EXPECT_LT((highest - lowest) / e0, 0.02);
+  // No drift: the last 10 % of the run reaches the same band as the whole run.
+  EXPECT_NEAR(late_highest / highest, 1., 0.01);
+}
+
+TEST(HalfExplicit, BilateralResidualsStayAtRoundOff)
+{
+  // The GGL projection (40) enforces g = 0 and dg/dt = 0 at every t_{n+1}.
+  UndampedBilateral problem;
+  HalfExplicitIntegrator integrator(problem.built.coupled, 2e-4, 10);
+  integrator.initialize(problem.initial_state());
+  ConstraintState rows;
+  double position = 0., velocity = 0.;
+  for (unsigned int n = 0; n < 2000; ++n)
+  {
+    integrator.advance();
+    for (const auto& c : problem.built.coupled.constraints)
+    {
+      c->evaluate(integrator.time(), rows);
+      position = std::max(position, std::abs(rows.position_residual(integrator.positions())));
+      velocity = std::max(velocity, std::abs(rows.velocity_residual(
+                                      integrator.positions(), integrator.velocities())));
+    }
+  }
+  EXPECT_LT(position, 1e-14);
+  EXPECT_LT(velocity, 1e-12);
+}
+
+TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
+{
+  ProgramParameters p = benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit);
+  p.time_integration.time_step = 1e-4;
+  DynamicSimulation simulation(p);
+  EXPECT_NEAR(simulation.explicit_stability_limit(), 6.62e-5, 0.01e-5); // Sec. 6: 6.6e-5 s
+  try
+  {
+    simulation.run({});
+    FAIL() << "expected an InputError";
+  }
+  catch (const InputError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("Time integration/Time step = 0.0001"), std::string::npos);
+    EXPECT_NE(message.find("6.62e-05"), std::string::npos) << message;
+  }
+}
