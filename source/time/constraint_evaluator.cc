@@ -9,11 +9,12 @@ ConstraintEvaluator::ConstraintEvaluator(const SemiDiscreteSystem& system)
     system.constraints[i]->evaluate(0., cache[i]);
 }
 
-const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t)
+const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t,
+                                                           const unsigned int max_order)
 {
   for (unsigned int i = 0; i < cache.size(); ++i)
     if (system.constraints[i]->depends_on_time())
-      system.constraints[i]->evaluate(t, cache[i]);
+      system.constraints[i]->evaluate(t, cache[i], max_order);
   return cache;
 }
 } // namespace pantocat

@@ -1,6 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/half_explicit_integrator.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -42,6 +43,58 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   gaps.assign(m, 0.);
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   factorize();
+  // Diagonal storage of K and D/2.
+  for (auto it = system.stiffness.begin(); it != system.stiffness.end(); ++it)
+    forces.bandwidth = std::max<int>(forces.bandwidth, std::abs(static_cast<int>(it->row()) -
+                                                               static_cast<int>(it->column())));
+  const int b = forces.bandwidth;
+  forces.stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
+  forces.half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
+  std::vector<bool> k_used(2 * b + 1, false), d_used(2 * b + 1, false);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    auto d = system.damping.begin(i);
+    for (auto k = system.stiffness.begin(i); k != system.stiffness.end(i); ++k, ++d)
+    {
+      const int o = static_cast<int>(k->column()) - static_cast<int>(i) + b;
+      forces.stiffness[o][i] = k->value();
+      forces.half_damping[o][i] = 0.5 * d->value();
+      k_used[o] = k_used[o] || k->value() != 0.;
+      d_used[o] = d_used[o] || d->value() != 0.;
+    }
+  }
+  for (int o = 0; o <= 2 * b; ++o)
+  {
+    if (k_used[o])
+      forces.stiffness_offsets.push_back(o - b);
+    if (d_used[o])
+      forces.damping_offsets.push_back(o - b);
+  }
+}
+
+void HalfExplicitIntegrator::compute_forces()
+{
+  const int n = q.size(), b = forces.bandwidth;
+  const double* __restrict qq = q.begin();
+  const double* __restrict vv = v.begin();
+  const double* __restrict vp = v_prev.begin();
+  double* __restrict out = a.begin();
+  std::copy(system.load.begin(), system.load.end(), out);
+  // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
+  for (const int o : forces.stiffness_offsets)
+  {
+    const double* __restrict k = forces.stiffness[o + b].data();
+    const int first = std::max(0, -o), last = std::min(n, n - o);
+    for (int i = first; i < last; ++i)
+      out[i] -= k[i] * qq[i + o];
+  }
+  for (const int o : forces.damping_offsets)
+  {
+    const double* __restrict d = forces.half_damping[o + b].data();
+    const int first = std::max(0, -o), last = std::min(n, n - o);
+    for (int i = first; i < last; ++i)
+      out[i] -= d[i] * (vp[i + o] + vv[i + o]);
+  }
 }
 
 void HalfExplicitIntegrator::factorize()
@@ -126,14 +179,8 @@ void HalfExplicitIntegrator::reset_time_dependent_columns()
 void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A)
 {
   const auto& sn = at_n.states();
-  // r = f - K q_n - D (v_{n-1} + v_n)/2, the smoothed damping term of (41).
-  system.stiffness.vmult(r, q);
-  r.sadd(-1., 1., system.load);
-  tmp = v_prev;
-  tmp += v;
-  system.damping.vmult(a, tmp); // a as scratch: a = D (v_{n-1} + v_n)
-  r.add(-0.5, a);
-  a = r;
+  // (M + dt/2 D) a = f - K q_n - D (v_{n-1} + v_n)/2: the smoothing (41).
+  compute_forces();
   smoothed_mass_inverse.apply(a);
 
   const unsigned int m = A.size();
@@ -163,10 +210,20 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   const auto& sh = at_half.states();
   const auto& s1 = at_next.states();
   // Unconstrained part: v* = v_{n-1} + 2 dt a_n, q* = q_n + dt (v_n + v*)/2.
-  v_new = v_prev;
-  v_new.add(2. * dt, a);
-  q_new = q;
-  q_new.add(0.5 * dt, v, 0.5 * dt, v_new);
+  {
+    const unsigned int n = q.size();
+    const double* __restrict qq = q.begin();
+    const double* __restrict vv = v.begin();
+    const double* __restrict vp = v_prev.begin();
+    const double* __restrict aa = a.begin();
+    double* __restrict qn = q_new.begin();
+    double* __restrict vn = v_new.begin();
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      vn[i] = vp[i] + 2. * dt * aa[i];
+      qn[i] = qq[i] + 0.5 * dt * (vv[i] + vn[i]);
+    }
+  }
 
   const unsigned int m = A.size();
   small.reinit(2 * m, 2 * m);
@@ -206,8 +263,8 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
 void HalfExplicitIntegrator::advance()
 {
   at_n.at(t);
-  at_half.at(t + 0.5 * dt);
-  at_next.at(t + dt);
+  at_half.at(t + 0.5 * dt, 1); // (40) needs G and G_t at t_{n+1/2} and t_{n+1}
+  at_next.at(t + dt, 1);
   compute_time_dependent_columns();
   active_set.start(active_now);
   for (;;)
@@ -225,15 +282,15 @@ void HalfExplicitIntegrator::advance()
   // the set J_{n+1} of this step (a constraint closing in this step already
   // carries its impact force). Then move on to t_{n+1}.
   reported.t = t;
-  reported.q = q;
-  reported.v = v;
-  reported.a = a;
+  reported.q.swap(q); // q_n
+  q.swap(q_new);      // q_{n+1}
+  reported.v = v;     // v_n
+  v_prev.swap(v);     // v_prev = v_n
+  v.swap(v_new);      // v_{n+1}
+  reported.a.swap(a);
   reported.lambda = lambda;
   reported.active = active_now;
   active_now = active_set.active();
-  v_prev.swap(v);
-  v.swap(v_new);
-  q.swap(q_new);
   t += dt;
   ++step_number;
   ++stats.steps;
@@ -243,7 +300,7 @@ void HalfExplicitIntegrator::finish()
 {
   // Step 1 alone at the final time: a_N and lambda_N with the current active set.
   at_n.at(t);
-  at_half.at(t + 0.5 * dt);
+  at_half.at(t + 0.5 * dt, 1);
   compute_time_dependent_columns();
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)

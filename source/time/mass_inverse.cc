@@ -1,34 +1,101 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/mass_inverse.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
+namespace
+{
+/// Rows of @p matrix with a non-zero off-diagonal entry.
+std::vector<unsigned int> rows_with_coupling(const dealii::SparseMatrix<double>& matrix)
+{
+  std::vector<unsigned int> rows;
+  for (unsigned int i = 0; i < matrix.m(); ++i)
+    for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+      if (it->column() != i && it->value() != 0.)
+      {
+        rows.push_back(i);
+        break;
+      }
+  return rows;
+}
+} // namespace
+
 void MassInverse::initialize(const dealii::SparseMatrix<double>& matrix,
                              const bool is_diagonal, const std::string& what)
 {
-  diagonal = is_diagonal;
+  coupled_rows = is_diagonal ? std::vector<unsigned int>() : rows_with_coupling(matrix);
+  // A small coupled block (a lumped pantograph) beside a diagonal rest.
+  bool block_closed = coupled_rows.size() <= 16;
+  for (const unsigned int i : coupled_rows)
+    for (auto it = matrix.begin(i); block_closed && it != matrix.end(i); ++it)
+      block_closed = it->value() == 0. ||
+                     std::binary_search(coupled_rows.begin(), coupled_rows.end(), it->column());
+  diagonal = block_closed;
   if (!diagonal)
   {
+    coupled_rows.clear();
     factorization.factorize(matrix, what);
     return;
   }
   inverse_diagonal.reinit(matrix.m());
   for (unsigned int i = 0; i < matrix.m(); ++i)
   {
+    if (std::binary_search(coupled_rows.begin(), coupled_rows.end(), i))
+      continue;
     const double d = matrix.diag_element(i);
     if (!(d > 0.))
       throw SimulationError("the " + what + " has a non-positive diagonal entry " +
                             std::to_string(d) + " at unknown " + std::to_string(i));
     inverse_diagonal(i) = 1. / d;
   }
+  const unsigned int c = coupled_rows.size();
+  coupled_inverse.reinit(c, c);
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int l = 0; l < c; ++l)
+      coupled_inverse(k, l) = matrix.el(coupled_rows[k], coupled_rows[l]);
+  if (c > 0)
+    coupled_inverse.gauss_jordan();
+  block_in.reinit(c);
+  block_out.reinit(c);
 }
 
 void MassInverse::apply(dealii::Vector<double>& x) const
 {
-  if (diagonal)
-    x.scale(inverse_diagonal);
-  else
+  if (!diagonal)
+  {
     factorization.solve(x);
+    return;
+  }
+  const unsigned int c = coupled_rows.size();
+  for (unsigned int k = 0; k < c; ++k)
+    block_in(k) = x(coupled_rows[k]);
+  x.scale(inverse_diagonal);
+  if (c == 0)
+    return;
+  coupled_inverse.vmult(block_out, block_in);
+  for (unsigned int k = 0; k < c; ++k)
+    x(coupled_rows[k]) = block_out(k);
+}
+
+void MassInverse::apply_block_to_row(const SparseRow& row,
+                                     dealii::Vector<double>& column) const
+{
+  const unsigned int c = coupled_rows.size();
+  if (c == 0)
+    return;
+  block_in = 0.;
+  for (std::size_t m = 0; m < row.size(); ++m)
+  {
+    const auto it =
+      std::lower_bound(coupled_rows.begin(), coupled_rows.end(), row.index[m]);
+    if (it != coupled_rows.end() && *it == row.index[m])
+      block_in(it - coupled_rows.begin()) += row.value[m];
+  }
+  coupled_inverse.vmult(block_out, block_in);
+  for (unsigned int k = 0; k < c; ++k)
+    column(coupled_rows[k]) = block_out(k);
 }
 
 void MassInverse::apply_to_row(const SparseRow& row, dealii::Vector<double>& column) const
@@ -37,6 +104,7 @@ void MassInverse::apply_to_row(const SparseRow& row, dealii::Vector<double>& col
   {
     for (std::size_t k = 0; k < row.size(); ++k)
       column[row.index[k]] += row.value[k] * inverse_diagonal[row.index[k]];
+    apply_block_to_row(row, column);
     return;
   }
   column = 0.;
@@ -46,11 +114,15 @@ void MassInverse::apply_to_row(const SparseRow& row, dealii::Vector<double>& col
 
 void MassInverse::reset_column(const SparseRow& row, dealii::Vector<double>& column) const
 {
-  if (diagonal)
-    for (const unsigned int i : row.index)
-      column[i] = 0.;
-  else
+  if (!diagonal)
+  {
     column = 0.;
+    return;
+  }
+  for (const unsigned int i : row.index)
+    column[i] = 0.;
+  for (const unsigned int i : coupled_rows)
+    column[i] = 0.;
 }
 
 void MassInverse::add_column(const SparseRow& row, const dealii::Vector<double>& column,
@@ -61,7 +133,11 @@ void MassInverse::add_column(const SparseRow& row, const dealii::Vector<double>&
     y.add(factor, column);
     return;
   }
+  // The pattern of the row, then the coupled rows not in it.
   for (const unsigned int i : row.index)
     y[i] += factor * column[i];
+  for (const unsigned int i : coupled_rows)
+    if (std::find(row.index.begin(), row.index.end(), i) == row.index.end())
+      y[i] += factor * column[i];
 }
 } // namespace pantocat

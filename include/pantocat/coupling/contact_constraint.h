@@ -35,7 +35,7 @@ public:
                     unsigned int pantograph_offset, ContactPointMotion motion, Kind kind);
 
   bool depends_on_time() const override { return true; }
-  void evaluate(double t, ConstraintState& state) const override;
+  void evaluate(double t, ConstraintState& state, unsigned int max_order = 2) const override;
 
   const ContactPointMotion& motion() const { return motion_; }
 

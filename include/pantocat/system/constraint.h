@@ -54,8 +54,11 @@ public:
   /// True when G or z change with time (the moving contact).
   virtual bool depends_on_time() const = 0;
 
-  /// G(t), z(t) and their first two time derivatives.
-  virtual void evaluate(double t, ConstraintState& state) const = 0;
+  /**
+   * G(t), z(t) and their time derivatives up to @p max_order (0, 1 or 2);
+   * the higher ones are left as they are.
+   */
+  virtual void evaluate(double t, ConstraintState& state, unsigned int max_order = 2) const = 0;
 
 private:
   std::string label;
@@ -71,7 +74,7 @@ public:
   {
   }
   bool depends_on_time() const override { return false; }
-  void evaluate(double, ConstraintState& state) const override
+  void evaluate(double, ConstraintState& state, unsigned int = 2) const override
   {
     state.G = row;
     state.G_t.clear();

@@ -16,8 +16,8 @@ class ConstraintEvaluator
 public:
   explicit ConstraintEvaluator(const SemiDiscreteSystem& system);
 
-  /// Evaluates the time-dependent constraints at @p t; returns all states.
-  const std::vector<ConstraintState>& at(double t);
+  /// Evaluates the time-dependent constraints at @p t up to time derivative @p max_order.
+  const std::vector<ConstraintState>& at(double t, unsigned int max_order = 2);
 
   const std::vector<ConstraintState>& states() const { return cache; }
 

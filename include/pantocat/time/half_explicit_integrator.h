@@ -60,6 +60,18 @@ private:
   void compute_time_dependent_columns();
   void reset_time_dependent_columns();
   void factorize();
+  /// a <- f - K q - D (v_prev + v)/2 in one pass over the rows.
+  void compute_forces();
+
+  /// K and D/2 stored by diagonals (offsets -b..b, zero-padded): the
+  /// semi-discrete operators are banded within each body, and a diagonal
+  /// sweep vectorises. Offsets on which an operator vanishes are skipped.
+  struct BandedOperator
+  {
+    int bandwidth = 0;
+    std::vector<int> stiffness_offsets, damping_offsets;
+    std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
+  } forces;
 
   double dt;
   double t = 0.;

@@ -3,6 +3,7 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
@@ -10,12 +11,16 @@ namespace pantocat
 {
 /**
  * The inverse of a constant symmetric positive definite matrix such as M or
- * M + dt/2 D of (39)-(41): a diagonal scaling when the matrix is diagonal
- * (FDM, lumped pantograph), otherwise a sparse direct factorisation (FEM).
+ * M + dt/2 D of (39)-(41). Three forms, chosen from the matrix:
+ *  - diagonal: a scaling (FDM wires);
+ *  - diagonal except a few coupled rows (FDM wires with a lumped pantograph
+ *    whose dampers couple its bodies): a scaling plus a small dense inverse
+ *    of the coupled block;
+ *  - otherwise a sparse direct factorisation (FEM).
  *
- * apply_to_row() computes A^{-1} r^T for a sparse row r. For a diagonal A the
- * result has the pattern of r and only those entries are touched, so the
- * column can be used and reset in O(nnz(r)).
+ * apply_to_row() computes A^{-1} r^T for a sparse row r. In the first two
+ * forms the result lives on the pattern of r plus the coupled rows, and only
+ * those entries are touched, so the column can be used and reset in O(nnz(r)).
  */
 class MassInverse
 {
@@ -23,6 +28,7 @@ public:
   void initialize(const dealii::SparseMatrix<double>& matrix, bool is_diagonal,
                   const std::string& what);
 
+  /// True unless a sparse factorisation is used.
   bool is_diagonal() const { return diagonal; }
 
   /// x <- A^{-1} x
@@ -39,8 +45,14 @@ public:
                   double factor, dealii::Vector<double>& y) const;
 
 private:
+  /// column[C] = block^{-1} row[C] for the coupled rows C.
+  void apply_block_to_row(const SparseRow& row, dealii::Vector<double>& column) const;
+
   bool diagonal = false;
-  dealii::Vector<double> inverse_diagonal;
+  dealii::Vector<double> inverse_diagonal; ///< 0 on the coupled rows
+  std::vector<unsigned int> coupled_rows;
+  dealii::FullMatrix<double> coupled_inverse;
+  mutable dealii::Vector<double> block_in, block_out;
   SparseDirectSolver factorization;
 };
 } // namespace pantocat
