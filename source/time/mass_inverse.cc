@@ -71,7 +71,10 @@ void MassInverse::apply(dealii::Vector<double>& x) const
   const unsigned int c = coupled_rows.size();
   for (unsigned int k = 0; k < c; ++k)
     block_in(k) = x(coupled_rows[k]);
-  x.scale(inverse_diagonal);
+  double* __restrict y = x.begin();
+  const double* __restrict d = inverse_diagonal.begin();
+  for (unsigned int i = 0, n = x.size(); i < n; ++i)
+    y[i] *= d[i];
   if (c == 0)
     return;
   coupled_inverse.vmult(block_out, block_in);
