@@ -12,6 +12,7 @@
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 
 #include <chrono>
 #include <cmath>
@@ -96,7 +97,8 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
   const double dx = c.span / n_intervals;
   const double tc = c.carrier.tension / dx, tw = c.contact_wire.tension / dx,
                bw = c.contact_wire.bending_stiffness / (dx * dx * dx);
-  const double mc = c.carrier.mass_per_length * dx, mw = c.contact_wire.mass_per_length * dx;
+  const double mc = c.carrier.mass_per_length * dx,
+               mw = c.contact_wire.mass_per_length * dx;
   const double dc = c.carrier.damping * dx, dw = c.contact_wire.damping * dx;
   const int n = 2 * N + 2, P = 2 * N;
   std::vector<double> q(n, 0.), v(n, 0.), vp(n, 0.), a(n), f(n), w(n);
@@ -118,7 +120,8 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
     std::vector<double> G, Gt, Gtt;
   };
   const std::size_t support = 2 * static_cast<std::size_t>(std::ceil(0.2 / dx)) + 4;
-  auto contact_row = [&](double t, Row& r, bool second) {
+  auto contact_row = [&](double t, Row& r, bool second)
+  {
     const double x = 2. + 32. * t, xd = 32.;
     r.first = std::max(1, static_cast<int>(std::floor((x - 0.2) / dx + 0.5)));
     r.last = std::min(N, static_cast<int>(std::floor((x + 0.2) / dx + 0.5)));
@@ -128,10 +131,13 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
       r.G[i - r.first] = delta.integral_up_to(hi) - delta.integral_up_to(lo);
       r.Gt[i - r.first] = -xd * (delta.value(hi) - delta.value(lo));
       if (second)
-        r.Gtt[i - r.first] = xd * xd * (delta.derivative(hi, 1) - delta.derivative(lo, 1));
+        r.Gtt[i - r.first] =
+            xd * xd * (delta.derivative(hi, 1) - delta.derivative(lo, 1));
     }
   };
-  auto dot = [&](const Row& r, const std::vector<double>& row, const std::vector<double>& x) {
+  auto dot =
+      [&](const Row& r, const std::vector<double>& row, const std::vector<double>& x)
+  {
     double s = 0.;
     for (int i = r.first; i <= r.last; ++i)
       s += row[i - r.first] * x[N + i - 1];
@@ -169,8 +175,10 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
     }
     {
       const double s = q[P] - q[P + 1], sd = w[P] - w[P + 1];
-      const double F1 = -c1 * s - e1 * sd, F2 = c1 * s + e1 * sd - e2 * w[P + 1] + f[P + 1];
-      // 2x2 smoothed mass of the pantograph: [m1 + h/2 e1, -h/2 e1; -h/2 e1, m2 + h/2 (e1+e2)]
+      const double F1 = -c1 * s - e1 * sd,
+                   F2 = c1 * s + e1 * sd - e2 * w[P + 1] + f[P + 1];
+      // 2x2 smoothed mass of the pantograph: [m1 + h/2 e1, -h/2 e1; -h/2 e1, m2 + h/2
+      // (e1+e2)]
       const double A11 = m1 + 0.5 * dt * e1, A12 = -0.5 * dt * e1,
                    A22 = m2 + 0.5 * dt * (e1 + e2), det = A11 * A22 - A12 * A12;
       a[P] = (A22 * F1 - A12 * F2) / det;
@@ -179,14 +187,16 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
     // Multipliers lambda (3x3): rows d1, d2, contact; columns M~^-1 G^T.
     double S[9], b[3];
     const double ic = 1. / (mc + 0.5 * dt * dc), iw = 1. / (mw + 0.5 * dt * dw);
-    const double head_inv = (m2 + 0.5 * dt * (e1 + e2)) /
-                            ((m1 + 0.5 * dt * e1) * (m2 + 0.5 * dt * (e1 + e2)) -
-                             0.25 * dt * dt * e1 * e1);
+    const double head_inv =
+        (m2 + 0.5 * dt * (e1 + e2)) /
+        ((m1 + 0.5 * dt * e1) * (m2 + 0.5 * dt * (e1 + e2)) - 0.25 * dt * dt * e1 * e1);
     double gg = 0.;
     for (int i = rn.first; i <= rn.last; ++i)
       gg += rn.G[i - rn.first] * rn.G[i - rn.first] * iw;
-    const double gd1 = (d1 + 1 >= rn.first && d1 + 1 <= rn.last) ? rn.G[d1 + 1 - rn.first] * iw : 0.;
-    const double gd2 = (d2 + 1 >= rn.first && d2 + 1 <= rn.last) ? rn.G[d2 + 1 - rn.first] * iw : 0.;
+    const double gd1 =
+        (d1 + 1 >= rn.first && d1 + 1 <= rn.last) ? rn.G[d1 + 1 - rn.first] * iw : 0.;
+    const double gd2 =
+        (d2 + 1 >= rn.first && d2 + 1 <= rn.last) ? rn.G[d2 + 1 - rn.first] * iw : 0.;
     S[0] = iw + ic, S[1] = 0., S[2] = gd1;
     S[3] = 0., S[4] = iw + ic, S[5] = gd2;
     S[6] = gd1, S[7] = gd2, S[8] = gg + head_inv;
@@ -210,7 +220,8 @@ double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned 
     double T[36] = {0.}, e[6];
     const double jm = 1. / mw, jc = 1. / c.carrier.mass_per_length / dx;
     T[0] = dt * (jm + jc), T[7] = dt * (jm + jc), T[14] = dt * (jm + 1. / m1);
-    T[21] = 2. * dt * (jm + jc), T[28] = 2. * dt * (jm + jc), T[35] = 2. * dt * (jm + 1. / m1);
+    T[21] = 2. * dt * (jm + jc), T[28] = 2. * dt * (jm + jc),
+    T[35] = 2. * dt * (jm + 1. / m1);
     e[0] = -(w[N + d1] - w[d1] + z), e[1] = -(w[N + d2] - w[d2] + z);
     e[2] = -(dot(r1, r1.G, w) - w[P]);
     e[3] = -(v[N + d1] - v[d1]), e[4] = -(v[N + d2] - v[d2]);
@@ -292,6 +303,7 @@ double baseline_banded_solve(int n, unsigned int repetitions)
 int main(int argc, char** argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
   const unsigned int steps = argc > 1 ? std::atoi(argv[1]) : 2000;
   std::vector<unsigned int> grids;
   for (int i = 2; i < argc; ++i)
@@ -299,21 +311,26 @@ int main(int argc, char** argv)
   if (grids.empty())
     grids = {500, 2000, 8000};
 
-  std::cout << "| N+1 | FDM+HE [us/step] | hand-written loop [us/step] | ratio | FEM+BDF2 "
-               "[us/step] | banded solve [us] | ratio | FDM+BDF2 [us/step] |\n"
-            << "|---|---|---|---|---|---|---|---|\n";
+  std::cout
+      << "| N+1 | FDM+HE [us/step] | hand-written loop [us/step] | ratio | FEM+BDF2 "
+         "[us/step] | banded solve [us] | ratio | FDM+BDF2 [us/step] |\n"
+      << "|---|---|---|---|---|---|---|---|\n";
   for (const unsigned int n : grids)
   {
     // dt = c dx^2 as in Sec. 5.2, scaled from the paper's 5e-5 s at N+1 = 500.
     const double scale = 500. / n, dt = 5e-5 * scale * scale;
-    const double he = library_step(benchmark(n, SpaceMethod::fdm, IntegratorType::half_explicit, dt), steps);
+    const double he = library_step(
+        benchmark(n, SpaceMethod::fdm, IntegratorType::half_explicit, dt), steps);
     const double loop = baseline_fdm_half_explicit(n, dt, steps);
     const unsigned int bdf_steps = std::max(20u, steps / (n / 250));
-    const double bdf = library_step(benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt), bdf_steps);
-    const double banded = baseline_banded_solve(3 * n + 1, 500); // FEM system size: N + (2N+2) + 2
-    const double fdm_bdf = library_step(benchmark(n, SpaceMethod::fdm, IntegratorType::bdf2, dt), bdf_steps);
-    std::cout << std::setprecision(3) << "| " << n << " | " << he << " | " << loop << " | "
-              << he / loop << " | " << bdf << " | " << banded << " | " << bdf / banded
-              << " | " << fdm_bdf << " |" << std::endl;
+    const double bdf =
+        library_step(benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt), bdf_steps);
+    const double banded =
+        baseline_banded_solve(3 * n + 1, 500); // FEM system size: N + (2N+2) + 2
+    const double fdm_bdf =
+        library_step(benchmark(n, SpaceMethod::fdm, IntegratorType::bdf2, dt), bdf_steps);
+    std::cout << std::setprecision(3) << "| " << n << " | " << he << " | " << loop
+              << " | " << he / loop << " | " << bdf << " | " << banded << " | "
+              << bdf / banded << " | " << fdm_bdf << " |" << std::endl;
   }
 }

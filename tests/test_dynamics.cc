@@ -8,6 +8,7 @@
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/time/active_set.h>
 #include <pantocat/time/half_explicit_integrator.h>
 
 #include <gtest/gtest.h>
@@ -61,7 +62,8 @@ double time_of_minimum(const Recorder& r, unsigned int i, double t0, double t1)
 
 TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
 {
-  const BenchmarkRun fdm_he(benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit));
+  const BenchmarkRun fdm_he(
+      benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit));
   const BenchmarkRun fdm_bdf(benchmark(32., SpaceMethod::fdm, IntegratorType::bdf2));
   const BenchmarkRun fem_bdf(benchmark(32., SpaceMethod::fem, IntegratorType::bdf2));
 
@@ -117,12 +119,13 @@ TEST(Benchmark48, SecondDropperSlackensWhenThePantographPassesAndRetensions)
   ASSERT_FALSE(slack[1].empty());
   bool around_passage = false;
   for (const auto& [t0, t1] : slack[1])
-    around_passage = around_passage || (t0 <= 0.2604 + 0.005 && t1 >= 0.2604 - 0.005 &&
-                                        t1 - t0 < 0.02);
+    around_passage = around_passage ||
+                     (t0 <= 0.2604 + 0.005 && t1 >= 0.2604 - 0.005 && t1 - t0 < 0.02);
   EXPECT_TRUE(around_passage) << "first slack interval [" << slack[1][0].first << ", "
                               << slack[1][0].second << "]";
   EXPECT_TRUE(run.record.points.back().active[1]);
-  EXPECT_GT(run.stats.contact_force_max(), 2. * 112.); // much sharper peaks than at 32 m/s
+  EXPECT_GT(run.stats.contact_force_max(),
+            2. * 112.); // much sharper peaks than at 32 m/s
 }
 
 namespace
@@ -144,8 +147,9 @@ struct UndampedBilateral
     pp.head_damping = pp.frame_damping = 0.;
     pp.uplift_force = 0.;
     pantograph = std::make_unique<TwoMassPantograph>(pp);
-    built = build_coupled_system(*space, *pantograph, ContactPointMotion{2., 32.},
-                                 Constraint::Kind::bilateral, Constraint::Kind::bilateral);
+    built =
+        build_coupled_system(*space, *pantograph, ContactPointMotion{2., 32.},
+                             Constraint::Kind::bilateral, Constraint::Kind::bilateral);
   }
 
   /// The catenary deflected by a 100 N contact load, the head on the wire
@@ -250,8 +254,10 @@ TEST(HalfExplicit, MovingContactIsReversibleUpToTheGglMultipliers)
   // there and back is of high order in dt (observed >= 5): halving dt
   // shrinks it by more than 2^4.
   UndampedBilateral problem;
-  const auto coarse = forward_and_back(problem.built.coupled, problem.initial_state(), 1e-4, 1);
-  const auto fine = forward_and_back(problem.built.coupled, problem.initial_state(), 5e-5, 1);
+  const auto coarse =
+      forward_and_back(problem.built.coupled, problem.initial_state(), 1e-4, 1);
+  const auto fine =
+      forward_and_back(problem.built.coupled, problem.initial_state(), 5e-5, 1);
   EXPECT_LT(coarse.first, 1e-6);
   EXPECT_GT(coarse.first / fine.first, 16.);
 }
@@ -269,7 +275,8 @@ TEST(HalfExplicit, EnergyStaysBoundedOver100000Steps)
   d.method = SpaceMethod::fdm;
   d.n_intervals = 50;
   const auto space = create_catenary_discretisation(catenary, d);
-  const SemiDiscreteSystem system = build_catenary_system(*space, Constraint::Kind::bilateral);
+  const SemiDiscreteSystem system =
+      build_catenary_system(*space, Constraint::Kind::bilateral);
   dealii::Vector<double> load(system.n_dofs());
   SparseRow F;
   space->load_row(7., 0, F);
@@ -316,9 +323,11 @@ TEST(HalfExplicit, BilateralResidualsStayAtRoundOff)
     for (const auto& c : problem.built.coupled.constraints)
     {
       c->evaluate(integrator.time(), rows);
-      position = std::max(position, std::abs(rows.position_residual(integrator.positions())));
-      velocity = std::max(velocity, std::abs(rows.velocity_residual(
-                                      integrator.positions(), integrator.velocities())));
+      position =
+          std::max(position, std::abs(rows.position_residual(integrator.positions())));
+      velocity =
+          std::max(velocity, std::abs(rows.velocity_residual(integrator.positions(),
+                                                             integrator.velocities())));
     }
   }
   EXPECT_LT(position, 1e-14);
@@ -330,7 +339,8 @@ TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
   ProgramParameters p = benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit);
   p.time_integration.time_step = 1e-4;
   DynamicSimulation simulation(p);
-  EXPECT_NEAR(simulation.explicit_stability_limit(), 6.62e-5, 0.01e-5); // Sec. 6: 6.6e-5 s
+  EXPECT_NEAR(simulation.explicit_stability_limit(), 6.62e-5,
+              0.01e-5); // Sec. 6: 6.6e-5 s
   try
   {
     simulation.run({});
@@ -342,4 +352,39 @@ TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
     EXPECT_NE(message.find("Time integration/Time step = 0.0001"), std::string::npos);
     EXPECT_NE(message.find("6.62e-05"), std::string::npos) << message;
   }
+}
+
+TEST(ActiveSet, ACyclingActiveSetIsReportedNotLoopedOn)
+{
+  // Sec. 5.3 on a contrived step: the trials violate the opposite conditions
+  // (lambda < 0 while held, gap < 0 once released), so the set goes
+  // {d1, d2} -> {d2} -> {d1, d2}: the second visit is reported, not looped on.
+  CatenaryParameters catenary;
+  DiscretisationParameters d;
+  d.method = SpaceMethod::fdm;
+  d.n_intervals = 50;
+  const auto space = create_catenary_discretisation(catenary, d);
+  const SemiDiscreteSystem system =
+      build_catenary_system(*space, Constraint::Kind::unilateral);
+  ActiveSetIteration iteration(system, 20);
+  iteration.start({true, true});
+  // Dropper 1 pulls with lambda < 0: released.
+  EXPECT_FALSE(iteration.accept({0., 0.}, {-1., 5.}, 0.1, 7));
+  EXPECT_FALSE(iteration.active()[0]);
+  // Released, its gap at t_{n+1} is negative: back to the start set -> cycle.
+  try
+  {
+    iteration.accept({-1e-3, 0.}, {0., 5.}, 0.1, 7);
+    FAIL() << "expected a SimulationError";
+  }
+  catch (const SimulationError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cycles at t = 0.1 s (step 7)"), std::string::npos) << message;
+    EXPECT_NE(message.find("dropper 1"), std::string::npos) << message;
+  }
+  // An accepted step reports its changes.
+  iteration.start({true, true});
+  EXPECT_TRUE(iteration.accept({0., 0.}, {3., 5.}, 0.2, 8));
+  EXPECT_EQ(iteration.changes_in_step(), 0u);
 }

@@ -21,7 +21,8 @@ std::vector<SubsystemFrequencies> table1(SpaceMethod method, unsigned int n = 50
   DiscretisationParameters d;
   d.method = method;
   d.n_intervals = n;
-  return compute_extreme_frequencies(*create_catenary_discretisation(CatenaryParameters(), d));
+  return compute_extreme_frequencies(
+      *create_catenary_discretisation(CatenaryParameters(), d));
 }
 
 /// |value - paper| <= half a unit in the paper's 5th significant digit.
@@ -38,12 +39,12 @@ TEST(Table1, SevenOfEightNumbersToThePapersFiveDigits)
     {
       const double paper_max = PaperTable1::f_max(f.discretisation, f.subsystem);
       EXPECT_NEAR(f.f_max_hz, paper_max, half_unit_of_5th_digit(paper_max))
-        << f.discretisation << ' ' << f.subsystem;
+          << f.discretisation << ' ' << f.subsystem;
       const double paper_min = PaperTable1::f_min(f.discretisation, f.subsystem);
       if (f.discretisation == "fem" && f.subsystem == "carrier")
         continue; // see the next test
       EXPECT_NEAR(f.f_min_hz, paper_min, half_unit_of_5th_digit(paper_min))
-        << f.discretisation << ' ' << f.subsystem;
+          << f.discretisation << ' ' << f.subsystem;
     }
 }
 
@@ -57,7 +58,8 @@ TEST(Table1, FemCarrierLowestFrequencyIsTheClosedFormAndWithinOneUnitOfThePaper)
   const auto f = table1(SpaceMethod::fem)[0];
   const CatenaryParameters p;
   const double c = p.carrier.wave_speed(), h = p.span / 500., kh = pi / p.span * h;
-  const double omega = std::sqrt(6. * c * c / (h * h) * (1. - std::cos(kh)) / (2. + std::cos(kh)));
+  const double omega =
+      std::sqrt(6. * c * c / (h * h) * (1. - std::cos(kh)) / (2. + std::cos(kh)));
   EXPECT_NEAR(f.f_min_hz, omega / (2. * pi), 1e-9 * f.f_min_hz);
   EXPECT_NEAR(f.f_min_hz, 3.9528, 1e-4);
 }
@@ -84,9 +86,10 @@ TEST(Spectrum, FdmStringAndBeamMatchTheirDiscreteClosedForms)
     for (const unsigned int k : {1u, n - 1})
     {
       const double s = std::sin(k * pi * h / (2. * p.span));
-      const double omega2 = (4. * wire.tension * s * s / (h * h) +
-                             16. * wire.bending_stiffness * std::pow(s, 4) / std::pow(h, 4)) /
-                            wire.mass_per_length;
+      const double omega2 =
+          (4. * wire.tension * s * s / (h * h) +
+           16. * wire.bending_stiffness * std::pow(s, 4) / std::pow(h, 4)) /
+          wire.mass_per_length;
       const double expected = std::sqrt(omega2) / (2. * pi);
       EXPECT_NEAR(k == 1 ? f[w].f_min_hz : f[w].f_max_hz, expected, 1e-10 * expected);
     }
@@ -101,11 +104,13 @@ TEST(Spectrum, FemLowestFrequenciesConvergeToTheContinuousString)
   const CatenaryParameters p;
   const auto f = table1(SpaceMethod::fem);
   const double k = pi / p.span;
-  EXPECT_NEAR(f[0].f_min_hz, p.carrier.wave_speed() / (2. * p.span), 2e-6 * f[0].f_min_hz);
+  EXPECT_NEAR(f[0].f_min_hz, p.carrier.wave_speed() / (2. * p.span),
+              2e-6 * f[0].f_min_hz);
   const auto& w = p.contact_wire;
-  const double beam = std::sqrt((w.bending_stiffness * std::pow(k, 4) + w.tension * k * k) /
-                                w.mass_per_length) /
-                      (2. * pi);
+  const double beam =
+      std::sqrt((w.bending_stiffness * std::pow(k, 4) + w.tension * k * k) /
+                w.mass_per_length) /
+      (2. * pi);
   EXPECT_NEAR(f[1].f_min_hz, beam, 1e-9 * beam); // cubic elements: O(h^4)
 }
 
@@ -116,8 +121,8 @@ TEST(Spectrum, HermiteBeamEigenvaluesConvergeWithOrderFour)
   CatenaryParameters p;
   p.contact_wire.tension = 1e-9;
   const double k = pi / p.span;
-  const double exact = p.contact_wire.bending_stiffness * std::pow(k, 4) /
-                       p.contact_wire.mass_per_length;
+  const double exact =
+      p.contact_wire.bending_stiffness * std::pow(k, 4) / p.contact_wire.mass_per_length;
   std::vector<double> errors;
   for (const unsigned int n : {4u, 8u, 16u, 32u})
   {

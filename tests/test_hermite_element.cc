@@ -26,9 +26,18 @@ void make_nonuniform_mesh(Triangulation<1>& tria)
   GridGenerator::subdivided_hyper_rectangle(tria, step_sizes, Point<1>(0.), Point<1>(3.));
 }
 
-double cubic(double x) { return 0.3 - 1.2 * x + 0.7 * x * x - 0.4 * x * x * x; }
-double cubic_d1(double x) { return -1.2 + 1.4 * x - 1.2 * x * x; }
-double cubic_d2(double x) { return 1.4 - 2.4 * x; }
+double cubic(double x)
+{
+  return 0.3 - 1.2 * x + 0.7 * x * x - 0.4 * x * x * x;
+}
+double cubic_d1(double x)
+{
+  return -1.2 + 1.4 * x - 1.2 * x * x;
+}
+double cubic_d2(double x)
+{
+  return 1.4 - 2.4 * x;
+}
 
 /// Nodal interpolation: value and slope of f at every vertex.
 Vector<double> hermite_interpolant(const DoFHandler<1>& dofs, double (*f)(double),
@@ -56,7 +65,7 @@ TEST(HermiteElement, PartitionOfUnityOnTheReferenceCell)
       EXPECT_NEAR(fe.shape_value_on_cell(0, xi, h) + fe.shape_value_on_cell(2, xi, h), 1.,
                   1e-15);
       EXPECT_NEAR(fe.shape_derivative_on_cell(0, 1, xi, h) +
-                    fe.shape_derivative_on_cell(2, 1, xi, h),
+                      fe.shape_derivative_on_cell(2, 1, xi, h),
                   0., 1e-13 / h);
     }
 }
@@ -90,7 +99,7 @@ TEST(HermiteElement, FEValuesReproduceACubicOnANonUniformMesh)
   const QGauss<1> quadrature(5);
   FEValues<1> fe_values(fe, quadrature,
                         update_values | update_gradients | update_hessians |
-                          update_quadrature_points);
+                            update_quadrature_points);
   std::vector<double> values(quadrature.size());
   std::vector<Tensor<1, 1>> gradients(quadrature.size());
   std::vector<Tensor<2, 1>> hessians(quadrature.size());
@@ -139,7 +148,7 @@ TEST(HermiteElement, GlobalFunctionsAreC1AcrossVertices)
     fe_values.get_function_hessians(u, hessians);
     for (unsigned int v = 0; v < 2; ++v)
       at_vertex[cell->vertex(v)[0]].push_back(
-        {values[v], gradients[v][0], hessians[v][0][0]});
+          {values[v], gradients[v][0], hessians[v][0][0]});
   }
   unsigned int interior = 0;
   double largest_curvature_jump = 0.;
@@ -150,7 +159,7 @@ TEST(HermiteElement, GlobalFunctionsAreC1AcrossVertices)
       EXPECT_NEAR(sides[0][0], sides[1][0], 1e-14) << "value jump at x = " << x;
       EXPECT_NEAR(sides[0][1], sides[1][1], 1e-13) << "slope jump at x = " << x;
       largest_curvature_jump =
-        std::max(largest_curvature_jump, std::abs(sides[0][2] - sides[1][2]));
+          std::max(largest_curvature_jump, std::abs(sides[0][2] - sides[1][2]));
     }
   EXPECT_EQ(interior, 3u);
   // The element is C1, not C2: random data has curvature jumps of order one.

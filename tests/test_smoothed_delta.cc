@@ -35,9 +35,10 @@ DiscretisationParameters grid(SpaceMethod method, unsigned int n_intervals)
   return d;
 }
 
-/// Positions where x_c or x_c +- eps hit vertices (h = 0.04, eps = 0.2), and generic ones.
-const std::vector<double> contact_positions = {2.0, 2.02, 2.04, 2.2, 5.5,
-                                               7.123456789, 10.0 + 1e-13, 17.8};
+/// Positions where x_c or x_c +- eps hit vertices (h = 0.04, eps = 0.2), and generic
+/// ones.
+const std::vector<double> contact_positions = {2.0, 2.02,        2.04,         2.2,
+                                               5.5, 7.123456789, 10.0 + 1e-13, 17.8};
 } // namespace
 
 TEST(SmoothedDelta, IsANormalisedNonNegativeC1Spline)
@@ -45,7 +46,8 @@ TEST(SmoothedDelta, IsANormalisedNonNegativeC1Spline)
   const double eps = 0.2;
   const SmoothedDelta delta(eps);
   // Unit integral (Sec. 4.1), exact with Gauss rules on the two cubic pieces.
-  EXPECT_NEAR(integrate_on_pieces([&](double x) { return delta.value(x); }, eps), 1., 1e-14);
+  EXPECT_NEAR(integrate_on_pieces([&](double x) { return delta.value(x); }, eps), 1.,
+              1e-14);
   // Second moment: int xi^2 delta_eps = 2 eps^2 / 15 (closed form).
   EXPECT_NEAR(integrate_on_pieces([&](double x) { return x * x * delta.value(x); }, eps),
               2. * eps * eps / 15., 1e-15);
@@ -64,7 +66,8 @@ TEST(SmoothedDelta, IsANormalisedNonNegativeC1Spline)
   double integral = 0.;
   for (const auto& [a, b] : {std::pair{-0.05, 0.}, std::pair{0., 0.07}})
     for (unsigned int q = 0; q < gauss.size(); ++q)
-      integral += (b - a) * gauss.weight(q) * delta.value(a + (b - a) * gauss.point(q)[0]);
+      integral +=
+          (b - a) * gauss.weight(q) * delta.value(a + (b - a) * gauss.point(q)[0]);
   EXPECT_NEAR(delta.integral_up_to(0.07) - delta.integral_up_to(-0.05), integral, 1e-15);
 }
 
@@ -74,8 +77,8 @@ TEST(SmoothedDelta, DerivativesMatchFiniteDifferences)
   const double d = 1e-6;
   for (double xi = -0.19; xi < 0.19; xi += 0.0231)
   {
-    EXPECT_NEAR((delta.value(xi + d) - delta.value(xi - d)) / (2 * d), delta.derivative(xi, 1),
-                1e-4);
+    EXPECT_NEAR((delta.value(xi + d) - delta.value(xi - d)) / (2 * d),
+                delta.derivative(xi, 1), 1e-4);
     EXPECT_NEAR((delta.derivative(xi + d, 1) - delta.derivative(xi - d, 1)) / (2 * d),
                 delta.derivative(xi, 2), 1e-3);
   }
@@ -90,7 +93,8 @@ TEST(ContactRow, FemIntegratesPolynomialsExactlyForAnyContactPosition)
   const FemCatenary fem(catenary, grid(SpaceMethod::fem, 500));
   const auto& dofs = fem.dof_handler(Wire::contact_wire);
   const double eps = 0.2, m2 = 2. * eps * eps / 15.;
-  auto interpolant = [&](auto p, auto dp) {
+  auto interpolant = [&](auto p, auto dp)
+  {
     dealii::Vector<double> u(dofs.n_dofs());
     for (const auto& cell : dofs.active_cell_iterators())
       for (unsigned int v = 0; v < 2; ++v)
@@ -102,9 +106,10 @@ TEST(ContactRow, FemIntegratesPolynomialsExactlyForAnyContactPosition)
   };
   const auto one = interpolant([](double) { return 1.; }, [](double) { return 0.; });
   const auto x1 = interpolant([](double x) { return x; }, [](double) { return 1.; });
-  const auto x2 = interpolant([](double x) { return x * x; }, [](double x) { return 2 * x; });
+  const auto x2 =
+      interpolant([](double x) { return x * x; }, [](double x) { return 2 * x; });
   const auto x3 =
-    interpolant([](double x) { return x * x * x; }, [](double x) { return 3 * x * x; });
+      interpolant([](double x) { return x * x * x; }, [](double x) { return 3 * x * x; });
   SparseRow r0, r1, r2;
   for (const double xc : contact_positions)
   {
@@ -160,7 +165,7 @@ TEST(ContactRow, TimeDerivativeRowsMatchFiniteDifferencesInXc)
         const double scale = exact.linfty_norm();
         fd -= exact;
         EXPECT_LT(fd.linfty_norm(), 1e-5 * scale)
-          << to_string(method) << " k = " << k << " x_c = " << xc;
+            << to_string(method) << " k = " << k << " x_c = " << xc;
       }
   }
 }

@@ -86,9 +86,9 @@ TEST(StaticString, PointLoadIsNodallyExactForFemAndFdm)
   {
     SingleWire s(method, 100, Wire::carrier, 0., P, a);
     const double L = s.p.span, T = s.p.carrier.tension;
-    const double e = max_error(s, [&](double x) {
-      return x < a ? P * x * (L - a) / (T * L) : P * (L - x) * a / (T * L);
-    });
+    const double e = max_error(
+        s, [&](double x)
+        { return x < a ? P * x * (L - a) / (T * L) : P * (L - x) * a / (T * L); });
     EXPECT_LT(e, 1e-13) << to_string(method);
   }
 }
@@ -103,21 +103,23 @@ TEST(StaticBeam, PointLoadConvergesToTheClosedForm)
   {
     std::vector<double> errors;
     // FDM needs finer grids to reach its asymptotic regime (kh <= 0.25).
-    const std::vector<unsigned int> grids = method == SpaceMethod::fem
-                                              ? std::vector<unsigned int>{200, 400, 800}
-                                              : std::vector<unsigned int>{400, 800, 1600};
+    const std::vector<unsigned int> grids =
+        method == SpaceMethod::fem ? std::vector<unsigned int>{200, 400, 800}
+                                   : std::vector<unsigned int>{400, 800, 1600};
     for (const unsigned int n : grids)
     {
       SingleWire s(method, n, Wire::contact_wire, 0., P, a);
       const auto& w = s.p.contact_wire;
-      errors.push_back(max_error(s, [&](double x) {
-        return beam_point_load(x, a, P, s.p.span, w.tension, w.bending_stiffness);
-      }));
+      errors.push_back(max_error(s,
+                                 [&](double x) {
+                                   return beam_point_load(x, a, P, s.p.span, w.tension,
+                                                          w.bending_stiffness);
+                                 }));
     }
     const double expected_order = method == SpaceMethod::fem ? 4. : 2.;
     for (unsigned int i = 1; i < errors.size(); ++i)
       EXPECT_NEAR(std::log2(errors[i - 1] / errors[i]), expected_order, 0.15)
-        << to_string(method) << " errors " << errors[i - 1] << ' ' << errors[i];
+          << to_string(method) << " errors " << errors[i - 1] << ' ' << errors[i];
   }
 }
 
@@ -133,7 +135,8 @@ TEST(StaticBeam, GravitySagMatchesTheClosedForm)
               1e-10);
   EXPECT_LT(max_error(s,
                       [&](double x) {
-                        return beam_uniform_load(x, q0, 20., w.tension, w.bending_stiffness);
+                        return beam_uniform_load(x, q0, 20., w.tension,
+                                                 w.bending_stiffness);
                       }),
             1e-9);
 }
@@ -210,7 +213,8 @@ TEST(PaperStatic, DropperSlackensUnderALargeUpliftAndComplementarityHolds)
 TEST(PaperStatic, GridTooCoarseForTheDroppersIsAnInputError)
 {
   // N+1 = 2 (nodes at 0, 10, 20 m): both FDM droppers fall on node 1.
-  const auto d = create_catenary_discretisation(CatenaryParameters(), grid(SpaceMethod::fdm, 2));
+  const auto d =
+      create_catenary_discretisation(CatenaryParameters(), grid(SpaceMethod::fdm, 2));
   try
   {
     build_catenary_system(*d, Constraint::Kind::unilateral);

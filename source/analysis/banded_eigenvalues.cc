@@ -23,8 +23,8 @@ unsigned int half_bandwidth(const dealii::SparseMatrix<double>& matrix)
   unsigned int b = 0;
   for (auto it = matrix.begin(); it != matrix.end(); ++it)
     if (it->value() != 0.)
-      b = std::max<unsigned int>(
-        b, it->row() > it->column() ? it->row() - it->column() : it->column() - it->row());
+      b = std::max<unsigned int>(b, it->row() > it->column() ? it->row() - it->column()
+                                                             : it->column() - it->row());
   return b;
 }
 

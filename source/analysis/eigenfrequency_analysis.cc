@@ -18,9 +18,9 @@ compute_extreme_frequencies(const CatenaryDiscretisation& discretisation)
     discretisation.assemble(wire, op);
     const double two_pi = 2. * dealii::numbers::PI;
     result.push_back(
-      {to_string(discretisation.method()), op.name,
-       std::sqrt(smallest_generalized_eigenvalue(op.stiffness, op.mass)) / two_pi,
-       std::sqrt(largest_generalized_eigenvalue(op.stiffness, op.mass)) / two_pi});
+        {to_string(discretisation.method()), op.name,
+         std::sqrt(smallest_generalized_eigenvalue(op.stiffness, op.mass)) / two_pi,
+         std::sqrt(largest_generalized_eigenvalue(op.stiffness, op.mass)) / two_pi});
   }
   return result;
 }

@@ -15,15 +15,15 @@ double largest_circular_frequency(const SemiDiscreteSystem& system)
   {
     dealii::DynamicSparsityPattern dsp(b.size, b.size);
     for (unsigned int i = 0; i < b.size; ++i)
-      for (auto it = system.sparsity->begin(b.first + i); it != system.sparsity->end(b.first + i);
-           ++it)
+      for (auto it = system.sparsity->begin(b.first + i);
+           it != system.sparsity->end(b.first + i); ++it)
         dsp.add(i, it->column() - b.first);
     dealii::SparsityPattern pattern;
     pattern.copy_from(dsp);
     dealii::SparseMatrix<double> M(pattern), K(pattern);
     for (unsigned int i = 0; i < b.size; ++i)
-      for (auto it = system.sparsity->begin(b.first + i); it != system.sparsity->end(b.first + i);
-           ++it)
+      for (auto it = system.sparsity->begin(b.first + i);
+           it != system.sparsity->end(b.first + i); ++it)
       {
         const unsigned int j = it->column();
         M.set(i, j - b.first, system.mass(b.first + i, j));

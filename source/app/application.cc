@@ -6,13 +6,14 @@
 #include <pantocat/base/input_error.h>
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
 #include <cstdlib>
 #include <filesystem>
-#include <optional>
 #include <fstream>
 #include <iostream>
+#include <optional>
 
 namespace pantocat
 {
@@ -35,7 +36,7 @@ class OutputDirectory
 {
 public:
   OutputDirectory(const dealii::ParameterHandler& prm, const std::string& dir)
-    : parameters(std::filesystem::path(dir) / "parameters.prm")
+      : parameters(std::filesystem::path(dir) / "parameters.prm")
   {
     std::error_code error;
     created = std::filesystem::create_directories(dir, error);
@@ -59,7 +60,7 @@ public:
 
 private:
   std::filesystem::path parameters;
-  bool created   = false;
+  bool created = false;
   bool succeeded = false;
 };
 
@@ -98,6 +99,9 @@ int run(const CommandLine& cl, int argc, char** argv)
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   if (launched_by_mpi())
     mpi.emplace(argc, argv, 1);
+  // One thread: vectors of a few thousand entries lose more to TBB's
+  // scheduling than they gain.
+  dealii::MultithreadInfo::set_thread_limit(1);
   OutputDirectory output(prm, parameters.output.directory);
 
   switch (parameters.mode)

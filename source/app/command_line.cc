@@ -14,7 +14,8 @@ std::string CommandLine::usage()
          "  -h, --help                      this text\n"
          "  --print-parameters [prm|json]   every parameter with its default and\n"
          "                                  documentation (a template for CASE.prm)\n"
-         "  --set \"Subsection/Name=value\"   override an entry of CASE.prm (repeatable)\n"
+         "  --set \"Subsection/Name=value\"   override an entry of CASE.prm "
+         "(repeatable)\n"
          "  -o, --output-directory DIR      override Output/Output directory\n"
          "\n"
          "examples:\n"
@@ -28,7 +29,8 @@ CommandLine CommandLine::parse(const int argc, const char* const* argv)
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
-    const auto value = [&](const std::string& option) {
+    const auto value = [&](const std::string& option)
+    {
       if (i + 1 >= argc)
         throw InputError(option + ": missing value");
       return std::string(argv[++i]);
@@ -38,8 +40,8 @@ CommandLine CommandLine::parse(const int argc, const char* const* argv)
     else if (arg == "--print-parameters")
     {
       cl.print_parameters = "prm";
-      if (i + 1 < argc && (std::string(argv[i + 1]) == "prm" ||
-                           std::string(argv[i + 1]) == "json"))
+      if (i + 1 < argc &&
+          (std::string(argv[i + 1]) == "prm" || std::string(argv[i + 1]) == "json"))
         cl.print_parameters = argv[++i];
     }
     else if (arg == "--set")

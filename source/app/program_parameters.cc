@@ -8,12 +8,12 @@ namespace pantocat
 void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
-  prm.declare_entry("Mode", "dynamics",
-                    dealii::Patterns::Selection("dynamics|static|eigenfrequencies"),
-                    "dynamics: the coupled pantograph-catenary run from x_p(0) to the final "
-                    "position (Sec. 6); static: the initial catenary under gravity, droppers "
-                    "and the contact load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: "
-                    "lowest and highest eigenfrequency of each wire (Table 1).");
+  prm.declare_entry(
+      "Mode", "dynamics", dealii::Patterns::Selection("dynamics|static|eigenfrequencies"),
+      "dynamics: the coupled pantograph-catenary run from x_p(0) to the final "
+      "position (Sec. 6); static: the initial catenary under gravity, droppers "
+      "and the contact load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: "
+      "lowest and highest eigenfrequency of each wire (Table 1).");
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   prm.declare_entry("Discretisations", "fem, fdm",
@@ -37,7 +37,8 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   eigenfrequency_discretisations.clear();
-  for (const auto& name : dealii::Utilities::split_string_list(prm.get("Discretisations")))
+  for (const auto& name :
+       dealii::Utilities::split_string_list(prm.get("Discretisations")))
     eigenfrequency_discretisations.push_back(space_method_from_string(name));
   prm.leave_subsection();
   catenary.parse_parameters(prm);
@@ -48,7 +49,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
 
   discretisation.check(catenary.span);
   pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
-                                    ? discretisation.load_half_width
-                                    : 0.);
+                                      ? discretisation.load_half_width
+                                      : 0.);
 }
 } // namespace pantocat

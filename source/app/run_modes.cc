@@ -23,7 +23,8 @@ void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out)
       << " (Table 1)\n"
       << std::left << std::setw(6) << "disc." << std::setw(14) << "subsystem"
       << std::right << std::setw(13) << "f_min [Hz]" << std::setw(13) << "f_max [Hz]"
-      << std::setw(14) << "2/omega_max" << "    paper (N+1 = 500): f_min, f_max\n";
+      << std::setw(14) << "2/omega_max"
+      << "    paper (N+1 = 500): f_min, f_max\n";
   for (const SpaceMethod method : p.eigenfrequency_discretisations)
   {
     DiscretisationParameters d = p.discretisation;
@@ -36,20 +37,22 @@ void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out)
           << std::right << std::setprecision(5) << std::setw(13) << f.f_min_hz
           << std::setw(13) << f.f_max_hz << std::setw(14) << std::setprecision(2)
           << std::scientific << explicit_step_size_limit({f}) << std::defaultfloat
-          << std::setprecision(5) << "    " << PaperTable1::f_min(f.discretisation, f.subsystem)
-          << ", " << PaperTable1::f_max(f.discretisation, f.subsystem) << '\n';
+          << std::setprecision(5) << "    "
+          << PaperTable1::f_min(f.discretisation, f.subsystem) << ", "
+          << PaperTable1::f_max(f.discretisation, f.subsystem) << '\n';
       rows.push_back(f);
     }
     out << "  step-size limit of the half-explicit method, 2/omega_max ("
         << to_string(method) << "): " << std::setprecision(3)
-        << explicit_step_size_limit(frequencies) << " s  (paper: "
-        << (method == SpaceMethod::fdm ? "6.6e-05" : "5.3e-06") << " s)\n";
+        << explicit_step_size_limit(frequencies)
+        << " s  (paper: " << (method == SpaceMethod::fdm ? "6.6e-05" : "5.3e-06")
+        << " s)\n";
   }
   std::ofstream csv(p.output.directory + "/eigenfrequencies.csv");
   csv << "discretisation,subsystem,f_min_hz,f_max_hz\n" << std::setprecision(10);
   for (const auto& f : rows)
-    csv << f.discretisation << ',' << f.subsystem << ',' << f.f_min_hz << ',' << f.f_max_hz
-        << '\n';
+    csv << f.discretisation << ',' << f.subsystem << ',' << f.f_min_hz << ','
+        << f.f_max_hz << '\n';
   if (!csv)
     throw SimulationError("cannot write " + p.output.directory + "/eigenfrequencies.csv");
 }
@@ -58,7 +61,7 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
 {
   const auto d = create_catenary_discretisation(p.catenary, p.discretisation);
   const SemiDiscreteSystem system =
-    build_catenary_system(*d, Constraint::Kind::unilateral);
+      build_catenary_system(*d, Constraint::Kind::unilateral);
 
   // The contact load lambda_p(0) F_w(0)^T at x_p(0), (25) and (33).
   dealii::Vector<double> contact_load(system.n_dofs());
@@ -77,16 +80,18 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
   out << "Static equilibrium (" << to_string(d->method())
       << ", N+1 = " << d->n_intervals() << ", " << system.n_dofs() << " unknowns, "
       << system.n_constraints() << " dropper constraints)\n"
-      << "  contact load " << p.pantograph.initial_contact_force << " N at x_p = "
-      << p.pantograph.initial_position << " m; contact wire there: "
-      << std::setprecision(6) << F.dot(s.q) << " m (delta_eps-weighted)\n";
+      << "  contact load " << p.pantograph.initial_contact_force
+      << " N at x_p = " << p.pantograph.initial_position
+      << " m; contact wire there: " << std::setprecision(6) << F.dot(s.q)
+      << " m (delta_eps-weighted)\n";
   for (unsigned int j = 0; j < system.n_constraints(); ++j)
   {
     csv << j + 1 << ',' << p.catenary.dropper_positions[j] << ',' << s.multipliers[j]
         << ',' << s.gaps[j] << ',' << (s.active[j] ? 1 : 0) << '\n';
-    out << "  " << system.constraints[j]->name() << " at x = "
-        << p.catenary.dropper_positions[j] << " m: force " << std::setprecision(6)
-        << s.multipliers[j] << " N" << (s.active[j] ? "" : " (slack)") << '\n';
+    out << "  " << system.constraints[j]->name()
+        << " at x = " << p.catenary.dropper_positions[j] << " m: force "
+        << std::setprecision(6) << s.multipliers[j] << " N"
+        << (s.active[j] ? "" : " (slack)") << '\n';
   }
   if (!csv)
     throw SimulationError("cannot write " + dir + "/dropper_forces.csv");
@@ -97,42 +102,44 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
 namespace
 {
 void write_summary(const std::string& file, const ProgramParameters& p,
-                   const DynamicSimulation& simulation, const DynamicSimulation::Result& r,
-                   const RunStatistics& stats)
+                   const DynamicSimulation& simulation,
+                   const DynamicSimulation::Result& r, const RunStatistics& stats)
 {
   std::ofstream out(file);
   JsonWriter json(out);
   json.begin_object()
-    .value("status", "completed")
-    .value("discretisation", to_string(p.discretisation.method))
-    .value("number_of_intervals", static_cast<unsigned long>(p.discretisation.n_intervals))
-    .value("integrator", to_string(p.time_integration.integrator))
-    .value("time_step", p.time_integration.time_step)
-    .value("speed", p.pantograph.speed)
-    .value("end_time", r.end_time)
-    .value("unknowns", static_cast<unsigned long>(simulation.system().n_dofs()))
-    .value("constraints", static_cast<unsigned long>(simulation.system().n_constraints()));
+      .value("status", "completed")
+      .value("discretisation", to_string(p.discretisation.method))
+      .value("number_of_intervals",
+             static_cast<unsigned long>(p.discretisation.n_intervals))
+      .value("integrator", to_string(p.time_integration.integrator))
+      .value("time_step", p.time_integration.time_step)
+      .value("speed", p.pantograph.speed)
+      .value("end_time", r.end_time)
+      .value("unknowns", static_cast<unsigned long>(simulation.system().n_dofs()))
+      .value("constraints",
+             static_cast<unsigned long>(simulation.system().n_constraints()));
   json.begin_object("contact_force")
-    .value("max", stats.contact_force_max())
-    .value("min", stats.contact_force_min())
-    .value("mean", stats.contact_force_mean())
-    .value("std", stats.contact_force_std())
-    .end_object();
+      .value("max", stats.contact_force_max())
+      .value("min", stats.contact_force_min())
+      .value("mean", stats.contact_force_mean())
+      .value("std", stats.contact_force_std())
+      .end_object();
   json.begin_array("dropper_slack_intervals");
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
   json.end_array();
   json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
   json.value("steps", r.integrator.steps)
-    .value("active_set_changes", r.integrator.active_set_changes)
-    .value("active_set_iterations", r.integrator.active_set_iterations);
+      .value("active_set_changes", r.integrator.active_set_changes)
+      .value("active_set_iterations", r.integrator.active_set_iterations);
   json.begin_object("max_constraint_residual")
-    .value("position", stats.max_position_residual())
-    .value("velocity", stats.max_velocity_residual())
-    .end_object();
+      .value("position", stats.max_position_residual())
+      .value("velocity", stats.max_velocity_residual())
+      .end_object();
   json.value("stability_limit_explicit", r.stability_limit)
-    .value("time_loop_seconds", r.time_loop_seconds)
-    .end_object();
+      .value("time_loop_seconds", r.time_loop_seconds)
+      .end_object();
   if (!out)
     throw SimulationError("cannot write " + file);
 }
@@ -156,9 +163,10 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   const std::string& dir = p.output.directory;
   out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
-      << to_string(p.time_integration.integrator) << ", dt = " << p.time_integration.time_step
-      << " s, v_p = " << p.pantograph.speed << " m/s, x_p from "
-      << p.pantograph.initial_position << " to " << p.pantograph.final_position << " m\n"
+      << to_string(p.time_integration.integrator)
+      << ", dt = " << p.time_integration.time_step << " s, v_p = " << p.pantograph.speed
+      << " m/s, x_p from " << p.pantograph.initial_position << " to "
+      << p.pantograph.final_position << " m\n"
       << "  " << simulation.system().n_dofs() << " unknowns, "
       << simulation.system().n_constraints() << " unilateral constraints\n";
 
@@ -179,11 +187,11 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   write_summary(dir + "/summary.json", p, simulation, r, stats);
 
   out << std::setprecision(6) << "  first time point t = " << first.t
-      << " s: lambda_p = " << first.lambda_p << " N (lambda_p(0) = "
-      << p.pantograph.initial_contact_force << " N)\n"
+      << " s: lambda_p = " << first.lambda_p
+      << " N (lambda_p(0) = " << p.pantograph.initial_contact_force << " N)\n"
       << "  " << r.integrator.steps << " steps in " << std::setprecision(3)
-      << r.time_loop_seconds << " s; active-set changes: " << r.integrator.active_set_changes
-      << '\n'
+      << r.time_loop_seconds
+      << " s; active-set changes: " << r.integrator.active_set_changes << '\n'
       << std::setprecision(5) << "  contact force: max " << stats.contact_force_max()
       << " N, min " << stats.contact_force_min() << " N, mean "
       << stats.contact_force_mean() << " N, std " << stats.contact_force_std() << " N\n";

@@ -49,7 +49,7 @@ void declare_wire(dealii::ParameterHandler& prm, const WireParameters& defaults,
 void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire, const bool beam)
 {
   wire.mass_per_length = prm.get_double("Mass per length");
-  wire.tension         = prm.get_double("Tension");
+  wire.tension = prm.get_double("Tension");
   if (beam)
     wire.bending_stiffness = prm.get_double("Bending stiffness");
   wire.damping = prm.get_double("Damping");
@@ -64,7 +64,8 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Support height", "1", Double(),
                     "Height l_c of the carrier above the contact wire at x = 0 and x = L "
                     "[m], boundary condition (3).");
-  prm.declare_entry("Gravity", "9.81", Double(0.), "Gravitational acceleration g [m/s^2].");
+  prm.declare_entry("Gravity", "9.81", Double(0.),
+                    "Gravitational acceleration g [m/s^2].");
   prm.enter_subsection("Carrier");
   declare_wire(prm, d.carrier, false);
   prm.leave_subsection();
@@ -72,8 +73,9 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   declare_wire(prm, d.contact_wire, true);
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
-  prm.declare_entry("Positions", list_to_string(d.dropper_positions), List(Double()),
-                    "Dropper positions x_d [m], a comma-separated list, each inside (0, L).");
+  prm.declare_entry(
+      "Positions", list_to_string(d.dropper_positions), List(Double()),
+      "Dropper positions x_d [m], a comma-separated list, each inside (0, L).");
   prm.declare_entry("Lengths", list_to_string(d.dropper_lengths), List(Double(0.)),
                     "Dropper lengths l_j [m], one per position.");
   prm.declare_entry("Mass per length", "0.14", Double(0.), "rho_d A_d [kg/m].");
@@ -86,9 +88,9 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
 void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Catenary");
-  span           = prm.get_double("Span");
+  span = prm.get_double("Span");
   support_height = prm.get_double("Support height");
-  gravity        = prm.get_double("Gravity");
+  gravity = prm.get_double("Gravity");
   prm.enter_subsection("Carrier");
   parse_wire(prm, carrier, false);
   prm.leave_subsection();
@@ -97,11 +99,11 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
   dropper_positions = dealii::Utilities::string_to_double(
-    dealii::Utilities::split_string_list(prm.get("Positions")));
+      dealii::Utilities::split_string_list(prm.get("Positions")));
   dropper_lengths = dealii::Utilities::string_to_double(
-    dealii::Utilities::split_string_list(prm.get("Lengths")));
+      dealii::Utilities::split_string_list(prm.get("Lengths")));
   dropper_mass_per_length = prm.get_double("Mass per length");
-  clamp_mass              = prm.get_double("Clamp mass");
+  clamp_mass = prm.get_double("Clamp mass");
   prm.leave_subsection();
   prm.leave_subsection();
   check();
@@ -122,13 +124,13 @@ void CatenaryParameters::check() const
   require(dropper_lengths.size() == dropper_positions.size(), "Catenary/Droppers/Lengths",
           list_to_string(dropper_lengths),
           "needs one length per dropper position (" +
-            std::to_string(dropper_positions.size()) + " positions given)");
+              std::to_string(dropper_positions.size()) + " positions given)");
   for (unsigned int j = 0; j < dropper_positions.size(); ++j)
   {
     const double x = dropper_positions[j];
     require(x > 0. && x < span, "Catenary/Droppers/Positions", x,
-            "dropper positions must lie inside (0, Span) = (0, " + number_to_string(span) +
-              ")");
+            "dropper positions must lie inside (0, Span) = (0, " +
+                number_to_string(span) + ")");
     if (j > 0)
       require(x > dropper_positions[j - 1], "Catenary/Droppers/Positions",
               list_to_string(dropper_positions), "positions must be strictly increasing");

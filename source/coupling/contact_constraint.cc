@@ -7,8 +7,8 @@ ContactConstraint::ContactConstraint(const CatenaryDiscretisation& discretisatio
                                      const unsigned int wire_offset,
                                      const unsigned int pantograph_offset,
                                      const ContactPointMotion motion, const Kind kind)
-  : Constraint("contact", kind), discretisation(discretisation),
-    head(pantograph.head_row()), wire_offset(wire_offset), motion_(motion)
+    : Constraint("contact", kind), discretisation(discretisation),
+      head(pantograph.head_row()), wire_offset(wire_offset), motion_(motion)
 {
   head.shift(pantograph_offset);
   for (double& b : head.value)

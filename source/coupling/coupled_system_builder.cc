@@ -15,8 +15,8 @@ CoupledSystem build_coupled_system(const CatenaryDiscretisation& discretisation,
   pantograph.assemble(pantograph_operator);
   s.coupled = build_catenary_system(discretisation, dropper_kind, {&pantograph_operator});
   auto contact = std::make_unique<ContactConstraint>(
-    discretisation, pantograph, s.coupled.block("contact wire").first,
-    s.coupled.block("pantograph").first, motion, contact_kind);
+      discretisation, pantograph, s.coupled.block("contact wire").first,
+      s.coupled.block("pantograph").first, motion, contact_kind);
   s.contact = contact.get();
   s.contact_index = s.coupled.n_constraints();
   s.coupled.add_constraint(std::move(contact));

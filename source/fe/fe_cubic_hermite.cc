@@ -30,10 +30,10 @@ dealii::FiniteElementData<1> hermite_fe_data()
 } // namespace
 
 FE_CubicHermite::FE_CubicHermite()
-  : dealii::FE_Poly<1, 1>(
-      dealii::TensorProductPolynomials<1>(reference_hermite_polynomials()),
-      hermite_fe_data(), std::vector<bool>(4, false),
-      std::vector<dealii::ComponentMask>(4, dealii::ComponentMask(1, true)))
+    : dealii::FE_Poly<1, 1>(
+          dealii::TensorProductPolynomials<1>(reference_hermite_polynomials()),
+          hermite_fe_data(), std::vector<bool>(4, false),
+          std::vector<dealii::ComponentMask>(4, dealii::ComponentMask(1, true)))
 {
 }
 
@@ -53,12 +53,13 @@ double FE_CubicHermite::shape_value_on_cell(const unsigned int i, const double x
   return shape_derivative_on_cell(i, 0, xi, h);
 }
 
-double FE_CubicHermite::shape_derivative_on_cell(const unsigned int i, const unsigned int k,
-                                                 const double xi, const double h) const
+double FE_CubicHermite::shape_derivative_on_cell(const unsigned int i,
+                                                 const unsigned int k, const double xi,
+                                                 const double h) const
 {
   // d^k/dx^k = h^{-k} d^k/dxi^k; slope functions carry an extra factor h.
   static const std::vector<Polynomial<double>> polynomials =
-    reference_hermite_polynomials();
+      reference_hermite_polynomials();
   std::vector<double> derivatives(4);
   polynomials[i].value(xi, derivatives);
   const double scale = (is_slope_dof(i) ? h : 1.0) / std::pow(h, static_cast<int>(k));
@@ -66,14 +67,15 @@ double FE_CubicHermite::shape_derivative_on_cell(const unsigned int i, const uns
 }
 
 void FE_CubicHermite::fill_fe_values(
-  const dealii::Triangulation<1, 1>::cell_iterator& cell,
-  const dealii::CellSimilarity::Similarity /*cell_similarity*/,
-  const dealii::Quadrature<1>& quadrature, const dealii::Mapping<1, 1>& mapping,
-  const dealii::Mapping<1, 1>::InternalDataBase& mapping_internal,
-  const dealii::internal::FEValuesImplementation::MappingRelatedData<1, 1>& mapping_data,
-  const dealii::FiniteElement<1, 1>::InternalDataBase& fe_internal,
-  dealii::internal::FEValuesImplementation::FiniteElementRelatedData<1, 1>& output_data)
-  const
+    const dealii::Triangulation<1, 1>::cell_iterator& cell,
+    const dealii::CellSimilarity::Similarity /*cell_similarity*/,
+    const dealii::Quadrature<1>& quadrature, const dealii::Mapping<1, 1>& mapping,
+    const dealii::Mapping<1, 1>::InternalDataBase& mapping_internal,
+    const dealii::internal::FEValuesImplementation::MappingRelatedData<1, 1>&
+        mapping_data,
+    const dealii::FiniteElement<1, 1>::InternalDataBase& fe_internal,
+    dealii::internal::FEValuesImplementation::FiniteElementRelatedData<1, 1>& output_data)
+    const
 {
   // Recompute the mapped derivatives on every cell: they are rescaled below,
   // so the "translation" shortcut of FE_Poly would rescale them twice.
@@ -91,7 +93,7 @@ void FE_CubicHermite::fill_fe_values(
     if (flags & dealii::update_values)
       for (unsigned int q = 0; q < n_q; ++q)
         output_data.shape_values(i, q) =
-          shape_value_on_cell(i, quadrature.point(q)[0], h);
+            shape_value_on_cell(i, quadrature.point(q)[0], h);
     if (!is_slope_dof(i))
       continue;
     for (unsigned int q = 0; q < n_q; ++q)

@@ -118,8 +118,8 @@ JsonWriter& JsonWriter::intervals(const std::string& key,
   separator_and_key(key);
   out << '[';
   for (std::size_t i = 0; i < list.size(); ++i)
-    out << (i ? ", " : "") << '[' << number(list[i].first) << ", " << number(list[i].second)
-        << ']';
+    out << (i ? ", " : "") << '[' << number(list[i].first) << ", "
+        << number(list[i].second) << ']';
   out << ']';
   return *this;
 }

@@ -21,7 +21,7 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
 void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Output");
-  directory        = prm.get("Output directory");
+  directory = prm.get("Output directory");
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");

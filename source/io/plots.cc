@@ -6,7 +6,8 @@
 namespace pantocat
 {
 bool plot_time_series(const std::string& dir, const unsigned int n_droppers,
-                      const std::vector<std::string>& coordinates, const std::string& title)
+                      const std::vector<std::string>& coordinates,
+                      const std::string& title)
 {
   const std::string script = dir + "/time_series.gp";
   {

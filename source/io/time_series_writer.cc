@@ -4,7 +4,7 @@
 namespace pantocat
 {
 TimeSeriesWriter::TimeSeriesWriter(const std::string& file, const unsigned int every_n)
-  : file_name(file), out(file), every(std::max(1u, every_n))
+    : file_name(file), out(file), every(std::max(1u, every_n))
 {
   if (!out)
     throw SimulationError("cannot write " + file);

@@ -23,7 +23,8 @@ dealii::Vector<double> block_values(const SemiDiscreteSystem& system,
   return values;
 }
 
-void write_wire_profiles(const CatenaryDiscretisation& d, const SemiDiscreteSystem& system,
+void write_wire_profiles(const CatenaryDiscretisation& d,
+                         const SemiDiscreteSystem& system,
                          const dealii::Vector<double>& q, const std::string& csv_file,
                          const std::string& vtu_file, const unsigned int subdivisions,
                          const double time)

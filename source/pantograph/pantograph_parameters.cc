@@ -23,7 +23,8 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.enter_subsection("Two-mass model");
   const TwoMassPantographParameters d;
   prm.declare_entry("Head mass", number_to_string(d.head_mass), Double(0.), "m_1 [kg].");
-  prm.declare_entry("Frame mass", number_to_string(d.frame_mass), Double(0.), "m_2 [kg].");
+  prm.declare_entry("Frame mass", number_to_string(d.frame_mass), Double(0.),
+                    "m_2 [kg].");
   prm.declare_entry("Head stiffness", number_to_string(d.head_stiffness), Double(0.),
                     "c_1 [N/m].");
   prm.declare_entry("Frame stiffness", number_to_string(d.frame_stiffness), Double(0.),
@@ -41,20 +42,20 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
 void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Pantograph");
-  model                 = prm.get("Model");
-  initial_position      = prm.get_double("Initial position");
-  final_position        = prm.get_double("Final position");
-  speed                 = prm.get_double("Speed");
+  model = prm.get("Model");
+  initial_position = prm.get_double("Initial position");
+  final_position = prm.get_double("Final position");
+  speed = prm.get_double("Speed");
   initial_contact_force = prm.get_double("Initial contact force");
-  initial_offset        = prm.get_double("Initial offset");
+  initial_offset = prm.get_double("Initial offset");
   prm.enter_subsection("Two-mass model");
-  two_mass.head_mass       = prm.get_double("Head mass");
-  two_mass.frame_mass      = prm.get_double("Frame mass");
-  two_mass.head_stiffness  = prm.get_double("Head stiffness");
+  two_mass.head_mass = prm.get_double("Head mass");
+  two_mass.frame_mass = prm.get_double("Frame mass");
+  two_mass.head_stiffness = prm.get_double("Head stiffness");
   two_mass.frame_stiffness = prm.get_double("Frame stiffness");
-  two_mass.head_damping    = prm.get_double("Head damping");
-  two_mass.frame_damping   = prm.get_double("Frame damping");
-  two_mass.uplift_force    = prm.get_double("Uplift force");
+  two_mass.head_damping = prm.get_double("Head damping");
+  two_mass.frame_damping = prm.get_double("Frame damping");
+  two_mass.uplift_force = prm.get_double("Uplift force");
   prm.leave_subsection();
   prm.leave_subsection();
 }
@@ -62,7 +63,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
 void PantographParameters::check(const double span, const double eps) const
 {
   const std::string range =
-    "(" + number_to_string(eps) + ", " + number_to_string(span - eps) + ")";
+      "(" + number_to_string(eps) + ", " + number_to_string(span - eps) + ")";
   require(speed > 0., "Pantograph/Speed", speed, "must be > 0");
   require(initial_position > eps && initial_position < span - eps,
           "Pantograph/Initial position", initial_position,
@@ -70,7 +71,8 @@ void PantographParameters::check(const double span, const double eps) const
   require(final_position > initial_position && final_position < span - eps,
           "Pantograph/Final position", final_position,
           "must lie in (Initial position, L - epsilon) = (" +
-            number_to_string(initial_position) + ", " + number_to_string(span - eps) + ")");
+              number_to_string(initial_position) + ", " + number_to_string(span - eps) +
+              ")");
   require(two_mass.head_mass > 0., "Pantograph/Two-mass model/Head mass",
           two_mass.head_mass, "must be > 0");
   require(two_mass.frame_mass > 0., "Pantograph/Two-mass model/Frame mass",

@@ -6,7 +6,7 @@
 namespace pantocat
 {
 TwoMassPantograph::TwoMassPantograph(const TwoMassPantographParameters& parameters)
-  : p(parameters)
+    : p(parameters)
 {
 }
 
@@ -61,6 +61,6 @@ void TwoMassPantograph::consistent_state(const double head_position,
   v(0) = head_velocity;
   v(1) = head_velocity +
          (p.head_mass * head_acceleration + p.head_stiffness * offset + contact_force) /
-           p.head_damping;
+             p.head_damping;
 }
 } // namespace pantocat

@@ -1,10 +1,10 @@
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
+#include <pantocat/coupling/coupled_system_builder.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/initial_state.h>
-#include <pantocat/coupling/coupled_system_builder.h>
 
 #include <chrono>
 #include <cmath>
@@ -19,12 +19,13 @@ std::unique_ptr<PantographModel> create_pantograph(const PantographParameters& p
 }
 
 DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
-  : parameters(p), space(create_catenary_discretisation(p.catenary, p.discretisation)),
-    pantograph(create_pantograph(p.pantograph))
+    : parameters(p), space(create_catenary_discretisation(p.catenary, p.discretisation)),
+      pantograph(create_pantograph(p.pantograph))
 {
   CoupledSystem built = build_coupled_system(
-    *space, *pantograph, ContactPointMotion{p.pantograph.initial_position, p.pantograph.speed},
-    Constraint::Kind::unilateral, Constraint::Kind::unilateral);
+      *space, *pantograph,
+      ContactPointMotion{p.pantograph.initial_position, p.pantograph.speed},
+      Constraint::Kind::unilateral, Constraint::Kind::unilateral);
   catenary_only = std::move(built.catenary_only);
   coupled = std::move(built.coupled);
   contact = built.contact;
@@ -38,8 +39,8 @@ DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
   layout_.contact_index = coupled.n_constraints() - 1;
   layout_.pantograph_coordinates = pantograph->coordinate_names();
 
-  initial = consistent_initial_state(catenary_only, coupled, *space, *pantograph, *contact,
-                                     p.pantograph.initial_contact_force,
+  initial = consistent_initial_state(catenary_only, coupled, *space, *pantograph,
+                                     *contact, p.pantograph.initial_contact_force,
                                      p.pantograph.initial_offset);
 }
 
@@ -93,7 +94,7 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
     {
       p.position_residual = std::max(p.position_residual, std::abs(p.gap[i]));
       p.velocity_residual =
-        std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
+          std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
     }
   }
   const DofBlock& b = coupled.block("pantograph");
@@ -119,7 +120,8 @@ void check_finite(const DynamicState& s, const unsigned long step)
 }
 } // namespace
 
-DynamicSimulation::Result DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
+DynamicSimulation::Result
+DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
 {
   check_step_size();
   const auto& ti = parameters.time_integration;
@@ -127,11 +129,12 @@ DynamicSimulation::Result DynamicSimulation::run(const std::vector<SimulationObs
   Result result;
   result.end_time = parameters.pantograph.end_time();
   const auto n_steps =
-    static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
+      static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
 
   for (auto* o : observers)
     o->start(layout_);
-  const auto notify = [&](const DynamicState& s) {
+  const auto notify = [&](const DynamicState& s)
+  {
     const TimePoint p = time_point(s);
     for (auto* o : observers)
       o->observe(p);
@@ -152,7 +155,7 @@ DynamicSimulation::Result DynamicSimulation::run(const std::vector<SimulationObs
   if (lags)
     notify(integrator->latest());
   result.time_loop_seconds =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.integrator = integrator->statistics();
   for (auto* o : observers)
     o->finish();

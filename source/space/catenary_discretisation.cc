@@ -4,10 +4,10 @@
 
 namespace pantocat
 {
-CatenaryDiscretisation::CatenaryDiscretisation(const CatenaryParameters& catenary,
-                                               const DiscretisationParameters& discretisation)
-  : catenary(catenary), discretisation(discretisation),
-    delta(discretisation.load_half_width)
+CatenaryDiscretisation::CatenaryDiscretisation(
+    const CatenaryParameters& catenary, const DiscretisationParameters& discretisation)
+    : catenary(catenary), discretisation(discretisation),
+      delta(discretisation.load_half_width)
 {
 }
 

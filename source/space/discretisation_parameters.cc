@@ -36,10 +36,10 @@ void DiscretisationParameters::declare_parameters(dealii::ParameterHandler& prm)
 void DiscretisationParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Discretisation");
-  method          = space_method_from_string(prm.get("Method"));
-  n_intervals     = prm.get_integer("Number of intervals");
-  load_shape      = prm.get("Load shape") == "point" ? LoadShape::point
-                                                     : LoadShape::smoothed_delta;
+  method = space_method_from_string(prm.get("Method"));
+  n_intervals = prm.get_integer("Number of intervals");
+  load_shape =
+      prm.get("Load shape") == "point" ? LoadShape::point : LoadShape::smoothed_delta;
   load_half_width = prm.get_double("Load half-width");
   prm.leave_subsection();
 }

@@ -9,7 +9,7 @@ namespace pantocat
 {
 FdmCatenary::FdmCatenary(const CatenaryParameters& catenary,
                          const DiscretisationParameters& discretisation)
-  : CatenaryDiscretisation(catenary, discretisation)
+    : CatenaryDiscretisation(catenary, discretisation)
 {
 }
 
@@ -102,8 +102,8 @@ void FdmCatenary::load_row(const double x_c, const unsigned int k, SparseRow& ro
   // Control volumes [x_{i-1/2}, x_{i+1/2}] that meet [x_c - eps, x_c + eps].
   const double eps = delta.epsilon();
   const int first = std::max(1, static_cast<int>(std::floor((x_c - eps) / dx + 0.5)));
-  const int last = std::min(static_cast<int>(n),
-                            static_cast<int>(std::floor((x_c + eps) / dx + 0.5)));
+  const int last =
+      std::min(static_cast<int>(n), static_cast<int>(std::floor((x_c + eps) / dx + 0.5)));
   for (int i = first; i <= last; ++i)
   {
     const double a = (i - 0.5) * dx - x_c, b = (i + 0.5) * dx - x_c;

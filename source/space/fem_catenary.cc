@@ -17,21 +17,22 @@ constexpr unsigned int invalid = dealii::numbers::invalid_unsigned_int;
 
 FemCatenary::FemCatenary(const CatenaryParameters& catenary,
                          const DiscretisationParameters& discretisation)
-  : CatenaryDiscretisation(catenary, discretisation), carrier_fe(1)
+    : CatenaryDiscretisation(catenary, discretisation), carrier_fe(1)
 {
   dealii::GridGenerator::subdivided_hyper_cube(triangulation, discretisation.n_intervals,
                                                0., catenary.span);
   for (const auto& cell : triangulation.active_cell_iterators())
     cells.push_back(cell);
   std::sort(cells.begin(), cells.end(),
-            [](const auto& a, const auto& b) { return a->vertex(0)[0] < b->vertex(0)[0]; });
+            [](const auto& a, const auto& b)
+            { return a->vertex(0)[0] < b->vertex(0)[0]; });
 
   for (auto* s : {&carrier_space, &wire_space})
   {
     s->dofs.reinit(triangulation);
     s->dofs.distribute_dofs(s == &carrier_space
-                              ? static_cast<const dealii::FiniteElement<1>&>(carrier_fe)
-                              : static_cast<const dealii::FiniteElement<1>&>(wire_fe));
+                                ? static_cast<const dealii::FiniteElement<1>&>(carrier_fe)
+                                : static_cast<const dealii::FiniteElement<1>&>(wire_fe));
     // Eliminate the value dof (component 0 of the vertex) at both ends, Eq. (3).
     std::vector<bool> eliminated(s->dofs.n_dofs(), false);
     for (const auto& cell : s->dofs.active_cell_iterators())
@@ -42,7 +43,7 @@ FemCatenary::FemCatenary(const CatenaryParameters& catenary,
     for (unsigned int c = 0; c < cells.size(); ++c)
     {
       const typename dealii::DoFHandler<1>::active_cell_iterator cell(
-        &triangulation, cells[c]->level(), cells[c]->index(), &s->dofs);
+          &triangulation, cells[c]->level(), cells[c]->index(), &s->dofs);
       s->cell_dofs[c].resize(s->dofs.get_fe().n_dofs_per_cell());
       cell->get_dof_indices(s->cell_dofs[c]);
     }
@@ -97,11 +98,11 @@ void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
 
   const bool beam = wire == Wire::contact_wire && p.bending_stiffness > 0.;
   const dealii::QGauss<1> quadrature(4);
-  dealii::FEValues<1> fe_values(fe, quadrature,
-                                dealii::update_values | dealii::update_gradients |
-                                  (beam ? dealii::update_hessians
-                                        : dealii::update_default) |
-                                  dealii::update_JxW_values);
+  dealii::FEValues<1> fe_values(
+      fe, quadrature,
+      dealii::update_values | dealii::update_gradients |
+          (beam ? dealii::update_hessians : dealii::update_default) |
+          dealii::update_JxW_values);
   for (const auto& cell : s.dofs.active_cell_iterators())
   {
     fe_values.reinit(cell);
@@ -125,11 +126,12 @@ void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
           op.mass.add(I, J, p.mass_per_length * vivj);
           op.damping.add(I, J, p.damping * vivj);
           // Weak form (16): T int v' w' + EI int v'' w''.
-          double k = p.tension * fe_values.shape_grad(i, q)[0] *
-                     fe_values.shape_grad(j, q)[0];
+          // Products first, so that K is symmetric to the last bit.
+          double k =
+              p.tension * (fe_values.shape_grad(i, q)[0] * fe_values.shape_grad(j, q)[0]);
           if (beam)
-            k += p.bending_stiffness * fe_values.shape_hessian(i, q)[0][0] *
-                 fe_values.shape_hessian(j, q)[0][0];
+            k += p.bending_stiffness * (fe_values.shape_hessian(i, q)[0][0] *
+                                        fe_values.shape_hessian(j, q)[0][0]);
           op.stiffness.add(I, J, k * jxw);
         }
       }
@@ -139,9 +141,9 @@ void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
 
 unsigned int FemCatenary::cell_index(const double x) const
 {
-  const auto it = std::upper_bound(
-    cells.begin(), cells.end(), x,
-    [](const double value, const auto& cell) { return value < cell->vertex(0)[0]; });
+  const auto it = std::upper_bound(cells.begin(), cells.end(), x,
+                                   [](const double value, const auto& cell)
+                                   { return value < cell->vertex(0)[0]; });
   const unsigned int c = it == cells.begin() ? 0 : (it - cells.begin()) - 1;
   return std::min<unsigned int>(c, cells.size() - 1);
 }
@@ -202,7 +204,8 @@ void FemCatenary::full_load_row(const double x_c, const unsigned int k,
   for (unsigned int c = first; c <= last; ++c)
   {
     const double x0 = cells[c]->vertex(0)[0], x1 = cells[c]->vertex(1)[0];
-    // Break points: cell ends and the spline knots x_c - eps, x_c, x_c + eps inside the cell.
+    // Break points: cell ends and the spline knots x_c - eps, x_c, x_c + eps inside the
+    // cell.
     std::vector<double> breaks = {std::max(x0, x_c - eps), std::min(x1, x_c + eps)};
     for (const double knot : delta.knots())
       if (x_c + knot > breaks.front() && x_c + knot < breaks.back())

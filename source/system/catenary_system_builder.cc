@@ -6,20 +6,21 @@ namespace pantocat
 {
 namespace
 {
-void check_dropper_rows(const CatenaryDiscretisation& d, const std::vector<SparseRow>& rows)
+void check_dropper_rows(const CatenaryDiscretisation& d,
+                        const std::vector<SparseRow>& rows)
 {
   const auto& x = d.catenary_parameters().dropper_positions;
   const std::string parameter = "Discretisation/Number of intervals";
   for (unsigned int j = 0; j < rows.size(); ++j)
   {
     require(rows[j].size() > 0, parameter, d.n_intervals(),
-            "grid too coarse: dropper " + std::to_string(j + 1) + " at x = " +
-              number_to_string(x[j]) + " m falls on a boundary node");
+            "grid too coarse: dropper " + std::to_string(j + 1) +
+                " at x = " + number_to_string(x[j]) + " m falls on a boundary node");
     for (unsigned int i = 0; i < j; ++i)
       require(rows[i].index != rows[j].index || rows[i].value != rows[j].value, parameter,
               d.n_intervals(),
               "grid too coarse: droppers " + std::to_string(i + 1) + " and " +
-                std::to_string(j + 1) + " fall on the same node");
+                  std::to_string(j + 1) + " fall on the same node");
   }
 }
 } // namespace
@@ -64,8 +65,8 @@ SemiDiscreteSystem build_catenary_system(const CatenaryDiscretisation& d,
   system.set_blocks(bodies);
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
     system.add_constraint(std::make_unique<FixedConstraint>(
-      "dropper " + std::to_string(j + 1), dropper_kind, dropper_row(d, system, j),
-      p.dropper_lengths[j] - p.support_height));
+        "dropper " + std::to_string(j + 1), dropper_kind, dropper_row(d, system, j),
+        p.dropper_lengths[j] - p.support_height));
   return system;
 }
 } // namespace pantocat

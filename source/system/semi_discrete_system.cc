@@ -33,7 +33,7 @@ void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bod
     for (const dealii::SparseMatrix<double>* m : {&b.mass, &b.damping, &b.stiffness})
     {
       dealii::SparseMatrix<double>& target =
-        m == &b.mass ? mass : (m == &b.damping ? damping : stiffness);
+          m == &b.mass ? mass : (m == &b.damping ? damping : stiffness);
       for (auto it = m->begin(); it != m->end(); ++it)
         target.set(o + it->row(), o + it->column(), it->value());
     }

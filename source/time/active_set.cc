@@ -8,7 +8,7 @@ namespace pantocat
 {
 ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
                                        const unsigned int max_iterations)
-  : system(system), max_iterations(max_iterations)
+    : system(system), max_iterations(max_iterations)
 {
 }
 

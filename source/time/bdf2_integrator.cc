@@ -24,7 +24,7 @@ void Bdf2Integrator::Triple::add(const double factor, const Triple& other)
 struct Bdf2Integrator::Stage
 {
   Stage(const SemiDiscreteSystem& system, const MassInverse& mass_inverse, double c)
-    : system(system), mass_inverse(mass_inverse), c(c)
+      : system(system), mass_inverse(mass_inverse), c(c)
   {
     dealii::SparseMatrix<double> S(*system.sparsity);
     S.copy_from(system.stiffness);
@@ -97,8 +97,8 @@ struct Bdf2Integrator::Stage
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
                                const unsigned int max_iterations)
-  : TimeIntegrator(system), dt(time_step), at_next(system),
-    active_set(system, max_iterations)
+    : TimeIntegrator(system), dt(time_step), at_next(system),
+      active_set(system, max_iterations)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
 }
@@ -149,7 +149,8 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     small_rhs.reinit(3 * m);
     small_solution.reinit(3 * m);
     // Rows: g, dg/dt, d2g/dt2 of each active constraint; columns: lambda, eta, mu.
-    auto functionals = [&](const ConstraintState& r, const Triple& y, double out[3]) {
+    auto functionals = [&](const ConstraintState& r, const Triple& y, double out[3])
+    {
       out[0] = r.G.dot(y.q);
       out[1] = r.G_t.dot(y.q) + r.G.dot(y.v);
       out[2] = r.G_tt.dot(y.q) + 2. * r.G_t.dot(y.v) + r.G.dot(y.a);
@@ -261,7 +262,8 @@ void Bdf2Integrator::advance()
     dealii::Vector<double> rho_q(current.q), rho_v(current.v);
     rho_q.sadd(2. / dt, -0.5 / dt, previous.q);
     rho_v.sadd(2. / dt, -0.5 / dt, previous.v);
-    DynamicState next = implicit_step(*bdf2, rho_q, rho_v, current.t + dt, current.active);
+    DynamicState next =
+        implicit_step(*bdf2, rho_q, rho_v, current.t + dt, current.active);
     previous = std::move(current);
     current = std::move(next);
   }

@@ -3,14 +3,14 @@
 namespace pantocat
 {
 ConstraintEvaluator::ConstraintEvaluator(const SemiDiscreteSystem& system)
-  : system(system), cache(system.n_constraints())
+    : system(system), cache(system.n_constraints())
 {
   for (unsigned int i = 0; i < cache.size(); ++i)
     system.constraints[i]->evaluate(0., cache[i]);
 }
 
 const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t,
-                                                           const unsigned int max_order)
+                                                            const unsigned int max_order)
 {
   for (unsigned int i = 0; i < cache.size(); ++i)
     if (system.constraints[i]->depends_on_time())

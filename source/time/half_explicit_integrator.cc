@@ -31,8 +31,8 @@ void solve_small(dealii::FullMatrix<double>& A, const dealii::Vector<double>& b,
 HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
                                                const double time_step,
                                                const unsigned int max_iterations)
-  : TimeIntegrator(system), dt(time_step), at_n(system), at_half(system), at_next(system),
-    active_set(system, max_iterations)
+    : TimeIntegrator(system), dt(time_step), at_n(system), at_half(system),
+      at_next(system), active_set(system, max_iterations)
 {
   const unsigned int n = system.n_dofs(), m = system.n_constraints();
   for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new, &r, &tmp})
@@ -45,8 +45,9 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   factorize();
   // Diagonal storage of K and D/2.
   for (auto it = system.stiffness.begin(); it != system.stiffness.end(); ++it)
-    forces.bandwidth = std::max<int>(forces.bandwidth, std::abs(static_cast<int>(it->row()) -
-                                                               static_cast<int>(it->column())));
+    forces.bandwidth =
+        std::max<int>(forces.bandwidth, std::abs(static_cast<int>(it->row()) -
+                                                 static_cast<int>(it->column())));
   const int b = forces.bandwidth;
   forces.stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
   forces.half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
@@ -238,10 +239,10 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
       const unsigned int j = A[l];
       const double GP = s.G.dot(P[j]), GQ = s.G.dot(Q[j]), GR = s.G.dot(R[j]);
       const double GtP = s.G_t.dot(P[j]), GtQ = s.G_t.dot(Q[j]), GtR = s.G_t.dot(R[j]);
-      small(k, l)         = h * h * GP + h * GQ;                // position row, eta
-      small(k, m + l)     = h * GR;                             // position row, mu
-      small(m + k, l)     = h * h * GtP + h * GtQ + 2. * h * GP; // velocity row, eta
-      small(m + k, m + l) = h * GtR;                            // velocity row, mu
+      small(k, l) = h * h * GP + h * GQ;                     // position row, eta
+      small(k, m + l) = h * GR;                              // position row, mu
+      small(m + k, l) = h * h * GtP + h * GtQ + 2. * h * GP; // velocity row, eta
+      small(m + k, m + l) = h * GtR;                         // velocity row, mu
     }
     small_rhs(k) = -(s.G.dot(q_new) + s.z);
     small_rhs(m + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);

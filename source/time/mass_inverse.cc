@@ -30,8 +30,9 @@ void MassInverse::initialize(const dealii::SparseMatrix<double>& matrix,
   bool block_closed = coupled_rows.size() <= 16;
   for (const unsigned int i : coupled_rows)
     for (auto it = matrix.begin(i); block_closed && it != matrix.end(i); ++it)
-      block_closed = it->value() == 0. ||
-                     std::binary_search(coupled_rows.begin(), coupled_rows.end(), it->column());
+      block_closed =
+          it->value() == 0. ||
+          std::binary_search(coupled_rows.begin(), coupled_rows.end(), it->column());
   diagonal = block_closed;
   if (!diagonal)
   {
@@ -92,7 +93,7 @@ void MassInverse::apply_block_to_row(const SparseRow& row,
   for (std::size_t m = 0; m < row.size(); ++m)
   {
     const auto it =
-      std::lower_bound(coupled_rows.begin(), coupled_rows.end(), row.index[m]);
+        std::lower_bound(coupled_rows.begin(), coupled_rows.end(), row.index[m]);
     if (it != coupled_rows.end() && *it == row.index[m])
       block_in(it - coupled_rows.begin()) += row.value[m];
   }

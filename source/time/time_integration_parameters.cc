@@ -11,11 +11,11 @@ const char* to_string(const IntegratorType type)
 void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Time integration");
-  prm.declare_entry("Integrator", "half-explicit",
-                    dealii::Patterns::Selection("half-explicit|bdf2"),
-                    "half-explicit: the reversible half-explicit method (39)-(41) (explicit "
-                    "in the unknowns, stable for dt < 2/omega_max); bdf2: two-step BDF on "
-                    "the stabilised index-2 formulation (38) with a Richardson start.");
+  prm.declare_entry(
+      "Integrator", "half-explicit", dealii::Patterns::Selection("half-explicit|bdf2"),
+      "half-explicit: the reversible half-explicit method (39)-(41) (explicit "
+      "in the unknowns, stable for dt < 2/omega_max); bdf2: two-step BDF on "
+      "the stabilised index-2 formulation (38) with a Richardson start.");
   prm.declare_entry("Time step", "5e-5", dealii::Patterns::Double(0.),
                     "Constant step size dt [s], > 0 (Sec. 6: 5e-5 s).");
   prm.declare_entry("Force step size", "false", dealii::Patterns::Bool(),
@@ -32,8 +32,8 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.enter_subsection("Time integration");
   integrator = prm.get("Integrator") == "bdf2" ? IntegratorType::bdf2
                                                : IntegratorType::half_explicit;
-  time_step                 = prm.get_double("Time step");
-  force_step_size           = prm.get_bool("Force step size");
+  time_step = prm.get_double("Time step");
+  force_step_size = prm.get_bool("Force step size");
   max_active_set_iterations = prm.get_integer("Maximum active-set iterations");
   prm.leave_subsection();
   require(time_step > 0., "Time integration/Time step", time_step, "must be > 0");

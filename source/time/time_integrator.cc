@@ -8,7 +8,8 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
                                                        const TimeIntegrationParameters& p)
 {
   if (p.integrator == IntegratorType::bdf2)
-    return std::make_unique<Bdf2Integrator>(system, p.time_step, p.max_active_set_iterations);
+    return std::make_unique<Bdf2Integrator>(system, p.time_step,
+                                            p.max_active_set_iterations);
   return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
                                                   p.max_active_set_iterations);
 }

@@ -12,9 +12,9 @@ namespace pantocat
 struct StaticEquilibrium
 {
   dealii::Vector<double> q;
-  std::vector<double> multipliers;  ///< lambda_i >= 0 of each constraint (0 when inactive)
-  std::vector<double> gaps;         ///< g_i(t, q)
-  std::vector<bool> active;         ///< the active set of the solution
+  std::vector<double> multipliers; ///< lambda_i >= 0 of each constraint (0 when inactive)
+  std::vector<double> gaps;        ///< g_i(t, q)
+  std::vector<bool> active;        ///< the active set of the solution
   unsigned int active_set_iterations = 0;
 };
 

@@ -5,7 +5,8 @@
 
 namespace pantocat
 {
-/// Shortest round-trip text of a number ("15000", "0.03"), for parameter defaults and CSV.
+/// Shortest round-trip text of a number ("15000", "0.03"), for parameter defaults and
+/// CSV.
 inline std::string number_to_string(const double value, const int digits = 15)
 {
   std::ostringstream s;

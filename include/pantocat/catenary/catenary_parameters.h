@@ -9,10 +9,10 @@ namespace pantocat
 /// Physical data of one wire of the catenary, Eq. (2).
 struct WireParameters
 {
-  double mass_per_length   = 0.; ///< rho A [kg/m]
-  double tension           = 0.; ///< T [N]
+  double mass_per_length = 0.;   ///< rho A [kg/m]
+  double tension = 0.;           ///< T [N]
   double bending_stiffness = 0.; ///< E I [N m^2]; 0 for the string (carrier)
-  double damping           = 0.; ///< beta [N s/m^2]
+  double damping = 0.;           ///< beta [N s/m^2]
 
   /// Wave speed sqrt(T / rho A) [m/s].
   double wave_speed() const;
@@ -25,20 +25,21 @@ struct WireParameters
  */
 struct CatenaryParameters
 {
-  double span            = 20.0; ///< L [m]
-  double support_height  = 1.0;  ///< l_c: carrier height at x = 0 and x = L [m], Eq. (3)
-  double gravity         = 9.81; ///< g [m/s^2]
+  double span = 20.0;          ///< L [m]
+  double support_height = 1.0; ///< l_c: carrier height at x = 0 and x = L [m], Eq. (3)
+  double gravity = 9.81;       ///< g [m/s^2]
   WireParameters carrier = {0.6, 15000., 0., 0.03};
   WireParameters contact_wire = {1.068, 15000., 150., 0.03};
 
   std::vector<double> dropper_positions = {5.5, 14.5}; ///< x_{d,j} [m]
-  std::vector<double> dropper_lengths   = {0.95, 0.95}; ///< l_j [m]
-  double dropper_mass_per_length        = 0.14;         ///< rho_d A_d [kg/m]
-  double clamp_mass                     = 0.25;         ///< m_s [kg]
+  std::vector<double> dropper_lengths = {0.95, 0.95};  ///< l_j [m]
+  double dropper_mass_per_length = 0.14;               ///< rho_d A_d [kg/m]
+  double clamp_mass = 0.25;                            ///< m_s [kg]
 
   unsigned int n_droppers() const { return dropper_positions.size(); }
 
-  /// Gravity load of clamps and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2) g, Eq. (4).
+  /// Gravity load of clamps and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2) g,
+  /// Eq. (4).
   double clamp_load(unsigned int j) const;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

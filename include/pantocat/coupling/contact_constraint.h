@@ -10,7 +10,7 @@ namespace pantocat
 struct ContactPointMotion
 {
   double initial_position = 2.;
-  double speed            = 32.;
+  double speed = 32.;
 
   double position(double t) const { return initial_position + speed * t; }
   double velocity(double) const { return speed; }
@@ -35,7 +35,8 @@ public:
                     unsigned int pantograph_offset, ContactPointMotion motion, Kind kind);
 
   bool depends_on_time() const override { return true; }
-  void evaluate(double t, ConstraintState& state, unsigned int max_order = 2) const override;
+  void evaluate(double t, ConstraintState& state,
+                unsigned int max_order = 2) const override;
 
   const ContactPointMotion& motion() const { return motion_; }
 

@@ -10,7 +10,8 @@ namespace pantocat
 /// The semi-discrete pantograph-catenary system (35) and its catenary part.
 struct CoupledSystem
 {
-  /// Carrier and contact wire with droppers only (same numbering): the initial static problem.
+  /// Carrier and contact wire with droppers only (same numbering): the initial static
+  /// problem.
   SemiDiscreteSystem catenary_only;
   /// Blocks carrier, contact wire, pantograph; constraints: droppers, then the contact.
   SemiDiscreteSystem coupled;
@@ -26,5 +27,6 @@ struct CoupledSystem
 CoupledSystem build_coupled_system(const CatenaryDiscretisation& discretisation,
                                    const PantographModel& pantograph,
                                    const ContactPointMotion& motion,
-                                   Constraint::Kind dropper_kind, Constraint::Kind contact_kind);
+                                   Constraint::Kind dropper_kind,
+                                   Constraint::Kind contact_kind);
 } // namespace pantocat

@@ -48,17 +48,19 @@ public:
   double shape_value_on_cell(unsigned int i, double xi, double h) const;
 
   /// k-th x-derivative (k = 0..3) of local shape function @p i on a cell of length @p h.
-  double shape_derivative_on_cell(unsigned int i, unsigned int k, double xi, double h) const;
+  double shape_derivative_on_cell(unsigned int i, unsigned int k, double xi,
+                                  double h) const;
 
-  void fill_fe_values(
-    const dealii::Triangulation<1, 1>::cell_iterator& cell,
-    const dealii::CellSimilarity::Similarity cell_similarity,
-    const dealii::Quadrature<1>& quadrature, const dealii::Mapping<1, 1>& mapping,
-    const dealii::Mapping<1, 1>::InternalDataBase& mapping_internal,
-    const dealii::internal::FEValuesImplementation::MappingRelatedData<1, 1>&
-      mapping_data,
-    const dealii::FiniteElement<1, 1>::InternalDataBase& fe_internal,
-    dealii::internal::FEValuesImplementation::FiniteElementRelatedData<1, 1>& output_data)
-    const override;
+  void
+  fill_fe_values(const dealii::Triangulation<1, 1>::cell_iterator& cell,
+                 const dealii::CellSimilarity::Similarity cell_similarity,
+                 const dealii::Quadrature<1>& quadrature,
+                 const dealii::Mapping<1, 1>& mapping,
+                 const dealii::Mapping<1, 1>::InternalDataBase& mapping_internal,
+                 const dealii::internal::FEValuesImplementation::MappingRelatedData<1, 1>&
+                     mapping_data,
+                 const dealii::FiniteElement<1, 1>::InternalDataBase& fe_internal,
+                 dealii::internal::FEValuesImplementation::FiniteElementRelatedData<1, 1>&
+                     output_data) const override;
 };
 } // namespace pantocat

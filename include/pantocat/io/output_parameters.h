@@ -8,10 +8,10 @@ namespace pantocat
 {
 struct OutputParameters
 {
-  std::string directory         = "output"; ///< created if needed
-  unsigned int vtu_subdivisions = 4;        ///< sample points per cell in VTU files
-  unsigned int time_series_interval = 1;    ///< write every k-th time point
-  bool plots = true;                        ///< PNG plots with gnuplot, if installed
+  std::string directory = "output";      ///< created if needed
+  unsigned int vtu_subdivisions = 4;     ///< sample points per cell in VTU files
+  unsigned int time_series_interval = 1; ///< write every k-th time point
+  bool plots = true;                     ///< PNG plots with gnuplot, if installed
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);

@@ -14,9 +14,10 @@ namespace pantocat
  * file's metadata).
  */
 void write_wire_profiles(const CatenaryDiscretisation& discretisation,
-                         const SemiDiscreteSystem& system, const dealii::Vector<double>& q,
-                         const std::string& csv_file, const std::string& vtu_file,
-                         unsigned int subdivisions, double time = 0.);
+                         const SemiDiscreteSystem& system,
+                         const dealii::Vector<double>& q, const std::string& csv_file,
+                         const std::string& vtu_file, unsigned int subdivisions,
+                         double time = 0.);
 
 /// The unknowns of one block of @p q.
 dealii::Vector<double> block_values(const SemiDiscreteSystem& system,

@@ -30,7 +30,8 @@ public:
    */
   void consistent_state(double head_position, double head_velocity,
                         double head_acceleration, double contact_force, double offset,
-                        dealii::Vector<double>& q, dealii::Vector<double>& v) const override;
+                        dealii::Vector<double>& q,
+                        dealii::Vector<double>& v) const override;
 
 private:
   TwoMassPantographParameters p;

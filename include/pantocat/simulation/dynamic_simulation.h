@@ -29,9 +29,9 @@ public:
   struct Result
   {
     IntegratorStatistics integrator;
-    double time_loop_seconds  = 0.;
-    double end_time           = 0.;
-    double stability_limit    = 0.; ///< 2/omega_max [s]
+    double time_loop_seconds = 0.;
+    double end_time = 0.;
+    double stability_limit = 0.; ///< 2/omega_max [s]
   };
 
   /// Integrates; throws SimulationError if the run becomes unstable.
@@ -41,7 +41,8 @@ public:
   const SimulationLayout& layout() const { return layout_; }
   const DynamicState& initial_state() const { return initial; }
   const CatenaryDiscretisation& discretisation() const { return *space; }
-  /// The step-size limit 2/omega_max of the explicit method for this system (computed once).
+  /// The step-size limit 2/omega_max of the explicit method for this system (computed
+  /// once).
   double explicit_stability_limit() const;
   /**
    * Refuses (InputError naming the parameter, the value and the limit) a
@@ -64,5 +65,6 @@ private:
   mutable bool warned = false;
 };
 
-std::unique_ptr<PantographModel> create_pantograph(const PantographParameters& parameters);
+std::unique_ptr<PantographModel>
+create_pantograph(const PantographParameters& parameters);
 } // namespace pantocat

@@ -37,7 +37,10 @@ public:
   std::vector<std::vector<Interval>> dropper_slack_intervals() const;
   std::vector<Interval> contact_loss_intervals() const;
   /// Inactive intervals of constraint i.
-  const std::vector<Interval>& inactive_intervals(unsigned int i) const { return intervals[i]; }
+  const std::vector<Interval>& inactive_intervals(unsigned int i) const
+  {
+    return intervals[i];
+  }
 
 private:
   SimulationLayout layout;

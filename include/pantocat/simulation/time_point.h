@@ -17,7 +17,7 @@ struct SimulationLayout
 /// One reported time point of a dynamic run.
 struct TimePoint
 {
-  double t   = 0.;
+  double t = 0.;
   double x_p = 0.;
   std::vector<double> lambda;     ///< per constraint [N]
   std::vector<double> gap;        ///< g_i(t, q) per constraint [m]

@@ -19,7 +19,8 @@ namespace pantocat
 struct BlockOperator
 {
   std::string name;
-  std::unique_ptr<dealii::SparsityPattern> sparsity = std::make_unique<dealii::SparsityPattern>();
+  std::unique_ptr<dealii::SparsityPattern> sparsity =
+      std::make_unique<dealii::SparsityPattern>();
   dealii::SparseMatrix<double> mass;
   dealii::SparseMatrix<double> damping;
   dealii::SparseMatrix<double> stiffness;

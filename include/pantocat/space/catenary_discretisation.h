@@ -62,7 +62,8 @@ public:
    */
   virtual void load_row(double x_c, unsigned int k, SparseRow& row) const = 0;
 
-  /// The displacement w(x) of @p wire (with l_c for the carrier) for the unknowns @p q of that wire.
+  /// The displacement w(x) of @p wire (with l_c for the carrier) for the unknowns @p q of
+  /// that wire.
   double displacement(Wire wire, const dealii::Vector<double>& q, double x) const;
 
   /// Vertices x_0 < ... < x_{N+1} of the grid.

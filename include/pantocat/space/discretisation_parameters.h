@@ -23,10 +23,10 @@ SpaceMethod space_method_from_string(const std::string& name);
 
 struct DiscretisationParameters
 {
-  SpaceMethod method          = SpaceMethod::fem;
-  unsigned int n_intervals    = 500; ///< N + 1: cells of the equidistant grid
-  LoadShape load_shape        = LoadShape::smoothed_delta;
-  double load_half_width      = 0.2; ///< epsilon [m]
+  SpaceMethod method = SpaceMethod::fem;
+  unsigned int n_intervals = 500; ///< N + 1: cells of the equidistant grid
+  LoadShape load_shape = LoadShape::smoothed_delta;
+  double load_half_width = 0.2; ///< epsilon [m]
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);

@@ -40,7 +40,8 @@ public:
   void load_row(double x_c, unsigned int k, SparseRow& row) const override;
 
   const dealii::DoFHandler<1>& dof_handler(Wire wire) const;
-  /// Global dof number -> free unknown, or numbers::invalid_unsigned_int for eliminated dofs.
+  /// Global dof number -> free unknown, or numbers::invalid_unsigned_int for eliminated
+  /// dofs.
   const std::vector<unsigned int>& free_index(Wire wire) const;
 
   /**
@@ -53,7 +54,8 @@ private:
   struct WireSpace
   {
     dealii::DoFHandler<1> dofs;
-    std::vector<std::vector<dealii::types::global_dof_index>> cell_dofs; ///< by cell index
+    std::vector<std::vector<dealii::types::global_dof_index>>
+        cell_dofs; ///< by cell index
     std::vector<unsigned int> free;
     unsigned int n_free = 0;
   };
@@ -62,7 +64,8 @@ private:
   unsigned int cell_index(double x) const;
   /// Value of local shape function i (or its k-th x-derivative) on cell @p c at x.
   double shape(Wire wire, unsigned int c, unsigned int i, unsigned int k, double x) const;
-  const std::vector<dealii::types::global_dof_index>& local_dofs(Wire wire, unsigned int c) const;
+  const std::vector<dealii::types::global_dof_index>& local_dofs(Wire wire,
+                                                                 unsigned int c) const;
   const WireSpace& space(Wire wire) const;
 
   dealii::Triangulation<1> triangulation;

@@ -17,9 +17,10 @@ namespace pantocat
  * resolve the droppers (a dropper on an eliminated boundary node, or two
  * droppers on one node).
  */
-SemiDiscreteSystem build_catenary_system(const CatenaryDiscretisation& discretisation,
-                                         Constraint::Kind dropper_kind,
-                                         const std::vector<const BlockOperator*>& extra_bodies = {});
+SemiDiscreteSystem
+build_catenary_system(const CatenaryDiscretisation& discretisation,
+                      Constraint::Kind dropper_kind,
+                      const std::vector<const BlockOperator*>& extra_bodies = {});
 
 /// The dropper constraint row of dropper @p j in the numbering of @p system.
 SparseRow dropper_row(const CatenaryDiscretisation& discretisation,

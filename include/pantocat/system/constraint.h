@@ -58,7 +58,8 @@ public:
    * G(t), z(t) and their time derivatives up to @p max_order (0, 1 or 2);
    * the higher ones are left as they are.
    */
-  virtual void evaluate(double t, ConstraintState& state, unsigned int max_order = 2) const = 0;
+  virtual void evaluate(double t, ConstraintState& state,
+                        unsigned int max_order = 2) const = 0;
 
 private:
   std::string label;
@@ -70,7 +71,7 @@ class FixedConstraint : public Constraint
 {
 public:
   FixedConstraint(std::string name, Kind kind, SparseRow row, double offset)
-    : Constraint(std::move(name), kind), row(std::move(row)), offset(offset)
+      : Constraint(std::move(name), kind), row(std::move(row)), offset(offset)
   {
   }
   bool depends_on_time() const override { return false; }

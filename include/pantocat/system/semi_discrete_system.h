@@ -18,7 +18,7 @@ struct DofBlock
 {
   std::string name;
   unsigned int first = 0;
-  unsigned int size  = 0;
+  unsigned int size = 0;
 };
 
 /**

@@ -18,8 +18,8 @@ const char* to_string(IntegratorType type);
 struct TimeIntegrationParameters
 {
   IntegratorType integrator = IntegratorType::half_explicit;
-  double time_step          = 5e-5; ///< Delta t [s]
-  bool force_step_size      = false; ///< run an explicit method above its stability limit
+  double time_step = 5e-5;      ///< Delta t [s]
+  bool force_step_size = false; ///< run an explicit method above its stability limit
   unsigned int max_active_set_iterations = 20;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

@@ -12,9 +12,9 @@ namespace pantocat
 /// Work counters of an integrator run.
 struct IntegratorStatistics
 {
-  unsigned long steps                 = 0;
+  unsigned long steps = 0;
   unsigned long active_set_iterations = 0; ///< repeated trial steps (Sec. 5.3)
-  unsigned long active_set_changes    = 0; ///< constraints switched in accepted steps
+  unsigned long active_set_changes = 0;    ///< constraints switched in accepted steps
 };
 
 /**
@@ -51,6 +51,7 @@ protected:
   IntegratorStatistics stats;
 };
 
-std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem& system,
-                                                       const TimeIntegrationParameters& p);
+std::unique_ptr<TimeIntegrator>
+create_time_integrator(const SemiDiscreteSystem& system,
+                       const TimeIntegrationParameters& p);
 } // namespace pantocat
