@@ -57,13 +57,35 @@ double FE_CubicHermite::shape_derivative_on_cell(const unsigned int i,
                                                  const unsigned int k, const double xi,
                                                  const double h) const
 {
+  // The polynomials of reference_hermite_polynomials(), coefficients in
+  // increasing powers of xi; evaluated here without allocation (hot path of
+  // the moving contact row).
+  static constexpr double coefficients[4][4] = {
+      {1., 0., -3., 2.}, {0., 1., -2., 1.}, {0., 0., 3., -2.}, {0., 0., -1., 1.}};
+  const double* c = coefficients[i];
+  double d = 0.;
+  switch (k)
+  {
+  case 0:
+    d = c[0] + xi * (c[1] + xi * (c[2] + xi * c[3]));
+    break;
+  case 1:
+    d = c[1] + xi * (2. * c[2] + xi * 3. * c[3]);
+    break;
+  case 2:
+    d = 2. * c[2] + 6. * c[3] * xi;
+    break;
+  case 3:
+    d = 6. * c[3];
+    break;
+  default:
+    return 0.;
+  }
   // d^k/dx^k = h^{-k} d^k/dxi^k; slope functions carry an extra factor h.
-  static const std::vector<Polynomial<double>> polynomials =
-      reference_hermite_polynomials();
-  std::vector<double> derivatives(4);
-  polynomials[i].value(xi, derivatives);
-  const double scale = (is_slope_dof(i) ? h : 1.0) / std::pow(h, static_cast<int>(k));
-  return derivatives[k] * scale;
+  double scale = is_slope_dof(i) ? h : 1.;
+  for (unsigned int p = 0; p < k; ++p)
+    scale /= h;
+  return d * scale;
 }
 
 void FE_CubicHermite::fill_fe_values(

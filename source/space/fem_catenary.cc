@@ -197,7 +197,6 @@ void FemCatenary::full_load_row(const double x_c, const unsigned int k,
     return;
   }
   const double eps = delta.epsilon();
-  const dealii::QGauss<1> gauss(4); // degree 3 + 3 = 6 <= 7: exact on each piece
   const unsigned int first = cell_index(std::max(0., x_c - eps));
   const unsigned int last = cell_index(std::min(catenary.span, x_c + eps));
   std::vector<double> local(4);

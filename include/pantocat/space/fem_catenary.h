@@ -3,6 +3,7 @@
 #include <pantocat/fe/fe_cubic_hermite.h>
 #include <pantocat/space/catenary_discretisation.h>
 
+#include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/grid/tria.h>
@@ -68,6 +69,7 @@ private:
                                                                  unsigned int c) const;
   const WireSpace& space(Wire wire) const;
 
+  dealii::QGauss<1> gauss{4}; ///< degree 3 + 3 = 6 <= 7: exact on each piece of (33)
   dealii::Triangulation<1> triangulation;
   std::vector<dealii::Triangulation<1>::active_cell_iterator> cells; ///< ordered by x
   dealii::FE_Q<1> carrier_fe;

@@ -3,6 +3,7 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
+#include <pantocat/time/constraint_response_cache.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -32,8 +33,14 @@ namespace pantocat
 class Bdf2Integrator : public TimeIntegrator
 {
 public:
+  /**
+   * With @p cache_responses (the default) the BDF-2 steps use a
+   * ConstraintResponseCache: one solve with S per step instead of a solve per
+   * constraint column. Without it, every step solves for all columns (the
+   * reference the tests compare with).
+   */
   Bdf2Integrator(const SemiDiscreteSystem& system, double time_step,
-                 unsigned int max_active_set_iterations);
+                 unsigned int max_active_set_iterations, bool cache_responses = true);
   ~Bdf2Integrator() override;
 
   std::string name() const override { return "bdf2"; }
@@ -58,12 +65,19 @@ private:
                              const dealii::Vector<double>& rho_v, double t1,
                              const std::vector<bool>& active_at_start);
   void richardson_start();
+  /// One BDF-2 step with the response cache (same equations as implicit_step).
+  DynamicState cached_step(const dealii::Vector<double>& rho_q,
+                           const dealii::Vector<double>& rho_v, double t1,
+                           const std::vector<bool>& active_at_start);
 
   double dt;
   MassInverse mass_inverse;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   std::unique_ptr<Stage> bdf2;
+  bool use_cache;
+  std::unique_ptr<ConstraintResponseCache> responses;
+  std::vector<int> position_in_U; ///< unknown -> position in the rows' index set, or -1
   DynamicState previous, current;
   unsigned long step_number = 0;
   dealii::FullMatrix<double> small;
