@@ -221,6 +221,16 @@ void Bdf2Integrator::initialize(const DynamicState& initial)
   step_number = 0;
 }
 
+unsigned int Bdf2Integrator::unknowns_touched(const double t1)
+{
+  std::vector<unsigned int> all;
+  for (const auto& r : at_next.at(t1))
+    for (const SparseRow* row : {&r.G, &r.G_t})
+      all.insert(all.end(), row->index.begin(), row->index.end());
+  std::sort(all.begin(), all.end());
+  return std::unique(all.begin(), all.end()) - all.begin();
+}
+
 void Bdf2Integrator::richardson_start()
 {
   // Backward Euler with dt, and twice with dt/2; extrapolate (2nd order), Sec. 5.2.
@@ -265,9 +275,14 @@ void Bdf2Integrator::advance()
     dealii::Vector<double> rho_q(current.q), rho_v(current.v);
     rho_q.sadd(2. / dt, -0.5 / dt, previous.q);
     rho_v.sadd(2. / dt, -0.5 / dt, previous.v);
+    // The cache pays off while the rows touch few unknowns: each costs two
+    // vector updates of length n per step, against about six solves for the
+    // columns (doc/benchmarks.md).
+    const bool cache =
+        use_cache && unknowns_touched(current.t + dt) <= max_cached_unknowns;
     DynamicState next =
-        use_cache ? cached_step(rho_q, rho_v, current.t + dt, current.active)
-                  : implicit_step(*bdf2, rho_q, rho_v, current.t + dt, current.active);
+        cache ? cached_step(rho_q, rho_v, current.t + dt, current.active)
+              : implicit_step(*bdf2, rho_q, rho_v, current.t + dt, current.active);
     previous = std::move(current);
     current = std::move(next);
   }
