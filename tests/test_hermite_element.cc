@@ -1,18 +1,27 @@
 // The C1 cubic Hermite element (27) on deal.II: partition of unity, exact
-// reproduction of cubics on a non-uniform mesh, C1 continuity across vertices.
+// reproduction of cubics on a non-uniform mesh, C1 continuity across
+// vertices, and use with AffineConstraints and DataOut.
 #include <pantocat/fe/fe_cubic_hermite.h>
 
 #include <deal.II/base/quadrature_lib.h>
 #include <deal.II/dofs/dof_handler.h>
+#include <deal.II/dofs/dof_tools.h>
 #include <deal.II/fe/fe_values.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/tria.h>
+#include <deal.II/lac/affine_constraints.h>
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
+#include <deal.II/numerics/data_out.h>
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
+#include <sstream>
 
 using namespace dealii;
 using pantocat::FE_CubicHermite;
@@ -164,4 +173,77 @@ TEST(HermiteElement, GlobalFunctionsAreC1AcrossVertices)
   EXPECT_EQ(interior, 3u);
   // The element is C1, not C2: random data has curvature jumps of order one.
   EXPECT_GT(largest_curvature_jump, 0.1);
+}
+
+TEST(HermiteElement, WorksWithAffineConstraintsAndDataOut)
+{
+  // A simply supported beam EI w'''' = q0 on [0, 1] assembled the deal.II way:
+  // AffineConstraints fix the value dofs at both ends (not the slopes: w'' = 0
+  // is natural), distribute_local_to_global, UMFPACK. Cubic Hermite elements
+  // reproduce the quartic solution w = q0 x (1 - 2x^2 + x^3) / (24 EI) at the
+  // vertices exactly (nodal exactness in 1D). DataOut writes the field.
+  Triangulation<1> tria;
+  GridGenerator::subdivided_hyper_cube(tria, 8, 0., 1.);
+  const FE_CubicHermite fe;
+  DoFHandler<1> dofs(tria);
+  dofs.distribute_dofs(fe);
+  AffineConstraints<double> constraints;
+  for (const auto& cell : dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 2; ++v)
+      if (cell->at_boundary(v))
+        constraints.add_line(cell->vertex_dof_index(v, 0)); // value only
+  constraints.close();
+  EXPECT_EQ(constraints.n_constraints(), 2u);
+
+  DynamicSparsityPattern dsp(dofs.n_dofs());
+  DoFTools::make_sparsity_pattern(dofs, dsp, constraints, false);
+  SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  SparseMatrix<double> K(pattern);
+  Vector<double> f(dofs.n_dofs()), w(dofs.n_dofs());
+  const double EI = 2., q0 = 3.;
+  const QGauss<1> quadrature(4);
+  FEValues<1> fe_values(fe, quadrature,
+                        update_values | update_hessians | update_JxW_values);
+  FullMatrix<double> local_matrix(4, 4);
+  Vector<double> local_rhs(4);
+  std::vector<types::global_dof_index> local_dofs(4);
+  for (const auto& cell : dofs.active_cell_iterators())
+  {
+    fe_values.reinit(cell);
+    local_matrix = 0.;
+    local_rhs = 0.;
+    for (unsigned int q = 0; q < quadrature.size(); ++q)
+      for (unsigned int i = 0; i < 4; ++i)
+      {
+        local_rhs(i) += q0 * fe_values.shape_value(i, q) * fe_values.JxW(q);
+        for (unsigned int j = 0; j < 4; ++j)
+          local_matrix(i, j) += EI * fe_values.shape_hessian(i, q)[0][0] *
+                                fe_values.shape_hessian(j, q)[0][0] * fe_values.JxW(q);
+      }
+    cell->get_dof_indices(local_dofs);
+    constraints.distribute_local_to_global(local_matrix, local_rhs, local_dofs, K, f);
+  }
+  SparseDirectUMFPACK solver;
+  solver.initialize(K);
+  solver.vmult(w, f);
+  constraints.distribute(w);
+  for (const auto& cell : dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 2; ++v)
+    {
+      const double x = cell->vertex(v)[0];
+      EXPECT_NEAR(w(cell->vertex_dof_index(v, 0)),
+                  q0 * x * (1. - 2. * x * x + x * x * x) / (24. * EI), 1e-14);
+      EXPECT_NEAR(w(cell->vertex_dof_index(v, 1)),
+                  q0 * (1. - 6. * x * x + 4. * x * x * x) / (24. * EI), 1e-13);
+    }
+
+  DataOut<1> data_out;
+  data_out.attach_dof_handler(dofs);
+  data_out.add_data_vector(w, "w");
+  data_out.build_patches(4);
+  std::ostringstream vtu;
+  data_out.write_vtu(vtu);
+  // 8 cells x 5 points per patch, every value from the C1 field.
+  EXPECT_NE(vtu.str().find("NumberOfPoints=\"40\""), std::string::npos);
 }
