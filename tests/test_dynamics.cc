@@ -185,6 +185,26 @@ struct UndampedBilateral
   CoupledSystem built;
 };
 
+/// The catenary @p system at rest under a point load of @p force at @p x
+/// (released at t = 0: free vibration).
+DynamicState deflected_rest_state(const SemiDiscreteSystem& system,
+                                  const CatenaryDiscretisation& space, double x,
+                                  double force)
+{
+  dealii::Vector<double> load(system.n_dofs());
+  SparseRow F;
+  space.load_row(x, 0, F);
+  F.shift(system.block("contact wire").first);
+  F.add_transpose_to(load, force);
+  DynamicState s;
+  s.q = solve_static_equilibrium(system, load).q;
+  s.v.reinit(system.n_dofs());
+  s.a.reinit(system.n_dofs());
+  s.active.assign(system.n_constraints(), true);
+  s.lambda.assign(system.n_constraints(), 0.);
+  return s;
+}
+
 double max_difference(const dealii::Vector<double>& a, const dealii::Vector<double>& b)
 {
   dealii::Vector<double> d(a);
@@ -231,17 +251,7 @@ TEST(HalfExplicit, IsReversibleToRoundOffWithFixedBilateralConstraints)
   // consistent solution the GGL multipliers eta, mu vanish exactly.
   UndampedBilateral problem;
   const SemiDiscreteSystem& catenary = problem.built.catenary_only;
-  dealii::Vector<double> load(catenary.n_dofs());
-  SparseRow F;
-  problem.space->load_row(7., 0, F);
-  F.shift(catenary.block("contact wire").first);
-  F.add_transpose_to(load, 200.);
-  DynamicState s;
-  s.q = solve_static_equilibrium(catenary, load).q;
-  s.v.reinit(catenary.n_dofs());
-  s.a.reinit(catenary.n_dofs());
-  s.active.assign(catenary.n_constraints(), true);
-  s.lambda.assign(catenary.n_constraints(), 0.);
+  const DynamicState s = deflected_rest_state(catenary, *problem.space, 7., 200.);
   const auto [dq, dv] = forward_and_back(catenary, s, 1e-4, 1000);
   EXPECT_LT(dq, 1e-14);
   EXPECT_LT(dv, 1e-12);
@@ -278,17 +288,7 @@ TEST(HalfExplicit, EnergyStaysBoundedOver100000Steps)
   const auto space = create_catenary_discretisation(catenary, d);
   const SemiDiscreteSystem system =
       build_catenary_system(*space, Constraint::Kind::bilateral);
-  dealii::Vector<double> load(system.n_dofs());
-  SparseRow F;
-  space->load_row(7., 0, F);
-  F.shift(system.block("contact wire").first);
-  F.add_transpose_to(load, 200.);
-  DynamicState s;
-  s.q = solve_static_equilibrium(system, load).q;
-  s.v.reinit(system.n_dofs());
-  s.a.reinit(system.n_dofs());
-  s.active.assign(system.n_constraints(), true);
-  s.lambda.assign(system.n_constraints(), 0.);
+  const DynamicState s = deflected_rest_state(system, *space, 7., 200.);
 
   const double dt = 1e-4; // 2/omega_max = 1.3e-3 s
   HalfExplicitIntegrator integrator(system, dt, 10);

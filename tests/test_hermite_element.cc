@@ -157,7 +157,7 @@ TEST(HermiteElement, GlobalFunctionsAreC1AcrossVertices)
     fe_values.get_function_hessians(u, hessians);
     for (unsigned int v = 0; v < 2; ++v)
       at_vertex[cell->vertex(v)[0]].push_back(
-          {values[v], gradients[v][0], hessians[v][0][0]});
+          {{values[v], gradients[v][0], hessians[v][0][0]}});
   }
   unsigned int interior = 0;
   double largest_curvature_jump = 0.;

@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/multiplier_system.h>
 
 #include <algorithm>
 #include <array>
@@ -177,18 +178,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
       small_rhs(m + k) = -(f[1] + r.z_t);
       small_rhs(2 * m + k) = -(f[2] + r.z_tt);
     }
-    if (m > 0)
-    {
-      small.gauss_jordan();
-      small.vmult(small_solution, small_rhs);
-      for (const double value : small_solution)
-        if (!std::isfinite(value))
-        {
-          std::ostringstream msg;
-          msg << "the active constraints are linearly dependent at t = " << t1 << " s";
-          throw SimulationError(msg.str());
-        }
-    }
+    solve_multiplier_system(small, small_rhs, small_solution, t1, "BDF step");
     sol.q = s.base.q;
     sol.v = s.base.v;
     sol.a = s.base.a;
@@ -424,7 +414,7 @@ DynamicState Bdf2Integrator::cached_step(const dealii::Vector<double>& rho_q,
     return sum;
   };
   std::vector<std::array<Restricted, 3>> restricted(m_all);
-  std::vector<std::array<bool, 3>> restricted_done(m_all, {false, false, false});
+  std::vector<std::array<bool, 3>> restricted_done(m_all, {{false, false, false}});
 
   DynamicState x;
   x.t = t1;
@@ -465,18 +455,7 @@ DynamicState Bdf2Integrator::cached_step(const dealii::Vector<double>& rho_q,
     for (unsigned int k = 0; k < m; ++k)
       for (unsigned int level = 0; level < 3; ++level)
         small_rhs(level * m + k) = -F[A[k]].base[level];
-    if (m > 0)
-    {
-      small.gauss_jordan();
-      small.vmult(small_solution, small_rhs);
-      for (const double value : small_solution)
-        if (!std::isfinite(value))
-        {
-          std::ostringstream msg;
-          msg << "the active constraints are linearly dependent at t = " << t1 << " s";
-          throw SimulationError(msg.str());
-        }
-    }
+    solve_multiplier_system(small, small_rhs, small_solution, t1, "BDF step");
     // Coefficients of the cached responses, then one vector update per response:
     // q = q0 + S^-1 (..) + S^-1 D M^-1 (..), M^-1 B1, M^-1 B2.
     std::vector<double> coefficient_S(U.size(), 0.), coefficient_SDM(U.size(), 0.),

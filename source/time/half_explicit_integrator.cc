@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/half_explicit_integrator.h>
+#include <pantocat/time/multiplier_system.h>
 
 #include <algorithm>
 #include <cmath>
@@ -7,26 +8,6 @@
 
 namespace pantocat
 {
-namespace
-{
-/// Solves the small dense system in place (x <- A^{-1} b); throws if singular.
-void solve_small(dealii::FullMatrix<double>& A, const dealii::Vector<double>& b,
-                 dealii::Vector<double>& x, const double t, const char* what)
-{
-  if (A.m() == 0)
-    return;
-  A.gauss_jordan();
-  A.vmult(x, b);
-  for (const double value : x)
-    if (!std::isfinite(value))
-    {
-      std::ostringstream s;
-      s << "the active constraints are linearly dependent at t = " << t << " s (" << what
-        << ")";
-      throw SimulationError(s.str());
-    }
-}
-} // namespace
 
 HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
                                                const double time_step,
@@ -196,7 +177,7 @@ void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int
     // g^(II) = G a + 2 G_t v + G_tt q + z_tt = 0 at t_n.
     small_rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
   }
-  solve_small(small, small_rhs, small_solution, t, "acceleration level");
+  solve_multiplier_system(small, small_rhs, small_solution, t, "acceleration level");
   std::fill(lambda.begin(), lambda.end(), 0.);
   for (unsigned int k = 0; k < m; ++k)
   {
@@ -247,7 +228,8 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
     small_rhs(k) = -(s.G.dot(q_new) + s.z);
     small_rhs(m + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
   }
-  solve_small(small, small_rhs, small_solution, t + dt, "position/velocity level");
+  solve_multiplier_system(small, small_rhs, small_solution, t + dt,
+                          "position/velocity level");
   for (unsigned int l = 0; l < m; ++l)
   {
     const unsigned int j = A[l];
