@@ -29,8 +29,9 @@ void print_parameters(const std::string& format)
 
 /**
  * Creates the output directory and writes the fully resolved parameters into
- * it. If the run then stops on bad input, the destructor removes what it
- * wrote, so that nothing is left that looks like a result.
+ * it. discard() removes what it wrote (and the directory, if it made it and
+ * nothing else is in it): for a run stopped by bad input, so that nothing is
+ * left that looks like a result.
  */
 class OutputDirectory
 {
@@ -46,22 +47,17 @@ public:
                        ": cannot create or write to this directory");
     prm.print_parameters(out, dealii::ParameterHandler::PRM);
   }
-  ~OutputDirectory()
+  void discard() const
   {
-    if (succeeded || std::uncaught_exceptions() == 0)
-      return;
     std::error_code ignored;
     std::filesystem::remove(parameters, ignored);
     if (created && std::filesystem::is_empty(parameters.parent_path(), ignored))
       std::filesystem::remove(parameters.parent_path(), ignored);
   }
-  /// Called when the run has gone past input validation.
-  void keep() { succeeded = true; }
 
 private:
   std::filesystem::path parameters;
   bool created = false;
-  bool succeeded = false;
 };
 
 /// True when started by an MPI launcher (mpirun sets one of these).
@@ -102,21 +98,27 @@ int run(const CommandLine& cl, int argc, char** argv)
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.
   dealii::MultithreadInfo::set_thread_limit(1);
-  OutputDirectory output(prm, parameters.output.directory);
-
-  switch (parameters.mode)
+  const OutputDirectory output(prm, parameters.output.directory);
+  try
   {
-  case RunMode::eigenfrequencies:
-    run_eigenfrequencies(parameters, std::cout);
-    break;
-  case RunMode::static_equilibrium:
-    run_static_equilibrium(parameters, std::cout);
-    break;
-  case RunMode::dynamics:
-    run_dynamics(parameters, std::cout);
-    break;
+    switch (parameters.mode)
+    {
+    case RunMode::eigenfrequencies:
+      run_eigenfrequencies(parameters, std::cout);
+      break;
+    case RunMode::static_equilibrium:
+      run_static_equilibrium(parameters, std::cout);
+      break;
+    case RunMode::dynamics:
+      run_dynamics(parameters, std::cout);
+      break;
+    }
   }
-  output.keep();
+  catch (const InputError&)
+  {
+    output.discard(); // a failed simulation keeps its outputs, marked failed
+    throw;
+  }
   return 0;
 }
 } // namespace

@@ -182,7 +182,19 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     bool seen = false;
     double t = 0., lambda_p = 0.;
   } first;
-  DynamicSimulation::Result r = simulation.run({&series, &stats, &first});
+  DynamicSimulation::Result r;
+  try
+  {
+    r = simulation.run({&series, &stats, &first});
+  }
+  catch (const SimulationError& e)
+  {
+    // Keep what was written (time_series.csv up to the failure) and say so.
+    std::ofstream out(dir + "/summary.json");
+    JsonWriter json(out);
+    json.begin_object().value("status", "failed").value("reason", e.what()).end_object();
+    throw;
+  }
   r.stability_limit = simulation.explicit_stability_limit();
   write_summary(dir + "/summary.json", p, simulation, r, stats);
 
