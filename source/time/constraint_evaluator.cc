@@ -12,9 +12,15 @@ ConstraintEvaluator::ConstraintEvaluator(const SemiDiscreteSystem& system)
 const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t,
                                                             const unsigned int max_order)
 {
+  // Asked again for the same time point: the rows are already there.
+  if (evaluated && t == last_t && max_order <= last_order)
+    return cache;
   for (unsigned int i = 0; i < cache.size(); ++i)
     if (system.constraints[i]->depends_on_time())
       system.constraints[i]->evaluate(t, cache[i], max_order);
+  evaluated = true;
+  last_t = t;
+  last_order = max_order;
   return cache;
 }
 } // namespace pantocat

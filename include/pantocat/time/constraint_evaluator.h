@@ -24,5 +24,8 @@ public:
 private:
   const SemiDiscreteSystem& system;
   std::vector<ConstraintState> cache;
+  bool evaluated = false;
+  double last_t = 0.;
+  unsigned int last_order = 0;
 };
 } // namespace pantocat
