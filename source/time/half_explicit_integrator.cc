@@ -52,7 +52,46 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     if (d_used[o])
       forces.damping_offsets.push_back(o - b);
   }
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto d = system.damping.begin(i); d != system.damping.end(i); ++d)
+      if (d->column() != i && d->value() != 0.)
+        forces.off_diagonal_damping.push_back({i, d->column(), 0.5 * d->value()});
 }
+
+namespace
+{
+/**
+ * out = f - K q - D/2 (v_prev + v) in one sweep for half bandwidth B of K and
+ * a diagonal D (the FDM and lumped-pantograph case): the offsets are
+ * compile-time constants, so the row loop vectorises.
+ */
+template <int B>
+void banded_forces(const int n, const double* __restrict f,
+                   const std::vector<std::vector<double>>& K, const double* __restrict d0,
+                   const double* __restrict q, const double* __restrict vp,
+                   const double* __restrict v, double* __restrict out)
+{
+  const double* k[2 * B + 1];
+  for (int o = 0; o <= 2 * B; ++o)
+    k[o] = K[o].data();
+  auto row = [&](const int i, const bool interior)
+  {
+    double s = f[i];
+    for (int o = -B; o <= B; ++o)
+      if (interior || (i + o >= 0 && i + o < n))
+        s -= k[o + B][i] * q[i + o];
+    if (d0)
+      s -= d0[i] * (vp[i] + v[i]);
+    out[i] = s;
+  };
+  for (int i = 0; i < std::min(B, n); ++i)
+    row(i, false);
+  for (int i = B; i < n - B; ++i)
+    row(i, true);
+  for (int i = std::max(B, n - B); i < n; ++i)
+    row(i, false);
+}
+} // namespace
 
 void HalfExplicitIntegrator::compute_forces()
 {
@@ -61,6 +100,22 @@ void HalfExplicitIntegrator::compute_forces()
   const double* __restrict vv = v.begin();
   const double* __restrict vp = v_prev.begin();
   double* __restrict out = a.begin();
+  // Damping is diagonal but for a few rows (a lumped pantograph's dampers):
+  // the fused sweep with the diagonal, then those entries.
+  if (forces.off_diagonal_damping.size() <= 16 && b >= 1 && b <= 3)
+  {
+    const double* d0 = forces.half_damping[b].data();
+    const double* f = system.load.begin();
+    if (b == 1)
+      banded_forces<1>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+    else if (b == 2)
+      banded_forces<2>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+    else
+      banded_forces<3>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+    for (const auto& [i, j, d] : forces.off_diagonal_damping)
+      out[i] -= d * (vp[j] + vv[j]);
+    return;
+  }
   std::copy(system.load.begin(), system.load.end(), out);
   // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
   for (const int o : forces.stiffness_offsets)

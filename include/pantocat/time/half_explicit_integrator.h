@@ -71,6 +71,12 @@ private:
     int bandwidth = 0;
     std::vector<int> stiffness_offsets, damping_offsets;
     std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
+    struct Entry
+    {
+      unsigned int row, column;
+      double value;
+    };
+    std::vector<Entry> off_diagonal_damping; ///< D/2 off the diagonal
   } forces;
 
   double dt;
