@@ -333,7 +333,8 @@ int main(int argc, char** argv)
         benchmark(n, SpaceMethod::fdm, IntegratorType::half_explicit, dt), steps);
     double loop = 1e300;
     for (unsigned int b = 0; b < batches; ++b)
-      loop = std::min(loop, baseline_fdm_half_explicit(n, dt, std::max(1u, steps / batches)));
+      loop = std::min(loop,
+                      baseline_fdm_half_explicit(n, dt, std::max(1u, steps / batches)));
     const unsigned int bdf_steps = std::max(20u, steps / (n / 250));
     const double bdf =
         library_step(benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt), bdf_steps);

@@ -39,8 +39,8 @@ DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
   layout_.contact_index = coupled.n_constraints() - 1;
   layout_.pantograph_coordinates = pantograph->coordinate_names();
 
-  initial = consistent_initial_state(catenary_only, coupled, *space, *pantograph,
-                                     *contact, p.pantograph.initial_contact_force,
+  initial = consistent_initial_state(catenary_only, coupled, *pantograph, *contact,
+                                     p.pantograph.initial_contact_force,
                                      p.pantograph.initial_offset);
 }
 
@@ -88,7 +88,7 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
   ConstraintState rows;
   for (unsigned int i = 0; i < m; ++i)
   {
-    coupled.constraints[i]->evaluate(s.t, rows);
+    coupled.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
     p.gap[i] = rows.position_residual(s.q);
     if (s.active[i])
     {

@@ -7,12 +7,10 @@ namespace pantocat
 {
 DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
                                       const SemiDiscreteSystem& coupled,
-                                      const CatenaryDiscretisation& discretisation,
                                       const PantographModel& pantograph,
                                       const ContactConstraint& contact,
                                       const double contact_force, const double offset)
 {
-  (void)discretisation;
   const unsigned int n = coupled.n_dofs(), m = coupled.n_constraints();
   const unsigned int contact_index = m - 1;
   ConstraintState rows;

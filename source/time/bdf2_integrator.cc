@@ -93,7 +93,7 @@ struct Bdf2Integrator::Stage
   double c;
   SparseDirectSolver S_inverse;
   std::vector<Triple> X_lambda, X_eta, X_mu;
-  std::vector<bool> constant_columns_done;
+  bool constant_columns_ready = false;
   Triple base;
   dealii::Vector<double> u1, u2, rhs;
 };
@@ -124,14 +124,13 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   s.u2 = rho_v;
   s.solve(b1, b2, system.load, s.base);
   // Constraint columns: constant rows once per stage, moving rows every step.
-  if (s.constant_columns_done.empty())
+  if (!s.constant_columns_ready)
   {
-    s.constant_columns_done.assign(m_all, false);
+    s.constant_columns_ready = true;
     for (unsigned int i = 0; i < m_all; ++i)
       if (!system.constraints[i]->depends_on_time())
       {
         s.columns(i, rows[i]);
-        s.constant_columns_done[i] = true;
       }
   }
   for (unsigned int i = 0; i < m_all; ++i)

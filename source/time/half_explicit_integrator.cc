@@ -16,7 +16,7 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
       at_next(system), active_set(system, max_iterations)
 {
   const unsigned int n = system.n_dofs(), m = system.n_constraints();
-  for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new, &r, &tmp})
+  for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new})
     x->reinit(n);
   for (auto* c : {&Y, &P, &Q, &R})
     c->assign(m, dealii::Vector<double>(n));

@@ -2,7 +2,6 @@
 
 #include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/pantograph/pantograph_model.h>
-#include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/time/dynamic_state.h>
 
@@ -27,7 +26,6 @@ namespace pantocat
  */
 DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
                                       const SemiDiscreteSystem& coupled,
-                                      const CatenaryDiscretisation& discretisation,
                                       const PantographModel& pantograph,
                                       const ContactConstraint& contact,
                                       double initial_contact_force, double offset);

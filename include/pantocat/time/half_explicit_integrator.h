@@ -82,7 +82,7 @@ private:
   double dt;
   double t = 0.;
   unsigned long step_number = 0;
-  dealii::Vector<double> q, v, v_prev, a, q_new, v_new, r, tmp;
+  dealii::Vector<double> q, v, v_prev, a, q_new, v_new;
   MassInverse smoothed_mass_inverse; ///< (M + dt/2 D)^{-1}
   MassInverse mass_inverse;          ///< M^{-1}
   ConstraintEvaluator at_n, at_half, at_next;

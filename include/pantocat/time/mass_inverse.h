@@ -28,9 +28,6 @@ public:
   void initialize(const dealii::SparseMatrix<double>& matrix, bool is_diagonal,
                   const std::string& what);
 
-  /// True unless a sparse factorisation is used.
-  bool is_diagonal() const { return diagonal; }
-
   /// x <- A^{-1} x
   void apply(dealii::Vector<double>& x) const;
 
