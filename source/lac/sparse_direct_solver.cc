@@ -18,7 +18,145 @@ namespace
 {
 /// Banded storage pays off only for narrow bands.
 constexpr int max_banded_bandwidth = 16;
+
+/**
+ * Forward (U^T y = b) and backward (U x = y) substitution on the rows
+ * [first, last) of one uncoupled block with half bandwidth KD (a compile-time
+ * constant, so that the loops unroll; KD < 0: the block's bandwidth @p bw at
+ * run time), for K interleaved right-hand sides.
+ * U(i, j), i <= j <= i + kd, sits at u[(kd + i - j) + j (kd + 1)].
+ */
+template <int KD, int K>
+void substitute(const double* __restrict u, const int kd, const double* __restrict recip,
+                double* __restrict X, const int first, const int last, const int bw = 0)
+{
+  const int ld = kd + 1;
+  const int width = KD < 0 ? bw : KD;
+  for (int j = first; j < last; ++j)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[j * K + r];
+    const double* column = u + static_cast<std::size_t>(j) * ld + kd;
+    for (int m = 1; m <= width; ++m)
+      if (j - m >= first)
+        for (int r = 0; r < K; ++r)
+          s[r] -= column[-m] * X[(j - m) * K + r];
+    for (int r = 0; r < K; ++r)
+      X[j * K + r] = s[r] * recip[j];
+  }
+  for (int i = last - 1; i >= first; --i)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[i * K + r];
+    for (int m = 1; m <= width; ++m)
+      if (i + m < last)
+        for (int r = 0; r < K; ++r)
+          s[r] -= u[(kd - m) + static_cast<std::size_t>(i + m) * ld] * X[(i + m) * K + r];
+    for (int r = 0; r < K; ++r)
+      X[i * K + r] = s[r] * recip[i];
+  }
+}
+
+/// substitute() for two factors with the same blocks, side by side.
+template <int KD, int K>
+void substitute_pair(const double* __restrict u, const double* __restrict recip,
+                     double* __restrict X, const double* __restrict u2,
+                     const double* __restrict recip2, double* __restrict X2, const int kd,
+                     const int first, const int last)
+{
+  const int ld = kd + 1;
+  for (int j = first; j < last; ++j)
+  {
+    double s[K], s2[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[j * K + r], s2[r] = X2[j * K + r];
+    const std::size_t column = static_cast<std::size_t>(j) * ld + kd;
+    for (int m = 1; m <= KD; ++m)
+      if (j - m >= first)
+        for (int r = 0; r < K; ++r)
+        {
+          s[r] -= u[column - m] * X[(j - m) * K + r];
+          s2[r] -= u2[column - m] * X2[(j - m) * K + r];
+        }
+    for (int r = 0; r < K; ++r)
+      X[j * K + r] = s[r] * recip[j], X2[j * K + r] = s2[r] * recip2[j];
+  }
+  for (int i = last - 1; i >= first; --i)
+  {
+    double s[K], s2[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[i * K + r], s2[r] = X2[i * K + r];
+    for (int m = 1; m <= KD; ++m)
+      if (i + m < last)
+      {
+        const std::size_t e = (kd - m) + static_cast<std::size_t>(i + m) * ld;
+        for (int r = 0; r < K; ++r)
+        {
+          s[r] -= u[e] * X[(i + m) * K + r];
+          s2[r] -= u2[e] * X2[(i + m) * K + r];
+        }
+      }
+    for (int r = 0; r < K; ++r)
+      X[i * K + r] = s[r] * recip[i], X2[i * K + r] = s2[r] * recip2[i];
+  }
+}
+
+template <int K>
+void substitute_block(const double* u, const int kd, const double* recip, double* X,
+                      const SparseDirectSolver::Block& b)
+{
+  switch (b.bandwidth)
+  {
+  case 0:
+    return substitute<0, K>(u, kd, recip, X, b.first, b.last);
+  case 1:
+    return substitute<1, K>(u, kd, recip, X, b.first, b.last);
+  case 2:
+    return substitute<2, K>(u, kd, recip, X, b.first, b.last);
+  case 3:
+    return substitute<3, K>(u, kd, recip, X, b.first, b.last);
+  case 4:
+    return substitute<4, K>(u, kd, recip, X, b.first, b.last);
+  default:
+    return substitute<-1, K>(u, kd, recip, X, b.first, b.last, b.bandwidth);
+  }
+}
 } // namespace
+
+void SparseDirectSolver::find_blocks(const dealii::SparseMatrix<double>& A)
+{
+  // reach[i]: the largest column coupled to a row <= i; a block ends where
+  // no row before the boundary reaches beyond it.
+  independent_blocks.clear();
+  Block current;
+  int reach = -1;
+  for (int i = 0; i < n; ++i)
+  {
+    for (auto it = A.begin(i); it != A.end(i); ++it)
+      if (it->value() != 0.)
+      {
+        const int j = it->column();
+        reach = std::max(reach, j);
+        current.bandwidth = std::max(current.bandwidth, std::abs(i - j));
+      }
+    if (reach <= i)
+    {
+      current.last = i + 1;
+      independent_blocks.push_back(current);
+      current = Block{i + 1, i + 1, 0};
+    }
+  }
+  // Merge neighbouring blocks of the same bandwidth (e.g. a diagonal stretch).
+  std::vector<Block> merged;
+  for (const Block& b : independent_blocks)
+    if (!merged.empty() && merged.back().bandwidth == b.bandwidth)
+      merged.back().last = b.last;
+    else
+      merged.push_back(b);
+  independent_blocks = std::move(merged);
+}
 
 bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>& A)
 {
@@ -56,6 +194,7 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
   reciprocal.resize(n);
   for (int i = 0; i < n; ++i)
     reciprocal[i] = 1. / band[kd + static_cast<std::size_t>(i) * ld];
+  find_blocks(A); // the Cholesky factor has the block structure of A
   return true;
 }
 
@@ -66,6 +205,7 @@ void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
   if (banded)
     return;
   band.clear();
+  independent_blocks.clear();
   try
   {
     umfpack.initialize(matrix);
@@ -79,29 +219,85 @@ void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
 void SparseDirectSolver::solve(dealii::Vector<double>& x) const
 {
   if (!banded)
-  {
     umfpack.solve(x);
+  else
+    solve_interleaved(x.begin(), 1);
+}
+
+void SparseDirectSolver::solve_interleaved_with(double* X,
+                                                const SparseDirectSolver& other,
+                                                double* X_other) const
+{
+  const bool same_structure =
+      banded && other.banded && n == other.n && kd == other.kd &&
+      independent_blocks.size() == other.independent_blocks.size();
+  bool same_blocks = same_structure;
+  for (std::size_t b = 0; same_blocks && b < independent_blocks.size(); ++b)
+    same_blocks = independent_blocks[b].first == other.independent_blocks[b].first &&
+                  independent_blocks[b].last == other.independent_blocks[b].last;
+  if (!same_blocks)
+  {
+    solve_interleaved(X, 4);
+    other.solve_interleaved(X_other, 4);
     return;
   }
-  // A = U^T U: forward U^T y = b, then backward U x = y. U(i, j), i <= j <= i + kd,
-  // sits at band[(kd + i - j) + j (kd + 1)].
-  const int ld = kd + 1;
-  double* __restrict y = x.begin();
-  const double* __restrict u = band.data();
-  for (int j = 0; j < n; ++j)
+  for (std::size_t k = 0; k < independent_blocks.size(); ++k)
   {
-    double s = y[j];
-    const double* column = u + static_cast<std::size_t>(j) * ld + kd - j;
-    for (int i = std::max(0, j - kd); i < j; ++i)
-      s -= column[i] * y[i];
-    y[j] = s * reciprocal[j];
+    const Block& b = independent_blocks[k];
+    const int width = std::max(b.bandwidth, other.independent_blocks[k].bandwidth);
+    const double *u = band.data(), *u2 = other.band.data();
+    const double *r = reciprocal.data(), *r2 = other.reciprocal.data();
+    switch (width)
+    {
+    case 1:
+      substitute_pair<1, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      break;
+    case 2:
+      substitute_pair<2, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      break;
+    case 3:
+      substitute_pair<3, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      break;
+    default: // rare: separate substitutions of this block
+      substitute_block<4>(u, kd, r, X, b);
+      substitute_block<4>(u2, kd, r2, X_other, other.independent_blocks[k]);
+    }
   }
-  for (int i = n - 1; i >= 0; --i)
+}
+
+void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) const
+{
+  if (!banded)
   {
-    double s = y[i];
-    for (int j = i + 1; j <= std::min(n - 1, i + kd); ++j)
-      s -= u[(kd + i - j) + static_cast<std::size_t>(j) * ld] * y[j];
-    y[i] = s * reciprocal[i];
+    dealii::Vector<double> column(n);
+    for (unsigned int r = 0; r < k; ++r)
+    {
+      for (int i = 0; i < n; ++i)
+        column[i] = X[i * k + r];
+      umfpack.solve(column);
+      for (int i = 0; i < n; ++i)
+        X[i * k + r] = column[i];
+    }
+    return;
   }
+  for (const Block& b : independent_blocks)
+    switch (k)
+    {
+    case 1:
+      substitute_block<1>(band.data(), kd, reciprocal.data(), X, b);
+      break;
+    case 2:
+      substitute_block<2>(band.data(), kd, reciprocal.data(), X, b);
+      break;
+    case 3:
+      substitute_block<3>(band.data(), kd, reciprocal.data(), X, b);
+      break;
+    case 4:
+      substitute_block<4>(band.data(), kd, reciprocal.data(), X, b);
+      break;
+    default:
+      AssertThrow(false,
+                  dealii::ExcMessage("solve_interleaved: 1 to 4 right-hand sides"));
+    }
 }
 } // namespace pantocat

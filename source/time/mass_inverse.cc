@@ -83,6 +83,33 @@ void MassInverse::apply(dealii::Vector<double>& x) const
     x(coupled_rows[k]) = block_out(k);
 }
 
+void MassInverse::apply(InterleavedColumns& X) const
+{
+  if (!diagonal)
+  {
+    factorization.solve_interleaved(X.data(), InterleavedColumns::width);
+    return;
+  }
+  const unsigned int c = coupled_rows.size(), w = InterleavedColumns::width;
+  std::vector<double> coupled(c * w);
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+      coupled[k * w + r] = X(coupled_rows[k], r);
+  double* __restrict y = X.data();
+  const double* __restrict d = inverse_diagonal.begin();
+  for (unsigned int i = 0, n = X.size(); i < n; ++i)
+    for (unsigned int r = 0; r < w; ++r)
+      y[i * w + r] *= d[i];
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+    {
+      double s = 0.;
+      for (unsigned int l = 0; l < c; ++l)
+        s += coupled_inverse(k, l) * coupled[l * w + r];
+      X(coupled_rows[k], r) = s;
+    }
+}
+
 void MassInverse::apply_block_to_row(const SparseRow& row,
                                      dealii::Vector<double>& column) const
 {

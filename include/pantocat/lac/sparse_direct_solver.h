@@ -19,6 +19,9 @@ namespace pantocat
  * forward and a backward substitution on the band (about four times faster
  * than UMFPACK at 1500 unknowns, doc/benchmarks.md; the substitution is
  * written out because the reference BLAS behind dpbtrs is slower still).
+ * The factor inherits the block structure of the matrix: each block of
+ * unknowns that no entry couples to another (carrier, contact wire,
+ * pantograph) is substituted with its own half bandwidth.
  * Any other matrix goes to deal.II's UMFPACK.
  */
 class SparseDirectSolver
@@ -28,16 +31,42 @@ public:
   void factorize(const dealii::SparseMatrix<double>& matrix, const std::string& what);
   /// x <- A^{-1} x
   void solve(dealii::Vector<double>& x) const;
+  /**
+   * Solves for @p k right-hand sides at once (1 <= k <= 4), stored interleaved:
+   * X[i k + r] is entry i of right-hand side r. The k substitutions run side
+   * by side, so k solves cost little more than one (their recurrences are
+   * latency-bound, not throughput-bound).
+   */
+  void solve_interleaved(double* X, unsigned int k) const;
+  /**
+   * Solves with this matrix for X and with @p other for @p X_other (four
+   * interleaved right-hand sides each) in one sweep, when both factors are
+   * banded with the same blocks: the two sets of recurrences then overlap,
+   * and both cost about as much as one. Otherwise two solves.
+   */
+  void solve_interleaved_with(double* X, const SparseDirectSolver& other,
+                              double* X_other) const;
   /// True if the banded Cholesky path is used.
   bool is_banded() const { return banded; }
 
+  /// A range of unknowns [first, last) not coupled to the others, with its half
+  /// bandwidth.
+  struct Block
+  {
+    int first = 0, last = 0, bandwidth = 0;
+  };
+  /// The uncoupled blocks of the banded factor (empty on the UMFPACK path).
+  const std::vector<Block>& blocks() const { return independent_blocks; }
+
 private:
   bool try_banded_cholesky(const dealii::SparseMatrix<double>& matrix);
+  void find_blocks(const dealii::SparseMatrix<double>& matrix);
 
   bool banded = false;
   int n = 0, kd = 0;
   std::vector<double> band;       ///< LAPACK upper band storage of the Cholesky factor U
   std::vector<double> reciprocal; ///< 1 / U(i, i)
+  std::vector<Block> independent_blocks;
   dealii::SparseDirectUMFPACK umfpack;
 };
 } // namespace pantocat

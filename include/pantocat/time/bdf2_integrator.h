@@ -3,12 +3,13 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
-#include <pantocat/time/constraint_response_cache.h>
+#include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <array>
 #include <memory>
 
 namespace pantocat
@@ -26,23 +27,28 @@ namespace pantocat
  *   M a + D v + K q = f + G^T lambda,
  *   g = 0, dg/dt = 0, d2g/dt2 = 0 (active constraints, rows at t_{n+1}).
  *
- * Block elimination reduces the (q, v, a) part to the constant matrix
- * S = K + c D + c^2 M, factorised once per c with a sparse direct solver; the
- * multipliers come from a 3m x 3m dense system (m active constraints).
+ * Block elimination (doc/dynamics.md) gives, with Y = M^-1 G^T and
+ * Z = M^-1 G_t^T of each constraint,
+ *
+ *   q = q0 + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,
+ *   v = c q - rho_q - sum_l (eta_l Z_l + mu_l Y_l),
+ *   a = c v - rho_v - sum_l eta_l Y_l,
+ *
+ * where q0 = S^-1 (f + M (rho_v + c rho_q) + D rho_q) and the columns
+ * X^lambda = S^-1 G^T, X^eta = S^-1 (G^T + c G_t^T + D Z),
+ * X^mu = S^-1 (c G^T + D Y) come from the constant matrix
+ * S = K + c D + c^2 M, factorised once per c. The columns of constraints with
+ * constant rows (droppers) are computed once; those of the moving contact at
+ * every step, in one batched substitution with the base solve. The
+ * multipliers follow from a 3m x 3m dense system on the functionals of the
+ * columns (m active constraints), so a trial of the active-set iteration
+ * costs no vector operation of length n.
  */
 class Bdf2Integrator : public TimeIntegrator
 {
 public:
-  /**
-   * With @p cache_responses (the default) the BDF-2 steps use a
-   * ConstraintResponseCache while the constraint rows touch at most
-   * max_cached_unknowns unknowns (coarse grids, where the contact load covers
-   * few cells): one solve with S per step instead of a solve per constraint
-   * column. Otherwise every step solves for all columns (also the reference
-   * the tests compare with).
-   */
   Bdf2Integrator(const SemiDiscreteSystem& system, double time_step,
-                 unsigned int max_active_set_iterations, bool cache_responses = true);
+                 unsigned int max_active_set_iterations);
   ~Bdf2Integrator() override;
 
   std::string name() const override { return "bdf2"; }
@@ -51,39 +57,23 @@ public:
   const DynamicState& latest() const override { return current; }
   double time() const override { return current.t; }
 
-  /// (q, v, a) of the block system.
-  struct Triple
-  {
-    dealii::Vector<double> q, v, a;
-    void reinit(unsigned int n);
-    void add(double factor, const Triple& other);
-  };
-
 private:
-  struct Stage; ///< factorisation and constant columns for one value of c
+  struct Stage;       ///< factorisation and constant columns for one value of c
+  struct HistoryLoad; ///< f + M h + D rho in one pass
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s.
   DynamicState implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                              const dealii::Vector<double>& rho_v, double t1,
                              const std::vector<bool>& active_at_start);
   void richardson_start();
-  /// Number of distinct unknowns in the constraint rows at @p t1.
-  unsigned int unknowns_touched(double t1);
-  /// Above this many touched unknowns the column solves are cheaper than the cache.
-  static constexpr unsigned int max_cached_unknowns = 40;
-  /// One BDF-2 step with the response cache (same equations as implicit_step).
-  DynamicState cached_step(const dealii::Vector<double>& rho_q,
-                           const dealii::Vector<double>& rho_v, double t1,
-                           const std::vector<bool>& active_at_start);
 
   double dt;
   MassInverse mass_inverse;
+  DampingOverMass damping_over_mass;
+  std::unique_ptr<HistoryLoad> history_load;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   std::unique_ptr<Stage> bdf2;
-  bool use_cache;
-  std::unique_ptr<ConstraintResponseCache> responses;
-  std::vector<int> position_in_U; ///< unknown -> position in the rows' index set, or -1
   DynamicState previous, current;
   unsigned long step_number = 0;
   dealii::FullMatrix<double> small;

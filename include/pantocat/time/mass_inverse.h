@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
 
@@ -30,6 +31,13 @@ public:
 
   /// x <- A^{-1} x
   void apply(dealii::Vector<double>& x) const;
+  /// Every column of @p X <- A^{-1} column (one batched substitution when factorised).
+  void apply(InterleavedColumns& X) const;
+  /// The sparse factorisation, or null when A is (block-)diagonal.
+  const SparseDirectSolver* factorised() const
+  {
+    return diagonal ? nullptr : &factorization;
+  }
 
   /// column <- A^{-1} row^T (column must be zero outside row's pattern when diagonal).
   void apply_to_row(const SparseRow& row, dealii::Vector<double>& column) const;
