@@ -6,6 +6,7 @@
 #include <pantocat/coupling/coupled_system_builder.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
 #include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 #include <pantocat/time/active_set.h>
@@ -42,10 +43,11 @@ struct BenchmarkRun
 {
   explicit BenchmarkRun(const ProgramParameters& p) : simulation(p)
   {
-    result = simulation.run({&stats, &record});
+    result = simulation.run({&stats, &record, &events});
   }
   DynamicSimulation simulation;
   RunStatistics stats;
+  EventLog events;
   Recorder record;
   DynamicSimulation::Result result;
 };
@@ -127,6 +129,17 @@ TEST(Benchmark48, SecondDropperSlackensWhenThePantographPassesAndRetensions)
   EXPECT_TRUE(run.record.points.back().active[1]);
   EXPECT_GT(run.stats.contact_force_max(),
             2. * 112.); // much sharper peaks than at 32 m/s
+  // The event list (summary.json "events") holds the same switches: dropper 2
+  // slackens and re-tensions alternately, at the ends of the slack intervals.
+  const auto& events = run.events.events();
+  ASSERT_EQ(events.size(), 2 * slack[1].size());
+  for (std::size_t k = 0; k < events.size(); ++k)
+  {
+    EXPECT_EQ(events[k].constraint, "dropper 2");
+    EXPECT_EQ(events[k].kind, k % 2 == 0 ? "dropper_slack" : "dropper_taut");
+    const auto& interval = slack[1][k / 2];
+    EXPECT_EQ(events[k].t, k % 2 == 0 ? interval.first : interval.second);
+  }
 }
 
 namespace

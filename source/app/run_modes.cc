@@ -7,6 +7,7 @@
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/wire_output.h>
 #include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 
@@ -104,7 +105,8 @@ namespace
 {
 void write_summary(const std::string& file, const ProgramParameters& p,
                    const DynamicSimulation& simulation,
-                   const DynamicSimulation::Result& r, const RunStatistics& stats)
+                   const DynamicSimulation::Result& r, const RunStatistics& stats,
+                   const EventLog& events)
 {
   std::ofstream out(file);
   JsonWriter json(out);
@@ -131,6 +133,15 @@ void write_summary(const std::string& file, const ProgramParameters& p,
     json.intervals("", list);
   json.end_array();
   json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  json.value("event_resolution", "step");
+  json.begin_array("events");
+  for (const ConstraintEvent& e : events.events())
+    json.begin_object()
+        .value("t", e.t)
+        .value("constraint", e.constraint)
+        .value("kind", e.kind)
+        .end_object();
+  json.end_array();
   json.value("steps", r.integrator.steps)
       .value("active_set_changes", r.integrator.active_set_changes)
       .value("active_set_iterations", r.integrator.active_set_iterations);
@@ -173,6 +184,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
 
   TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
   RunStatistics stats;
+  EventLog events;
   struct FirstPoint : SimulationObserver
   {
     void observe(const TimePoint& point) override
@@ -186,7 +198,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   DynamicSimulation::Result r;
   try
   {
-    r = simulation.run({&series, &stats, &first});
+    r = simulation.run({&series, &stats, &events, &first});
   }
   catch (const SimulationError& e)
   {
@@ -201,7 +213,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   r.stability_limit = p.time_integration.integrator == IntegratorType::half_explicit
                           ? simulation.explicit_stability_limit()
                           : std::numeric_limits<double>::quiet_NaN();
-  write_summary(dir + "/summary.json", p, simulation, r, stats);
+  write_summary(dir + "/summary.json", p, simulation, r, stats, events);
 
   out << std::setprecision(6) << "  first time point t = " << first.t
       << " s: lambda_p = " << first.lambda_p

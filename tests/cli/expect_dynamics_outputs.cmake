@@ -26,7 +26,7 @@ if(NOT n EQUAL 202)
   message(FATAL_ERROR "time_series.csv has ${n} lines, expected 202 (header + 201 time points)")
 endif()
 file(READ ${OUTDIR}/summary.json summary)
-foreach(key status contact_force max min mean std dropper_slack_intervals
+foreach(key status contact_force max min mean std dropper_slack_intervals events event_resolution
             contact_loss_intervals steps active_set_changes max_constraint_residual
             position velocity time_loop_seconds)
   if(NOT summary MATCHES "\"${key}\":")

@@ -1,0 +1,25 @@
+#include <pantocat/simulation/event_log.h>
+
+namespace pantocat
+{
+void EventLog::start(const SimulationLayout& l)
+{
+  layout = l;
+  previous.clear();
+  list.clear();
+}
+
+void EventLog::observe(const TimePoint& p)
+{
+  if (!previous.empty())
+    for (unsigned int i = 0; i < p.active.size(); ++i)
+      if (p.active[i] != previous[i])
+      {
+        const bool contact = i == layout.contact_index;
+        const char* kind = contact ? (p.active[i] ? "contact_return" : "contact_loss")
+                                   : (p.active[i] ? "dropper_taut" : "dropper_slack");
+        list.push_back({p.t, layout.constraint_names[i], kind});
+      }
+  previous = p.active;
+}
+} // namespace pantocat
