@@ -39,47 +39,6 @@ enum MassColumn : unsigned int
 };
 } // namespace
 
-/**
- * f + M h + D rho in one pass over the shared sparsity pattern of M and D
- * (the right-hand side of the base solution).
- */
-struct Bdf2Integrator::HistoryLoad
-{
-  explicit HistoryLoad(const SemiDiscreteSystem& system) : load(system.load)
-  {
-    const unsigned int n = system.n_dofs();
-    row_start.assign(1, 0);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      auto d = system.damping.begin(i);
-      for (auto m = system.mass.begin(i); m != system.mass.end(i); ++m, ++d)
-      {
-        column.push_back(m->column());
-        mass.push_back(m->value());
-        damping.push_back(d->value());
-      }
-      row_start.push_back(column.size());
-    }
-  }
-  /// Column k of @p out = f + M h + D rho.
-  void apply(const dealii::Vector<double>& h, const dealii::Vector<double>& rho,
-             InterleavedColumns& out, const unsigned int k) const
-  {
-    const double* __restrict hh = h.begin();
-    const double* __restrict rr = rho.begin();
-    for (unsigned int i = 0; i + 1 < row_start.size(); ++i)
-    {
-      double s = load[i];
-      for (unsigned int e = row_start[i]; e < row_start[i + 1]; ++e)
-        s += mass[e] * hh[column[e]] + damping[e] * rr[column[e]];
-      out(i, k) = s;
-    }
-  }
-  dealii::Vector<double> load;
-  std::vector<unsigned int> row_start, column;
-  std::vector<double> mass, damping;
-};
-
 /// The block solver for one c: S = K + c D + c^2 M and the constraint columns.
 struct Bdf2Integrator::Stage
 {
@@ -183,8 +142,7 @@ struct Bdf2Integrator::Stage
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
                                const unsigned int max_iterations)
     : TimeIntegrator(system), dt(time_step), damping_over_mass(system),
-      history_load(std::make_unique<HistoryLoad>(system)), at_next(system),
-      active_set(system, max_iterations)
+      history_load(system), at_next(system), active_set(system, max_iterations)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
 }
@@ -209,7 +167,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // batch with the columns of the first moving constraint.
   dealii::Vector<double> history(rho_v);
   history.add(c, rho_q);
-  history_load->apply(history, rho_q, s.base_batch(), base);
+  history_load.apply(history, rho_q, s.base_batch(), base);
   if (s.moving.empty())
     s.S_inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
   for (const unsigned int l : s.moving)

@@ -5,22 +5,40 @@ namespace pantocat
 {
 const char* to_string(const IntegratorType type)
 {
-  return type == IntegratorType::half_explicit ? "half-explicit" : "bdf2";
+  switch (type)
+  {
+  case IntegratorType::half_explicit:
+    return "half-explicit";
+  case IntegratorType::bdf2:
+    return "bdf2";
+  case IntegratorType::generalized_alpha:
+    return "generalized-alpha";
+  }
+  return "";
 }
 
 void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Time integration");
   prm.declare_entry(
-      "Integrator", "half-explicit", dealii::Patterns::Selection("half-explicit|bdf2"),
+      "Integrator", "half-explicit",
+      dealii::Patterns::Selection("half-explicit|bdf2|generalized-alpha"),
       "half-explicit: the reversible half-explicit method (39)-(41) (explicit "
       "in the unknowns, stable for dt < 2/omega_max); bdf2: two-step BDF on "
-      "the stabilised index-2 formulation (38) with a Richardson start.");
+      "the stabilised index-2 formulation (38) with a Richardson start; "
+      "generalized-alpha: the Chung-Hulbert method for the constrained "
+      "second-order system (Arnold-Bruels form, positions on the constraints, "
+      "velocities projected onto the hidden constraints).");
   prm.declare_entry("Time step", "5e-5", dealii::Patterns::Double(0.),
                     "Constant step size dt [s], > 0 (Sec. 6: 5e-5 s).");
   prm.declare_entry("Force step size", "false", dealii::Patterns::Bool(),
                     "Run the half-explicit method even above its stability limit "
                     "2/omega_max (a warning instead of a refusal).");
+  prm.declare_entry("Spectral radius at infinity", "0.5",
+                    dealii::Patterns::Double(0., 1.),
+                    "generalized-alpha: rho_inf in [0, 1], the damping of the highest "
+                    "frequencies per step (1: none, the trapezoidal rule; 0: "
+                    "asymptotic annihilation).");
   prm.declare_entry("Maximum active-set iterations", "20", dealii::Patterns::Integer(1),
                     "Bound on the repetitions of one step while the active set of the "
                     "unilateral constraints changes (Sec. 5.3).");
@@ -30,8 +48,11 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
 void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Time integration");
-  integrator = prm.get("Integrator") == "bdf2" ? IntegratorType::bdf2
-                                               : IntegratorType::half_explicit;
+  const std::string name = prm.get("Integrator");
+  integrator = name == "bdf2"                ? IntegratorType::bdf2
+               : name == "generalized-alpha" ? IntegratorType::generalized_alpha
+                                             : IntegratorType::half_explicit;
+  rho_infinity = prm.get_double("Spectral radius at infinity");
   time_step = prm.get_double("Time step");
   force_step_size = prm.get_bool("Force step size");
   max_active_set_iterations = prm.get_integer("Maximum active-set iterations");

@@ -1,4 +1,5 @@
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -10,6 +11,9 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
   if (p.integrator == IntegratorType::bdf2)
     return std::make_unique<Bdf2Integrator>(system, p.time_step,
                                             p.max_active_set_iterations);
+  if (p.integrator == IntegratorType::generalized_alpha)
+    return std::make_unique<GeneralizedAlphaIntegrator>(
+        system, p.time_step, p.rho_infinity, p.max_active_set_iterations);
   return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
                                                   p.max_active_set_iterations);
 }

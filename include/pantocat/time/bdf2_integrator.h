@@ -4,6 +4,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
+#include <pantocat/time/history_load.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -58,8 +59,7 @@ public:
   double time() const override { return current.t; }
 
 private:
-  struct Stage;       ///< factorisation and constant columns for one value of c
-  struct HistoryLoad; ///< f + M h + D rho in one pass
+  struct Stage; ///< factorisation and constant columns for one value of c
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s.
   DynamicState implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
@@ -70,7 +70,7 @@ private:
   double dt;
   MassInverse mass_inverse;
   DampingOverMass damping_over_mass;
-  std::unique_ptr<HistoryLoad> history_load;
+  HistoryLoad history_load;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   std::unique_ptr<Stage> bdf2;

@@ -9,8 +9,9 @@ namespace pantocat
 /// The time integrators of Sec. 5.2.
 enum class IntegratorType
 {
-  half_explicit, ///< the reversible half-explicit method (39)-(41)
-  bdf2           ///< two-step BDF on the GGL formulation (38), Richardson start
+  half_explicit,    ///< the reversible half-explicit method (39)-(41)
+  bdf2,             ///< two-step BDF on the GGL formulation (38), Richardson start
+  generalized_alpha ///< Chung-Hulbert generalized-alpha (Arnold-Bruels form)
 };
 
 const char* to_string(IntegratorType type);
@@ -20,6 +21,7 @@ struct TimeIntegrationParameters
   IntegratorType integrator = IntegratorType::half_explicit;
   double time_step = 5e-5;      ///< Delta t [s]
   bool force_step_size = false; ///< run an explicit method above its stability limit
+  double rho_infinity = 0.5;    ///< generalized-alpha: spectral radius at infinity
   unsigned int max_active_set_iterations = 20;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

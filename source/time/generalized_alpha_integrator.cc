@@ -1,0 +1,189 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/time/generalized_alpha_integrator.h>
+#include <pantocat/time/multiplier_system.h>
+
+namespace pantocat
+{
+namespace
+{
+/// Columns of the S batch: X = S^-1 G^T and, for the owner, the base solution.
+constexpr unsigned int lambda_column = 0, base_column = 3;
+} // namespace
+
+GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
+    : alpha_m((2. * rho - 1.) / (rho + 1.)), alpha_f(rho / (rho + 1.)),
+      beta(0.25 * (1. - alpha_m + alpha_f) * (1. - alpha_m + alpha_f)),
+      gamma(0.5 - alpha_m + alpha_f)
+{
+}
+
+GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(const SemiDiscreteSystem& system,
+                                                       const double time_step,
+                                                       const double rho_infinity,
+                                                       const unsigned int max_iterations)
+    : TimeIntegrator(system), h(time_step), k(rho_infinity),
+      c_q((1. - k.alpha_m) / ((1. - k.alpha_f) * k.beta * h * h)),
+      c_v(k.gamma / (k.beta * h)), history_load(system), at_next(system),
+      active_set(system, max_iterations), S_columns(system.n_constraints()),
+      M_columns(system.n_constraints())
+{
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
+  dealii::SparseMatrix<double> S(*system.sparsity);
+  S.copy_from(system.stiffness);
+  S.add(c_v, system.damping);
+  S.add(c_q, system.mass);
+  S_inverse.factorize(S, "generalized-alpha iteration matrix K + c_v D + c_q M");
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
+  base_owner = moving.empty() ? system.n_constraints() : moving.front();
+  for (auto* batches : {&S_columns, &M_columns})
+    for (auto& X : *batches)
+      X.reinit(system.n_dofs());
+  if (moving.empty())
+    base_only.reinit(system.n_dofs());
+}
+
+void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
+{
+  current = initial;
+  pseudo_acceleration = initial.a; // a_0 = a_c,0 (Arnold and Bruels)
+  step_number = 0;
+}
+
+void GeneralizedAlphaIntegrator::compute_columns(const unsigned int l,
+                                                 const ConstraintState& r)
+{
+  InterleavedColumns &X = S_columns[l], &U = M_columns[l];
+  for (unsigned int i = 0; i < X.size(); ++i) // keep the base column
+    X(i, lambda_column) = 0.;
+  U.clear();
+  X.add_row(lambda_column, r.G, 1.);
+  U.add_row(0, r.G, 1.);
+  if (const SparseDirectSolver* M = mass_inverse.factorised())
+    S_inverse.solve_interleaved_with(X.data(), *M, U.data());
+  else
+  {
+    S_inverse.solve_interleaved(X.data(), InterleavedColumns::width);
+    mass_inverse.apply(U);
+  }
+}
+
+void GeneralizedAlphaIntegrator::advance()
+{
+  const unsigned int n = system.n_dofs(), m_all = system.n_constraints();
+  const double t1 = current.t + h;
+  const auto& rows = at_next.at(t1, 1);
+  if (!fixed_columns_ready)
+  {
+    for (const unsigned int l : fixed)
+      compute_columns(l, rows[l]);
+    fixed_columns_ready = true;
+  }
+  // Predictors: q^ = q_n + h v_n + h^2 (1/2 - beta) a_n, v^ = v_n + h (1 - gamma) a_n,
+  // w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f). Then
+  // S q0 = f + M (c_q q^ - w) + D (c_v q^ - v^).
+  const dealii::Vector<double>& a_n = pseudo_acceleration;
+  dealii::Vector<double> q_hat(current.q), v_hat(current.v), w(n), mass_part(n),
+      damping_part(n);
+  q_hat.add(h, current.v, h * h * (0.5 - k.beta), a_n);
+  v_hat.add(h * (1. - k.gamma), a_n);
+  w.equ(k.alpha_m / (1. - k.alpha_f), a_n);
+  w.add(-k.alpha_f / (1. - k.alpha_f), current.a);
+  mass_part.equ(c_q, q_hat);
+  mass_part -= w;
+  damping_part.equ(c_v, q_hat);
+  damping_part -= v_hat;
+  InterleavedColumns& B = moving.empty() ? base_only : S_columns[base_owner];
+  history_load.apply(mass_part, damping_part, B, base_column);
+  if (moving.empty())
+    S_inverse.solve_interleaved(B.data(), InterleavedColumns::width);
+  for (const unsigned int l : moving)
+    compute_columns(l, rows[l]);
+
+  // G_k X_l and the base gaps.
+  std::vector<double> GX(m_all * m_all), base_gap(m_all);
+  for (unsigned int i = 0; i < m_all; ++i)
+  {
+    base_gap[i] = B.dot(rows[i].G, base_column) + rows[i].z;
+    for (unsigned int l = 0; l < m_all; ++l)
+      GX[i * m_all + l] = S_columns[l].dot(rows[i].G, lambda_column);
+  }
+
+  DynamicState x;
+  x.t = t1;
+  x.lambda.assign(m_all, 0.);
+  std::vector<double> gaps(m_all);
+  active_set.start(current.active);
+  for (;;)
+  {
+    const auto& A = active_set.active_indices();
+    const unsigned int m = A.size();
+    small.reinit(m, m);
+    small_rhs.reinit(m);
+    small_solution.reinit(m);
+    for (unsigned int i = 0; i < m; ++i)
+    {
+      for (unsigned int l = 0; l < m; ++l)
+        small(i, l) = GX[A[i] * m_all + A[l]];
+      small_rhs(i) = -base_gap[A[i]];
+    }
+    solve_multiplier_system(small, small_rhs, small_solution, t1,
+                            "generalized-alpha step");
+    std::fill(x.lambda.begin(), x.lambda.end(), 0.);
+    for (unsigned int l = 0; l < m; ++l)
+      x.lambda[A[l]] = small_solution(l);
+    for (unsigned int i = 0; i < m_all; ++i)
+    {
+      gaps[i] = base_gap[i];
+      for (unsigned int l = 0; l < m; ++l)
+        gaps[i] += small_solution(l) * GX[i * m_all + A[l]];
+    }
+    if (active_set.accept(gaps, x.lambda, t1, step_number + 1))
+      break;
+    ++stats.active_set_iterations;
+  }
+  stats.active_set_changes += active_set.changes_in_step();
+  x.active = active_set.active();
+  const auto& A = active_set.active_indices();
+
+  // q = q0 + sum_l lambda_l X_l, then a, v, a_c from the Newmark relations.
+  x.q.reinit(n);
+  if (moving.empty())
+    B.add_combination({{0., 0., 0., 1.}}, x.q);
+  for (unsigned int l = 0; l < m_all; ++l)
+    if (x.active[l] || l == base_owner)
+      S_columns[l].add_combination({{x.lambda[l], 0., 0., l == base_owner ? 1. : 0.}},
+                                   x.q);
+  dealii::Vector<double> a_next(x.q);
+  a_next.add(-1., q_hat);
+  a_next *= 1. / (h * h * k.beta);
+  x.v = v_hat;
+  x.v.add(h * k.gamma, a_next);
+  x.a.reinit(n, true);
+  x.a.equ((1. - k.alpha_m) / (1. - k.alpha_f), a_next);
+  x.a += w;
+
+  // Velocity projection onto dg/dt = 0 of the active set: v += M^-1 G^T eta.
+  const unsigned int m = A.size();
+  if (m > 0)
+  {
+    small.reinit(m, m);
+    small_rhs.reinit(m);
+    small_solution.reinit(m);
+    for (unsigned int i = 0; i < m; ++i)
+    {
+      const ConstraintState& r = rows[A[i]];
+      for (unsigned int l = 0; l < m; ++l)
+        small(i, l) = M_columns[A[l]].dot(r.G, 0);
+      small_rhs(i) = -r.velocity_residual(x.q, x.v);
+    }
+    solve_multiplier_system(small, small_rhs, small_solution, t1, "velocity projection");
+    for (unsigned int l = 0; l < m; ++l)
+      M_columns[A[l]].add_combination({{small_solution(l), 0., 0., 0.}}, x.v);
+  }
+  pseudo_acceleration.swap(a_next);
+  current = std::move(x);
+  ++step_number;
+  ++stats.steps;
+}
+} // namespace pantocat
