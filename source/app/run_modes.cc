@@ -4,15 +4,24 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/plots.h>
+#include <pantocat/io/progress_meter.h>
+#include <pantocat/io/statistics_report.h>
 #include <pantocat/io/time_series_writer.h>
+#include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
+#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 
+#include <deal.II/base/timer.h>
+
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace pantocat
@@ -104,7 +113,8 @@ namespace
 {
 void write_summary(const std::string& file, const ProgramParameters& p,
                    const DynamicSimulation& simulation,
-                   const DynamicSimulation::Result& r, const RunStatistics& stats)
+                   const DynamicSimulation::Result& r, const RunStatistics& stats,
+                   const ContactForceStatistics& contact)
 {
   std::ofstream out(file);
   JsonWriter json(out);
@@ -126,6 +136,7 @@ void write_summary(const std::string& file, const ProgramParameters& p,
       .value("mean", stats.contact_force_mean())
       .value("std", stats.contact_force_std())
       .end_object();
+  write_statistics(json, contact);
   json.begin_array("dropper_slack_intervals");
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
@@ -155,12 +166,26 @@ std::string format_intervals(const std::vector<Interval>& list)
     s << (i ? ", " : "") << '[' << list[i].first << ", " << list[i].second << ']';
   return s.str();
 }
+
+/// Every file of the output directory with its size (detailed verbosity).
+void list_files(std::ostream& out, const std::string& dir)
+{
+  out << "  files in " << dir << ":\n";
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      out << "    " << std::filesystem::relative(entry.path(), dir).string() << " ("
+          << entry.file_size() << " bytes)\n";
+}
 } // namespace
 
 void run_dynamics(const ProgramParameters& p, std::ostream& out)
 {
+  dealii::TimerOutput timer(out, dealii::TimerOutput::never,
+                            dealii::TimerOutput::wall_times);
+  timer.enter_subsection("setup (assembly, initial state)");
   DynamicSimulation simulation(p);
   simulation.check_step_size(); // before any output is written
+  timer.leave_subsection();
   const std::string& dir = p.output.directory;
   out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
@@ -183,13 +208,29 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     bool seen = false;
     double t = 0., lambda_p = 0.;
   } first;
+  ContactStatistics contact(p.statistics, simulation.discretisation(),
+                            simulation.system());
+  std::vector<SimulationObserver*> observers{&series, &stats, &first, &contact};
+  // Observers that are not asked for are not attached: they cost nothing.
+  std::optional<VtuTimeSeriesWriter> vtu;
+  if (p.output.vtu_interval > 0.)
+    observers.push_back(
+        &vtu.emplace(dir, p.output.vtu_interval, p.time_integration.time_step,
+                     p.output.vtu_subdivisions, simulation.discretisation(),
+                     simulation.system(), &timer));
+  std::optional<ProgressMeter> progress;
+  if (p.output.verbosity != Verbosity::quiet && stderr_is_terminal())
+    observers.push_back(&progress.emplace(std::cerr, p.pantograph.end_time()));
   DynamicSimulation::Result r;
   try
   {
-    r = simulation.run({&series, &stats, &first});
+    const dealii::TimerOutput::Scope scope(timer, "time loop");
+    r = simulation.run(observers);
   }
   catch (const SimulationError& e)
   {
+    if (progress)
+      progress->finish();
     // Keep what was written (time_series.csv up to the failure) and say so.
     std::ofstream out(dir + "/summary.json");
     JsonWriter json(out);
@@ -201,7 +242,8 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   r.stability_limit = p.time_integration.integrator == IntegratorType::half_explicit
                           ? simulation.explicit_stability_limit()
                           : std::numeric_limits<double>::quiet_NaN();
-  write_summary(dir + "/summary.json", p, simulation, r, stats);
+  timer.enter_subsection("output (summary, plots)");
+  write_summary(dir + "/summary.json", p, simulation, r, stats, contact.result());
 
   out << std::setprecision(6) << "  first time point t = " << first.t
       << " s: lambda_p = " << first.lambda_p
@@ -219,6 +261,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
       << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
       << " m/s\n";
+  if (p.output.verbosity == Verbosity::detailed)
+    out << "  active-set iterations: " << r.integrator.active_set_iterations << '\n';
+  print_statistics(out, contact.result());
   if (p.output.plots)
   {
     std::ostringstream title;
@@ -229,8 +274,16 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                           simulation.layout().pantograph_coordinates, title.str()))
       out << "  (gnuplot not found: wrote time_series.gp without PNG plots)\n";
   }
+  timer.leave_subsection();
   out << "  wrote time_series.csv, summary.json"
       << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png" : "")
+      << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
+                    " frames in vtu/"
+              : "")
       << " to " << dir << '\n';
+  if (p.output.verbosity == Verbosity::detailed)
+    list_files(out, dir);
+  if (p.output.verbosity != Verbosity::quiet)
+    timer.print_summary();
 }
 } // namespace pantocat

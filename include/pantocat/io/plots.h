@@ -15,4 +15,20 @@ namespace pantocat
 bool plot_time_series(const std::string& directory, unsigned int n_droppers,
                       const std::vector<std::string>& pantograph_coordinates,
                       const std::string& title);
+
+/**
+ * A log-log PNG of columns of a CSV file with a header row (for studies:
+ * errors or run times against step size or grid size): @p y_columns against
+ * @p x_column, points joined by lines, named by their headers. Writes the
+ * gnuplot script next to the PNG (`<png without .png>.gp`; both in
+ * @p directory, the CSV file name relative to it) and runs it. Returns false
+ * (script only) if gnuplot is not installed; throws SimulationError if the
+ * CSV file cannot be read or lacks a column.
+ */
+bool plot_loglog(const std::string& directory, const std::string& csv,
+                 const std::string& x_column, const std::vector<std::string>& y_columns,
+                 const std::string& title, const std::string& png);
+
+/// True if gnuplot is on the PATH.
+bool gnuplot_available();
 } // namespace pantocat
