@@ -224,7 +224,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   DynamicSimulation::Result r;
   try
   {
-    const dealii::TimerOutput::Scope scope(timer, "time loop");
+    const dealii::TimerOutput::Scope scope(timer, "time loop (includes the VTU frames)");
     r = simulation.run(observers);
   }
   catch (const SimulationError& e)
@@ -244,6 +244,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                           : std::numeric_limits<double>::quiet_NaN();
   timer.enter_subsection("output (summary, plots)");
   write_summary(dir + "/summary.json", p, simulation, r, stats, contact.result());
+  write_contact_force(dir + "/contact_force.csv", contact);
 
   out << std::setprecision(6) << "  first time point t = " << first.t
       << " s: lambda_p = " << first.lambda_p
@@ -271,12 +272,15 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
           << to_string(p.time_integration.integrator) << ", v_p = " << p.pantograph.speed
           << " m/s";
     if (!plot_time_series(dir, p.catenary.n_droppers(),
-                          simulation.layout().pantograph_coordinates, title.str()))
-      out << "  (gnuplot not found: wrote time_series.gp without PNG plots)\n";
+                          simulation.layout().pantograph_coordinates, title.str()) ||
+        !plot_contact_force_statistics(dir, contact.result(), title.str()))
+      out << "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n";
   }
   timer.leave_subsection();
-  out << "  wrote time_series.csv, summary.json"
-      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png" : "")
+  out << "  wrote time_series.csv, contact_force.csv, summary.json"
+      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png, "
+                           "contact_force_statistics.png"
+                         : "")
       << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
                     " frames in vtu/"
               : "")

@@ -77,6 +77,41 @@ bool plot_loglog(const std::string& dir, const std::string& csv,
   return run_gnuplot(dir, script);
 }
 
+bool plot_contact_force_statistics(const std::string& dir,
+                                   const ContactForceStatistics& s,
+                                   const std::string& title)
+{
+  const std::string script = "contact_force_statistics.gp";
+  {
+    std::ofstream gp(dir + "/" + script);
+    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
+       << "set datafile separator ','\n"
+       << "set terminal pngcairo size 900,500 noenhanced\n"
+       << "set output 'contact_force_statistics.png'\n"
+       << "set grid\nset autoscale xfix\nset key outside right\nset xlabel 'x_p "
+          "[m]'\nset ylabel 'lambda_p "
+          "[N]'\n"
+       << "set title '" << title << ": contact force and its statistics'\n"
+       << "set arrow from " << s.window_start << ", graph 0 to " << s.window_start
+       << ", graph 1 nohead dashtype 3\n"
+       << "set arrow from " << s.window_end << ", graph 0 to " << s.window_end
+       << ", graph 1 nohead dashtype 3\n"
+       << "plot 'contact_force.csv' using 2:3 with lines lc rgb '#b0b0b0' title "
+          "'lambda_p'";
+    if (s.filter_cutoff_hz > 0.)
+      gp << ", 'contact_force.csv' using 2:4 with lines lc rgb '#0060c0' title 'low pass "
+         << s.filter_cutoff_hz << " Hz'";
+    gp << ", " << s.mean << " with lines lc rgb 'black' title 'mean'"
+       << ", " << s.mean_plus_3_sigma
+       << " with lines dashtype 2 lc rgb '#c00000' title 'mean + 3 sigma'"
+       << ", " << s.mean_minus_3_sigma
+       << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 sigma'\n";
+    if (!gp)
+      throw SimulationError("cannot write " + dir + "/" + script);
+  }
+  return run_gnuplot(dir, script);
+}
+
 bool plot_time_series(const std::string& dir, const unsigned int n_droppers,
                       const std::vector<std::string>& coordinates,
                       const std::string& title)

@@ -1,5 +1,8 @@
 #include <pantocat/io/statistics_report.h>
 
+#include <pantocat/base/input_error.h>
+
+#include <fstream>
 #include <iomanip>
 
 namespace pantocat
@@ -24,6 +27,19 @@ void write_statistics(JsonWriter& json, const ContactForceStatistics& s)
       .value("", s.window_end)
       .end_array();
   json.end_object();
+}
+
+void write_contact_force(const std::string& file, const ContactStatistics& statistics)
+{
+  const ContactForceSeries& s = statistics.series();
+  const std::vector<double>& filtered = statistics.filtered_force();
+  std::ofstream csv(file);
+  csv << "t,x_p,lambda_p,lambda_p_filtered\n" << std::setprecision(10);
+  for (std::size_t n = 0; n < s.t.size(); ++n)
+    csv << s.t[n] << ',' << s.x_p[n] << ',' << s.lambda_p[n] << ',' << filtered[n]
+        << '\n';
+  if (!csv)
+    throw SimulationError("cannot write " + file);
 }
 
 void print_statistics(std::ostream& out, const ContactForceStatistics& s)

@@ -9,7 +9,8 @@
 namespace pantocat
 {
 ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
-                                              const StatisticsParameters& p)
+                                              const StatisticsParameters& p,
+                                              std::vector<double>* filtered)
 {
   ContactForceStatistics r;
   std::vector<double> force = s.lambda_p;
@@ -20,6 +21,8 @@ ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
         ButterworthLowPass(p.low_pass_cutoff, sample_rate).filter_forward_backward(force);
     r.filter_cutoff_hz = p.low_pass_cutoff;
   }
+  if (filtered)
+    *filtered = force;
   const double x0 =
       p.window.empty() ? -std::numeric_limits<double>::infinity() : p.window[0];
   const double x1 =
@@ -94,7 +97,7 @@ void ContactStatistics::observe_state(const TimePoint& point, const DynamicState
 
 void ContactStatistics::finish()
 {
-  statistics = evaluate_contact_force(recorded, parameters);
+  statistics = evaluate_contact_force(recorded, parameters, &filtered);
   statistics.max_uplift_at_droppers = max_uplift;
 }
 } // namespace pantocat

@@ -12,6 +12,7 @@ if(NOT status EQUAL 0)
 endif()
 foreach(f parameters.prm time_series.csv summary.json contact_force.png dropper_forces.png
           pantograph.png time_series.gp solution.pvd vtu/wires-00002.vtu
+          contact_force.csv contact_force_statistics.png contact_force_statistics.gp
           vtu/pantograph-droppers-00002.vtu)
   if(NOT EXISTS ${OUTDIR}/${f})
     message(FATAL_ERROR "missing output ${f}")
@@ -20,7 +21,7 @@ endforeach()
 # The plots (gnuplot is installed by scripts/install-dependencies.sh): real PNG files.
 find_program(GNUPLOT gnuplot)
 if(GNUPLOT)
-  foreach(f contact_force.png dropper_forces.png pantograph.png)
+  foreach(f contact_force.png dropper_forces.png pantograph.png contact_force_statistics.png)
     file(SIZE ${OUTDIR}/${f} size)
     file(READ ${OUTDIR}/${f} magic LIMIT 4 HEX)
     if(size LESS 1000 OR NOT magic STREQUAL "89504e47")

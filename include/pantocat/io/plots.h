@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/simulation/contact_statistics.h>
+
 #include <string>
 #include <vector>
 
@@ -28,6 +30,16 @@ bool plot_time_series(const std::string& directory, unsigned int n_droppers,
 bool plot_loglog(const std::string& directory, const std::string& csv,
                  const std::string& x_column, const std::vector<std::string>& y_columns,
                  const std::string& title, const std::string& png);
+
+/**
+ * contact_force_statistics.png: lambda_p over x_p from contact_force.csv
+ * (columns t, x_p, lambda_p, lambda_p_filtered), the filtered force when a
+ * cut-off is set, and horizontal lines at the mean and mean +/- 3 sigma of
+ * @p statistics, whose window is marked. Script: contact_force_statistics.gp.
+ */
+bool plot_contact_force_statistics(const std::string& directory,
+                                   const ContactForceStatistics& statistics,
+                                   const std::string& title);
 
 /// True if gnuplot is on the PATH.
 bool gnuplot_available();

@@ -41,9 +41,11 @@ struct ContactForceStatistics
  * The statistics of @p series: filters lambda_p over the whole run (when a
  * cut-off is set; sample rate from the time points), then takes the points
  * with x_p in the window. Throws SimulationError if the window holds no point.
+ * @p filtered, if given, receives the (filtered) force of every time point.
  */
 ContactForceStatistics evaluate_contact_force(const ContactForceSeries& series,
-                                              const StatisticsParameters& parameters);
+                                              const StatisticsParameters& parameters,
+                                              std::vector<double>* filtered = nullptr);
 
 /**
  * Observer that records the contact-force series and the contact-wire
@@ -64,6 +66,8 @@ public:
 
   const ContactForceStatistics& result() const { return statistics; }
   const ContactForceSeries& series() const { return recorded; }
+  /// lambda_p after the low pass at every time point (= lambda_p if unfiltered).
+  const std::vector<double>& filtered_force() const { return filtered; }
 
 private:
   StatisticsParameters parameters;
@@ -72,5 +76,6 @@ private:
   std::vector<double> initial_height, max_uplift;
   ContactForceSeries recorded;
   ContactForceStatistics statistics;
+  std::vector<double> filtered;
 };
 } // namespace pantocat
