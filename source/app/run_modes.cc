@@ -16,6 +16,7 @@
 
 #include <deal.II/base/timer.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -167,14 +168,18 @@ std::string format_intervals(const std::vector<Interval>& list)
   return s.str();
 }
 
-/// Every file of the output directory with its size (detailed verbosity).
+/// Every file of the output directory with its size, sorted (detailed verbosity).
 void list_files(std::ostream& out, const std::string& dir)
 {
-  out << "  files in " << dir << ":\n";
+  std::vector<std::pair<std::string, std::uintmax_t>> files;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
     if (entry.is_regular_file())
-      out << "    " << std::filesystem::relative(entry.path(), dir).string() << " ("
-          << entry.file_size() << " bytes)\n";
+      files.emplace_back(std::filesystem::relative(entry.path(), dir).string(),
+                         entry.file_size());
+  std::sort(files.begin(), files.end());
+  out << "  files in " << dir << ":\n";
+  for (const auto& [name, size] : files)
+    out << "    " << name << " (" << size << " bytes)\n";
 }
 } // namespace
 

@@ -80,6 +80,14 @@ void VtuTimeSeriesWriter::start(const SimulationLayout& l)
   std::filesystem::create_directories(directory + "/vtu", error);
   if (error)
     throw SimulationError("cannot create " + directory + "/vtu");
+  // Frames of an earlier run into the same directory would look like ours.
+  for (const auto& entry : std::filesystem::directory_iterator(directory + "/vtu"))
+  {
+    const std::string name = entry.path().filename().string();
+    if ((name.rfind("wires-", 0) == 0 || name.rfind("pantograph-droppers-", 0) == 0) &&
+        entry.path().extension() == ".vtu")
+      std::filesystem::remove(entry.path(), error);
+  }
 }
 
 void VtuTimeSeriesWriter::observe_state(const TimePoint& point, const DynamicState& state)

@@ -29,7 +29,8 @@ namespace pantocat
  *  - pantograph-droppers-NNNNN.vtu: points in the (x, w) plane: the pantograph
  *    head at (x_p, w_p1) and each dropper clamp at (x_d, w_w(x_d)), with their
  *    constraint force [N], active flag and id (0: pantograph, j: dropper j).
- * Both VTU files carry the physical time (VTK field TIME).
+ * Both VTU files carry the physical time (VTK field TIME). start() removes
+ * the frames of an earlier run from vtu/.
  */
 class VtuTimeSeriesWriter : public SimulationObserver
 {
