@@ -156,6 +156,12 @@ TEST(ContactForceStatistics, WindowSelectsThePantographPositions)
   EXPECT_EQ(r.percent_without_contact, 0.);
   EXPECT_NEAR(r.window_start, 4., 1e-12);
   EXPECT_NEAR(r.window_end, 5.99, 1e-12);
+  // A window between two time points (x_p = 4.00, 4.01 m): no point, NaN
+  // figures (null in summary.json) instead of a failed run.
+  p.window = {4.002, 4.008};
+  const auto empty = evaluate_contact_force(synthetic_series(), p);
+  EXPECT_EQ(empty.n_points, 0u);
+  EXPECT_TRUE(std::isnan(empty.mean) && std::isnan(empty.std) && std::isnan(empty.max));
   // A window with the contact loss inside: 50 of points 50..249 = 25 %.
   p.window = {2.495, 4.495};
   EXPECT_NEAR(evaluate_contact_force(synthetic_series(), p).percent_without_contact, 25.,

@@ -276,10 +276,16 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     title << to_string(p.discretisation.method) << " + "
           << to_string(p.time_integration.integrator) << ", v_p = " << p.pantograph.speed
           << " m/s";
-    if (!plot_time_series(dir, p.catenary.n_droppers(),
-                          simulation.layout().pantograph_coordinates, title.str()) ||
-        !plot_contact_force_statistics(dir, contact.result(), title.str()))
-      out << "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n";
+    const bool series_drawn =
+        plot_time_series(dir, p.catenary.n_droppers(),
+                         simulation.layout().pantograph_coordinates, title.str());
+    const bool drawn =
+        plot_contact_force_statistics(dir, contact.result(), title.str()) && series_drawn;
+    if (!drawn)
+      out << (gnuplot_available()
+                  ? "  (gnuplot failed on a .gp script in the directory)\n"
+                  : "  (gnuplot not found: wrote the .gp scripts without "
+                    "PNG plots)\n");
   }
   timer.leave_subsection();
   out << "  wrote time_series.csv, contact_force.csv, summary.json"

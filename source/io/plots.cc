@@ -88,24 +88,26 @@ bool plot_contact_force_statistics(const std::string& dir,
        << "set datafile separator ','\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set output 'contact_force_statistics.png'\n"
-       << "set grid\nset autoscale xfix\nset key outside right\nset xlabel 'x_p "
-          "[m]'\nset ylabel 'lambda_p "
-          "[N]'\n"
-       << "set title '" << title << ": contact force and its statistics'\n"
-       << "set arrow from " << s.window_start << ", graph 0 to " << s.window_start
-       << ", graph 1 nohead dashtype 3\n"
-       << "set arrow from " << s.window_end << ", graph 0 to " << s.window_end
-       << ", graph 1 nohead dashtype 3\n"
-       << "plot 'contact_force.csv' using 2:3 with lines lc rgb '#b0b0b0' title "
+       << "set grid\nset autoscale xfix\nset key outside right\n"
+       << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
+       << "set title '" << title << ": contact force and its statistics'\n";
+    const bool window = s.n_points > 0; // else: no statistics to draw
+    if (window)
+      for (const double x : {s.window_start, s.window_end})
+        gp << "set arrow from " << x << ", graph 0 to " << x
+           << ", graph 1 nohead dashtype 3\n";
+    gp << "plot 'contact_force.csv' using 2:3 with lines lc rgb '#b0b0b0' title "
           "'lambda_p'";
     if (s.filter_cutoff_hz > 0.)
       gp << ", 'contact_force.csv' using 2:4 with lines lc rgb '#0060c0' title 'low pass "
          << s.filter_cutoff_hz << " Hz'";
-    gp << ", " << s.mean << " with lines lc rgb 'black' title 'mean'"
-       << ", " << s.mean_plus_3_sigma
-       << " with lines dashtype 2 lc rgb '#c00000' title 'mean + 3 sigma'"
-       << ", " << s.mean_minus_3_sigma
-       << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 sigma'\n";
+    if (window)
+      gp << ", " << s.mean << " with lines lc rgb 'black' title 'mean'"
+         << ", " << s.mean_plus_3_sigma
+         << " with lines dashtype 2 lc rgb '#c00000' title 'mean + 3 sigma'"
+         << ", " << s.mean_minus_3_sigma
+         << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 sigma'";
+    gp << '\n';
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
   }

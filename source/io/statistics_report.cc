@@ -44,6 +44,11 @@ void write_contact_force(const std::string& file, const ContactStatistics& stati
 
 void print_statistics(std::ostream& out, const ContactForceStatistics& s)
 {
+  if (s.n_points == 0)
+  {
+    out << "  contact-force statistics: no time point in the window\n";
+    return;
+  }
   const auto flags = out.flags();
   const auto precision = out.precision();
   out << "  contact-force statistics ("

@@ -1,5 +1,4 @@
 #include <pantocat/analysis/butterworth_low_pass.h>
-#include <pantocat/base/input_error.h>
 #include <pantocat/simulation/contact_statistics.h>
 
 #include <algorithm>
@@ -44,8 +43,13 @@ ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
     r.min = std::min(r.min, force[n]);
     without_contact += s.in_contact[n] ? 0 : 1;
   }
-  if (r.n_points == 0)
-    throw SimulationError("the statistics window holds no time point");
+  if (r.n_points == 0) // a window narrower than one step: nothing to report
+  {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    r.mean = r.std = r.mean_minus_3_sigma = r.mean_plus_3_sigma = nan;
+    r.max = r.min = r.percent_without_contact = r.window_start = r.window_end = nan;
+    return r;
+  }
   r.mean = sum / r.n_points;
   // Two passes over the window: no cancellation in the variance.
   for (std::size_t n = 0; n < force.size(); ++n)

@@ -40,7 +40,8 @@ struct ContactForceStatistics
 /**
  * The statistics of @p series: filters lambda_p over the whole run (when a
  * cut-off is set; sample rate from the time points), then takes the points
- * with x_p in the window. Throws SimulationError if the window holds no point.
+ * with x_p in the window. A window that holds no time point (narrower than
+ * one step) gives n_points = 0 and NaN figures (null in summary.json).
  * @p filtered, if given, receives the (filtered) force of every time point.
  */
 ContactForceStatistics evaluate_contact_force(const ContactForceSeries& series,
