@@ -10,7 +10,7 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "parameters are written to parameters.prm inside it.");
   prm.declare_entry("VTU subdivisions", "4", dealii::Patterns::Integer(1, 64),
                     "Sample points per cell in VTU files (shows the cubic Hermite "
-                    "shape between vertices).");
+                    "shape between vertices); the frames of an FDM run use its nodes.");
   prm.declare_entry("Time series interval", "1", dealii::Patterns::Integer(1),
                     "Write every k-th time step to time_series.csv.");
   prm.declare_entry("Plots", "true", dealii::Patterns::Bool(),
