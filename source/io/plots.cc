@@ -88,7 +88,8 @@ bool plot_contact_force_statistics(const std::string& dir,
        << "set datafile separator ','\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set output 'contact_force_statistics.png'\n"
-       << "set grid\nset autoscale xfix\nset key outside right\n"
+       << "set grid\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\nset "
+          "key outside right\n"
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
        << "set title '" << title << ": contact force and its statistics'\n";
     const bool window = s.n_points > 0; // else: no statistics to draw
