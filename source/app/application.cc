@@ -99,18 +99,22 @@ int run(const CommandLine& cl, int argc, char** argv)
   // scheduling than they gain.
   dealii::MultithreadInfo::set_thread_limit(1);
   const OutputDirectory output(prm, parameters.output.directory);
+  // Verbosity = quiet: the screen output goes nowhere (errors go to stderr).
+  std::ostream discard(nullptr);
+  std::ostream& out =
+      parameters.output.verbosity == Verbosity::quiet ? discard : std::cout;
   try
   {
     switch (parameters.mode)
     {
     case RunMode::eigenfrequencies:
-      run_eigenfrequencies(parameters, std::cout);
+      run_eigenfrequencies(parameters, out);
       break;
     case RunMode::static_equilibrium:
-      run_static_equilibrium(parameters, std::cout);
+      run_static_equilibrium(parameters, out);
       break;
     case RunMode::dynamics:
-      run_dynamics(parameters, std::cout);
+      run_dynamics(parameters, out);
       break;
     }
   }

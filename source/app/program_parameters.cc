@@ -25,6 +25,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
   DiscretisationParameters::declare_parameters(prm);
   TimeIntegrationParameters::declare_parameters(prm);
   OutputParameters::declare_parameters(prm);
+  StatisticsParameters::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -46,10 +47,13 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   discretisation.parse_parameters(prm);
   time_integration.parse_parameters(prm);
   output.parse_parameters(prm);
+  statistics.parse_parameters(prm);
 
   discretisation.check(catenary.span);
   pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
                                       ? discretisation.load_half_width
                                       : 0.);
+  statistics.check(time_integration.time_step, pantograph.initial_position,
+                   pantograph.final_position);
 }
 } // namespace pantocat

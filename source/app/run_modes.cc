@@ -4,16 +4,26 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/plots.h>
+#include <pantocat/io/progress_meter.h>
+#include <pantocat/io/statistics_report.h>
 #include <pantocat/io/time_series_writer.h>
+#include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
+#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 namespace pantocat
@@ -106,7 +116,7 @@ namespace
 void write_summary(const std::string& file, const ProgramParameters& p,
                    const DynamicSimulation& simulation,
                    const DynamicSimulation::Result& r, const RunStatistics& stats,
-                   const EventLog& events)
+                   const EventLog& events, const ContactForceStatistics& contact)
 {
   std::ofstream out(file);
   JsonWriter json(out);
@@ -128,6 +138,7 @@ void write_summary(const std::string& file, const ProgramParameters& p,
       .value("mean", stats.contact_force_mean())
       .value("std", stats.contact_force_std())
       .end_object();
+  write_statistics(json, contact);
   json.begin_array("dropper_slack_intervals");
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
@@ -166,12 +177,30 @@ std::string format_intervals(const std::vector<Interval>& list)
     s << (i ? ", " : "") << '[' << list[i].first << ", " << list[i].second << ']';
   return s.str();
 }
+
+/// Every file of the output directory with its size, sorted (detailed verbosity).
+void list_files(std::ostream& out, const std::string& dir)
+{
+  std::vector<std::pair<std::string, std::uintmax_t>> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      files.emplace_back(std::filesystem::relative(entry.path(), dir).string(),
+                         entry.file_size());
+  std::sort(files.begin(), files.end());
+  out << "  files in " << dir << ":\n";
+  for (const auto& [name, size] : files)
+    out << "    " << name << " (" << size << " bytes)\n";
+}
 } // namespace
 
 void run_dynamics(const ProgramParameters& p, std::ostream& out)
 {
+  dealii::TimerOutput timer(out, dealii::TimerOutput::never,
+                            dealii::TimerOutput::wall_times);
+  timer.enter_subsection("setup (assembly, initial state)");
   DynamicSimulation simulation(p);
   simulation.check_step_size(); // before any output is written
+  timer.leave_subsection();
   const std::string& dir = p.output.directory;
   out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
@@ -195,13 +224,29 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     bool seen = false;
     double t = 0., lambda_p = 0.;
   } first;
+  ContactStatistics contact(p.statistics, simulation.discretisation(),
+                            simulation.system());
+  std::vector<SimulationObserver*> observers{&series, &stats, &events, &first, &contact};
+  // Observers that are not asked for are not attached: they cost nothing.
+  std::optional<VtuTimeSeriesWriter> vtu;
+  if (p.output.vtu_interval > 0.)
+    observers.push_back(
+        &vtu.emplace(dir, p.output.vtu_interval, p.time_integration.time_step,
+                     p.output.vtu_subdivisions, simulation.discretisation(),
+                     simulation.system(), &timer));
+  std::optional<ProgressMeter> progress;
+  if (p.output.verbosity != Verbosity::quiet && stderr_is_terminal())
+    observers.push_back(&progress.emplace(std::cerr, p.pantograph.end_time()));
   DynamicSimulation::Result r;
   try
   {
-    r = simulation.run({&series, &stats, &events, &first});
+    const dealii::TimerOutput::Scope scope(timer, "time loop (includes the VTU frames)");
+    r = simulation.run(observers);
   }
   catch (const SimulationError& e)
   {
+    if (progress)
+      progress->finish();
     // Keep what was written (time_series.csv up to the failure) and say so.
     std::ofstream out(dir + "/summary.json");
     JsonWriter json(out);
@@ -213,7 +258,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   r.stability_limit = p.time_integration.integrator == IntegratorType::half_explicit
                           ? simulation.explicit_stability_limit()
                           : std::numeric_limits<double>::quiet_NaN();
-  write_summary(dir + "/summary.json", p, simulation, r, stats, events);
+  timer.enter_subsection("output (summary, plots)");
+  write_summary(dir + "/summary.json", p, simulation, r, stats, events, contact.result());
+  write_contact_force(dir + "/contact_force.csv", contact);
 
   out << std::setprecision(6) << "  first time point t = " << first.t
       << " s: lambda_p = " << first.lambda_p
@@ -231,18 +278,38 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
       << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
       << " m/s\n";
+  if (p.output.verbosity == Verbosity::detailed)
+    out << "  active-set iterations: " << r.integrator.active_set_iterations << '\n';
+  print_statistics(out, contact.result());
   if (p.output.plots)
   {
     std::ostringstream title;
     title << to_string(p.discretisation.method) << " + "
           << to_string(p.time_integration.integrator) << ", v_p = " << p.pantograph.speed
           << " m/s";
-    if (!plot_time_series(dir, p.catenary.n_droppers(),
-                          simulation.layout().pantograph_coordinates, title.str()))
-      out << "  (gnuplot not found: wrote time_series.gp without PNG plots)\n";
+    const bool series_drawn =
+        plot_time_series(dir, p.catenary.n_droppers(),
+                         simulation.layout().pantograph_coordinates, title.str());
+    const bool drawn =
+        plot_contact_force_statistics(dir, contact.result(), title.str()) && series_drawn;
+    if (!drawn)
+      out << (gnuplot_available()
+                  ? "  (gnuplot failed on a .gp script in the directory)\n"
+                  : "  (gnuplot not found: wrote the .gp scripts without "
+                    "PNG plots)\n");
   }
-  out << "  wrote time_series.csv, summary.json"
-      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png" : "")
+  timer.leave_subsection();
+  out << "  wrote time_series.csv, contact_force.csv, summary.json"
+      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png, "
+                           "contact_force_statistics.png"
+                         : "")
+      << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
+                    " frames in vtu/"
+              : "")
       << " to " << dir << '\n';
+  if (p.output.verbosity == Verbosity::detailed)
+    list_files(out, dir);
+  if (p.output.verbosity != Verbosity::quiet)
+    timer.print_summary();
 }
 } // namespace pantocat

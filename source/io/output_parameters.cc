@@ -10,11 +10,21 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "parameters are written to parameters.prm inside it.");
   prm.declare_entry("VTU subdivisions", "4", dealii::Patterns::Integer(1, 64),
                     "Sample points per cell in VTU files (shows the cubic Hermite "
-                    "shape between vertices).");
+                    "shape between vertices); the frames of an FDM run use its nodes.");
   prm.declare_entry("Time series interval", "1", dealii::Patterns::Integer(1),
                     "Write every k-th time step to time_series.csv.");
   prm.declare_entry("Plots", "true", dealii::Patterns::Bool(),
                     "Write PNG plots of the time series (needs gnuplot).");
+  prm.declare_entry("VTU interval", "0", dealii::Patterns::Double(0.),
+                    "Simulated time [s] between the ParaView frames of a dynamic run "
+                    "(solution.pvd and vtu/*.vtu: both wires, pantograph and dropper "
+                    "clamps); 0: no frames.");
+  prm.declare_entry("Verbosity", "normal",
+                    dealii::Patterns::Selection("quiet|normal|detailed"),
+                    "quiet: print only errors; normal: the summary, the contact-force "
+                    "statistics and the timer table, and a progress line on stderr when "
+                    "it is a terminal and the run lasts over a second; detailed: also "
+                    "the integrator's counters and every file written.");
   prm.leave_subsection();
 }
 
@@ -25,6 +35,11 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");
+  vtu_interval = prm.get_double("VTU interval");
+  const std::string v = prm.get("Verbosity");
+  verbosity = v == "quiet"      ? Verbosity::quiet
+              : v == "detailed" ? Verbosity::detailed
+                                : Verbosity::normal;
   prm.leave_subsection();
 }
 } // namespace pantocat

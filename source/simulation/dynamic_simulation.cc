@@ -137,7 +137,10 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   {
     const TimePoint p = time_point(s);
     for (auto* o : observers)
+    {
       o->observe(p);
+      o->observe_state(p, s);
+    }
   };
 
   const auto start = std::chrono::steady_clock::now();

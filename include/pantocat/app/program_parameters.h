@@ -3,6 +3,7 @@
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
+#include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/time/time_integration_parameters.h>
 
@@ -31,6 +32,7 @@ struct ProgramParameters
   DiscretisationParameters discretisation;
   TimeIntegrationParameters time_integration;
   OutputParameters output;
+  StatisticsParameters statistics;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   /// Reads every subsection and cross-checks them; throws InputError.

@@ -6,12 +6,24 @@
 
 namespace pantocat
 {
+/// How much a run prints: quiet only errors; normal the summary, statistics and
+/// timings (and a progress line on a terminal); detailed also the integrator's
+/// counters and every file written.
+enum class Verbosity
+{
+  quiet,
+  normal,
+  detailed
+};
+
 struct OutputParameters
 {
   std::string directory = "output";      ///< created if needed
   unsigned int vtu_subdivisions = 4;     ///< sample points per cell in VTU files
   unsigned int time_series_interval = 1; ///< write every k-th time point
   bool plots = true;                     ///< PNG plots with gnuplot, if installed
+  double vtu_interval = 0.; ///< simulated seconds between VTU frames; 0: none
+  Verbosity verbosity = Verbosity::normal;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);

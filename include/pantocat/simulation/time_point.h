@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/time/dynamic_state.h>
+
 #include <string>
 #include <vector>
 
@@ -34,6 +36,13 @@ public:
   virtual ~SimulationObserver() = default;
   virtual void start(const SimulationLayout&) {}
   virtual void observe(const TimePoint& point) = 0;
+  /**
+   * Called right after observe(@p point) with the state behind it: positions
+   * q and velocities v of the semi-discrete system (35), valid only during the
+   * call. For observers that need the wires themselves (VTU frames, dropper
+   * uplift); they get the system and discretisation when they are made.
+   */
+  virtual void observe_state(const TimePoint& /*point*/, const DynamicState& /*state*/) {}
   virtual void finish() {}
 };
 } // namespace pantocat

@@ -1,0 +1,84 @@
+// Cost of the run's observers on the paper's 32 m/s benchmark (FDM +
+// half-explicit, N+1 = 500, 10^4 steps): the time loop with no observer, with
+// the observers every run has (time_series.csv, run statistics, contact-force
+// statistics with the dropper uplift), and with ParaView frames added.
+// Every figure is the fastest of 5 runs; ratios to the loop without observers.
+// Usage: bench_output; prints a table (Markdown).
+#include <pantocat/io/time_series_writer.h>
+#include <pantocat/io/vtu_time_series_writer.h>
+#include <pantocat/simulation/contact_statistics.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/run_statistics.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <string>
+
+using namespace pantocat;
+
+namespace
+{
+enum class Observers
+{
+  none,
+  before_issue_8, ///< time series and RunStatistics
+  every_run,      ///< + ContactStatistics (observe_state every step)
+  vtu_50ms,       ///< + VTU frames every 50 ms (11 frames)
+  vtu_5ms         ///< + VTU frames every 5 ms (101 frames)
+};
+
+/// Seconds of the time loop (DynamicSimulation::run) with the given observers.
+double time_loop(const ProgramParameters& p, const Observers which)
+{
+  const std::string dir = "bench_output_files";
+  std::filesystem::create_directories(dir);
+  DynamicSimulation simulation(p);
+  TimeSeriesWriter series(dir + "/time_series.csv", 1);
+  RunStatistics stats;
+  ContactStatistics contact(p.statistics, simulation.discretisation(),
+                            simulation.system());
+  VtuTimeSeriesWriter vtu(dir, which == Observers::vtu_5ms ? 0.005 : 0.05,
+                          p.time_integration.time_step, 4, simulation.discretisation(),
+                          simulation.system());
+  std::vector<SimulationObserver*> observers;
+  if (which != Observers::none)
+    observers = {&series, &stats};
+  if (which >= Observers::every_run)
+    observers.push_back(&contact);
+  if (which >= Observers::vtu_50ms)
+    observers.push_back(&vtu);
+  const double seconds = simulation.run(observers).time_loop_seconds;
+  std::filesystem::remove_all(dir);
+  return seconds;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
+  ProgramParameters p;
+  p.discretisation.method = SpaceMethod::fdm;
+  std::cout << "| observers | time loop [s] | ratio to none |\n|---|---|---|\n";
+  double none = 0.;
+  const std::pair<Observers, const char*> cases[] = {
+      {Observers::none, "none"},
+      {Observers::before_issue_8, "time series + run statistics"},
+      {Observers::every_run, "+ contact-force statistics and uplift (every run)"},
+      {Observers::vtu_50ms, "+ VTU every 50 ms (11 frames)"},
+      {Observers::vtu_5ms, "+ VTU every 5 ms (101 frames)"}};
+  for (const auto& [which, name] : cases)
+  {
+    double best = 1e300;
+    for (unsigned int run = 0; run < 5; ++run)
+      best = std::min(best, time_loop(p, which));
+    if (which == Observers::none)
+      none = best;
+    std::cout << "| " << name << " | " << std::setprecision(3) << best << " | "
+              << std::setprecision(3) << best / none << " |\n";
+  }
+}

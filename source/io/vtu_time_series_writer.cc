@@ -1,0 +1,182 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/io/vtu_time_series_writer.h>
+
+#include <deal.II/base/data_out_base.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/numerics/data_out.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <optional>
+
+namespace pantocat
+{
+namespace
+{
+SparseRow global_row(const CatenaryDiscretisation& d, const SemiDiscreteSystem& system,
+                     const Wire wire, const double x)
+{
+  SparseRow row = d.point_row(wire, x);
+  row.shift(system.block(wire == Wire::carrier ? "carrier" : "contact wire").first);
+  return row;
+}
+
+std::string frame_name(const char* stem, const unsigned long frame)
+{
+  char name[64];
+  std::snprintf(name, sizeof name, "vtu/%s-%05lu.vtu", stem, frame);
+  return name;
+}
+
+dealii::DataOutBase::VtkFlags flags_at(const double time)
+{
+  dealii::DataOutBase::VtkFlags flags;
+  flags.time = time;
+  flags.compression_level = dealii::DataOutBase::VtkFlags::best_speed;
+  return flags;
+}
+} // namespace
+
+VtuTimeSeriesWriter::VtuTimeSeriesWriter(const std::string& directory,
+                                         const double interval, const double time_step,
+                                         const unsigned int subdivisions,
+                                         const CatenaryDiscretisation& d,
+                                         const SemiDiscreteSystem& system,
+                                         dealii::TimerOutput* timer)
+    : directory(directory), interval(interval), tolerance(0.5 * time_step), timer(timer),
+      dropper_x(d.catenary_parameters().dropper_positions),
+      support_height(d.catenary_parameters().support_height), sample_fe(1),
+      sample_dofs(sample_mesh)
+{
+  // FDM unknowns are point values at the nodes (point_row is constant on each
+  // control volume): sample there; FEM shows its shape functions between them.
+  const unsigned int per_cell = d.method() == SpaceMethod::fdm ? 1 : subdivisions;
+  dealii::GridGenerator::subdivided_hyper_cube(sample_mesh, d.n_intervals() * per_cell,
+                                               0., d.catenary_parameters().span);
+  sample_dofs.distribute_dofs(sample_fe);
+  carrier_rows.resize(sample_dofs.n_dofs());
+  wire_rows.resize(sample_dofs.n_dofs());
+  for (const auto& cell : sample_dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 2; ++v)
+    {
+      const double x = cell->vertex(v)[0];
+      const auto i = cell->vertex_dof_index(v, 0);
+      carrier_rows[i] = global_row(d, system, Wire::carrier, x);
+      wire_rows[i] = global_row(d, system, Wire::contact_wire, x);
+    }
+  for (const double x : dropper_x)
+    dropper_rows.push_back(global_row(d, system, Wire::contact_wire, x));
+}
+
+void VtuTimeSeriesWriter::start(const SimulationLayout& l)
+{
+  layout = l;
+  next_frame = 0;
+  written.clear();
+  std::error_code error;
+  std::filesystem::create_directories(directory + "/vtu", error);
+  if (error)
+    throw SimulationError("cannot create " + directory + "/vtu");
+  // Frames of an earlier run into the same directory would look like ours.
+  for (const auto& entry : std::filesystem::directory_iterator(directory + "/vtu"))
+  {
+    const std::string name = entry.path().filename().string();
+    if ((name.rfind("wires-", 0) == 0 || name.rfind("pantograph-droppers-", 0) == 0) &&
+        entry.path().extension() == ".vtu")
+      std::filesystem::remove(entry.path(), error);
+  }
+}
+
+void VtuTimeSeriesWriter::observe_state(const TimePoint& point, const DynamicState& state)
+{
+  if (point.t < next_frame * interval - tolerance)
+    return;
+  std::optional<dealii::TimerOutput::Scope> scope;
+  if (timer)
+    scope.emplace(*timer, "output: VTU frames");
+  const unsigned long frame = written.size();
+  const std::string wires = frame_name("wires", frame);
+  write_wires(state, wires);
+  write_points(point, state, frame_name("pantograph-droppers", frame));
+  written.emplace_back(point.t, wires);
+  write_pvd();
+  while (next_frame * interval - tolerance <= point.t)
+    ++next_frame;
+}
+
+void VtuTimeSeriesWriter::write_wires(const DynamicState& s,
+                                      const std::string& file) const
+{
+  const auto n = sample_dofs.n_dofs();
+  dealii::Vector<double> w_c(n), w_w(n), v_c(n), v_w(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    w_c(i) = support_height + carrier_rows[i].dot(s.q);
+    w_w(i) = wire_rows[i].dot(s.q);
+    v_c(i) = carrier_rows[i].dot(s.v);
+    v_w(i) = wire_rows[i].dot(s.v);
+  }
+  dealii::DataOut<1> data_out;
+  data_out.attach_dof_handler(sample_dofs);
+  data_out.add_data_vector(w_c, "carrier_displacement");
+  data_out.add_data_vector(w_w, "contact_wire_displacement");
+  data_out.add_data_vector(v_c, "carrier_velocity");
+  data_out.add_data_vector(v_w, "contact_wire_velocity");
+  data_out.build_patches();
+  data_out.set_flags(flags_at(s.t));
+  std::ofstream out(directory + "/" + file);
+  data_out.write_vtu(out);
+  if (!out)
+    throw SimulationError("cannot write " + directory + "/" + file);
+}
+
+void VtuTimeSeriesWriter::write_points(const TimePoint& p, const DynamicState& s,
+                                       const std::string& file) const
+{
+  std::vector<dealii::DataOutBase::Patch<0, 2>> patches;
+  const auto add =
+      [&](const double x, const double w, const unsigned int constraint, const double id)
+  {
+    dealii::DataOutBase::Patch<0, 2> patch;
+    patch.vertices[0] = dealii::Point<2>(x, w);
+    patch.patch_index = patches.size();
+    patch.data.reinit(3, 1);
+    patch.data(0, 0) = p.lambda[constraint];
+    patch.data(1, 0) = p.active[constraint] ? 1. : 0.;
+    patch.data(2, 0) = id;
+    patches.push_back(patch);
+  };
+  add(p.x_p, p.pantograph.at(0), layout.contact_index, 0.);
+  for (std::size_t j = 0; j < dropper_rows.size(); ++j)
+    add(dropper_x[j], dropper_rows[j].dot(s.q), layout.dropper_indices[j], j + 1.);
+  std::ofstream out(directory + "/" + file);
+  dealii::DataOutBase::write_vtu(patches, {"force", "active", "id"}, {}, flags_at(s.t),
+                                 out);
+  if (!out)
+    throw SimulationError("cannot write " + directory + "/" + file);
+}
+
+void VtuTimeSeriesWriter::write_pvd() const
+{
+  // Two parts per time step: ParaView opens them as one multiblock data set.
+  std::ofstream pvd(directory + "/solution.pvd");
+  pvd << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <Collection>\n"
+      << std::setprecision(12);
+  for (std::size_t k = 0; k < written.size(); ++k)
+  {
+    pvd << "    <DataSet timestep=\"" << written[k].first
+        << "\" group=\"\" part=\"0\" file=\"" << frame_name("wires", k) << "\"/>\n";
+    pvd << "    <DataSet timestep=\"" << written[k].first
+        << "\" group=\"\" part=\"1\" file=\"" << frame_name("pantograph-droppers", k)
+        << "\"/>\n";
+  }
+  pvd << "  </Collection>\n</VTKFile>\n";
+  if (!pvd)
+    throw SimulationError("cannot write " + directory + "/solution.pvd");
+}
+} // namespace pantocat
