@@ -183,3 +183,25 @@ TEST(StudyPlan, WorkPrecisionNeedsASeparateReference)
         << e.what();
   }
 }
+
+TEST(StudyPlan, AllCombinationsRunEveryGridWithEveryStep)
+{
+  // 2 discretisations x 1 integrator x (2 grids x 3 steps) + 1 reference = 13 runs.
+  ProgramParameters p;
+  p.mode = RunMode::work_precision;
+  p.study.discretisations = {SpaceMethod::fdm, SpaceMethod::fem};
+  p.study.integrators = {IntegratorType::bdf2};
+  p.study.n_intervals = {250, 500};
+  p.study.time_steps = {1e-4, 5e-5, 2e-5};
+  p.study.all_combinations = true;
+  p.study.reference = StudyReference::separate_run;
+  const StudyPlan plan(p);
+  ASSERT_EQ(plan.runs().size(), 13u);
+  EXPECT_EQ(plan.n_refinements(), 6u);
+  const StudyRun& r = plan.runs()[plan.index(1, 4)]; // fem, second grid, second step
+  EXPECT_EQ(r.discretisation, SpaceMethod::fem);
+  EXPECT_EQ(r.n_intervals, 500u);
+  EXPECT_EQ(r.time_step, 5e-5);
+  EXPECT_TRUE(plan.runs().back().reference);
+  EXPECT_EQ(plan.reference_index(0), 12u);
+}

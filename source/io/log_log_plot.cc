@@ -7,16 +7,18 @@ namespace pantocat
 {
 bool plot_log_log(const std::string& dir, const std::string& name,
                   const std::string& title, const std::string& x_label,
-                  const std::string& y_label, const std::vector<LogLogCurve>& curves)
+                  const std::string& y_label, const std::vector<LogLogCurve>& curves,
+                  const double target)
 {
   const std::string script = name + ".gp";
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "set terminal pngcairo size 900,600 noenhanced\n"
+       << "set terminal pngcairo size 1150,650 noenhanced\n"
+       << "set colorsequence podo\n"
        << "set output '" << name << ".png'\n"
        << "set logscale xy\nset format x '%g'\nset format y '%.0e'\n"
-       << "set grid xtics ytics mxtics mytics\nset key outside right\n"
+       << "set grid xtics ytics mxtics mytics\nset key outside right font ',10'\n"
        << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '"
        << y_label << "'\n";
     gp.precision(10);
@@ -36,7 +38,10 @@ bool plot_log_log(const std::string& dir, const std::string& name,
     for (std::size_t i = 0; i < drawn.size(); ++i)
       gp << (i ? ", " : "") << "$curve" << drawn[i]
          << " using 1:2 with linespoints title '" << curves[drawn[i]].title << "'";
-    if (drawn.empty())
+    if (target > 0.)
+      gp << (drawn.empty() ? "" : ", ") << target
+         << " with lines dashtype 2 lc 'black' title 'target " << target << "'";
+    else if (drawn.empty())
       gp << "1/0 notitle";
     gp << '\n';
   }

@@ -19,6 +19,9 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Time steps", "", List(dealii::Patterns::Double(0.), 0),
                     "Time steps dt [s] of the study, coarse to fine, paired with the "
                     "numbers of intervals; empty: Time integration/Time step.");
+  prm.declare_entry("Refinements", "paired", Selection("paired|all combinations"),
+                    "paired: run (N+1_k, dt_k) for each k (a convergence study); all "
+                    "combinations: every N+1 with every dt (work precision only).");
   prm.declare_entry("Discretisations", "", List(Selection("fem|fdm"), 0),
                     "Space discretisations to study (each with every integrator); "
                     "empty: Discretisation/Method.");
@@ -72,6 +75,7 @@ void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
   for (const auto& s : split_string_list(prm.get("Integrators")))
     integrators.push_back(s == "bdf2" ? IntegratorType::bdf2
                                       : IntegratorType::half_explicit);
+  all_combinations = prm.get("Refinements") == "all combinations";
   reference = prm.get("Reference") == "separate run" ? StudyReference::separate_run
                                                      : StudyReference::finest_run;
   reference_discretisation =
@@ -93,10 +97,11 @@ void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
   require(reference_time_step > 0., "Study/Reference time step", reference_time_step,
           "must be > 0");
   const std::size_t n = std::max(n_intervals.size(), time_steps.size());
-  require(n_intervals.size() <= 1 || n_intervals.size() == n, "Study/Number of intervals",
-          n_text,
+  require(all_combinations || n_intervals.size() <= 1 || n_intervals.size() == n,
+          "Study/Number of intervals", n_text,
           "give one value or as many as Study/Time steps (" + std::to_string(n) + ")");
-  require(time_steps.size() <= 1 || time_steps.size() == n, "Study/Time steps", dt_text,
+  require(all_combinations || time_steps.size() <= 1 || time_steps.size() == n,
+          "Study/Time steps", dt_text,
           "give one value or as many as Study/Number of intervals (" + std::to_string(n) +
               ")");
   require(output_name.find('/') == std::string::npos, "Study/Output name", output_name,

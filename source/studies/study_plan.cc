@@ -16,6 +16,15 @@ StudyPlan::StudyPlan(const ProgramParameters& p)
     n.push_back(p.discretisation.n_intervals);
   if (dt.empty())
     dt.push_back(p.time_integration.time_step);
+  if (s.all_combinations)
+  {
+    std::vector<unsigned int> n_all;
+    std::vector<double> dt_all;
+    for (const unsigned int n_k : n)
+      for (const double dt_k : dt)
+        n_all.push_back(n_k), dt_all.push_back(dt_k);
+    n = n_all, dt = dt_all;
+  }
   n_refinements_ = std::max(n.size(), dt.size());
   n.resize(n_refinements_, n.back());
   dt.resize(n_refinements_, dt.back());

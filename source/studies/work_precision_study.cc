@@ -9,6 +9,19 @@
 
 namespace pantocat
 {
+namespace
+{
+/// The curve called @p title (appended if new).
+LogLogCurve& curve(std::vector<LogLogCurve>& curves, const std::string& title)
+{
+  for (auto& c : curves)
+    if (c.title == title)
+      return c;
+  curves.push_back({title, {}});
+  return curves.back();
+}
+} // namespace
+
 WorkPrecisionStudy::WorkPrecisionStudy(const ProgramParameters& p)
     : parameters(p), plan_(p)
 {
@@ -49,6 +62,15 @@ void WorkPrecisionStudy::run()
   }
 }
 
+std::string WorkPrecisionStudy::curve_title(const StudyRun& run) const
+{
+  bool several_grids = false;
+  for (const auto& r : plan_.runs())
+    several_grids = several_grids || (!r.reference && r.n_intervals != run.n_intervals);
+  return several_grids ? run.method() + ", N+1 = " + std::to_string(run.n_intervals)
+                       : run.method();
+}
+
 void WorkPrecisionStudy::write(std::ostream& out) const
 {
   if (!root)
@@ -73,8 +95,6 @@ void WorkPrecisionStudy::write(std::ostream& out) const
   for (unsigned int m = 0; m < plan_.n_methods(); ++m)
   {
     const std::string method = plan_.runs()[plan_.index(m, 0)].method();
-    curves.push_back({method, {}});
-    peak_curves.push_back({method, {}});
     const Row* cheapest_max = nullptr;
     const Row* cheapest_peak = nullptr;
     for (unsigned int k = 0; k < plan_.n_refinements(); ++k)
@@ -99,8 +119,9 @@ void WorkPrecisionStudy::write(std::ostream& out) const
       out << std::setprecision(3) << std::setw(12) << e.l2 << std::setw(12) << e.max
           << std::setw(10) << e.relative_max << std::setw(10) << e.relative_peak
           << std::setw(10) << r.cpu_seconds << '\n';
-      curves.back().points.emplace_back(r.cpu_seconds, e.relative_max);
-      peak_curves.back().points.emplace_back(r.cpu_seconds, e.relative_peak);
+      const std::string title = curve_title(r.run);
+      curve(curves, title).points.emplace_back(r.cpu_seconds, e.relative_max);
+      curve(peak_curves, title).points.emplace_back(r.cpu_seconds, e.relative_peak);
       if (e.relative_max <= target &&
           (!cheapest_max || r.cpu_seconds < cheapest_max->cpu_seconds))
         cheapest_max = &r;
@@ -133,10 +154,10 @@ void WorkPrecisionStudy::write(std::ostream& out) const
         std::sort(curve.points.begin(), curve.points.end()); // by CPU time
     const bool a =
         plot_log_log(dir, name, "Work precision: lambda_p, max norm", "CPU time [s]",
-                     "relative max-norm error of lambda_p", curves);
+                     "relative max-norm error of lambda_p", curves, target);
     const bool b =
         plot_log_log(dir, name + "_peak", "Work precision: max lambda_p", "CPU time [s]",
-                     "relative error of max lambda_p", peak_curves);
+                     "relative error of max lambda_p", peak_curves, target);
     out << (a && b ? ", " + name + ".png, " + name + "_peak.png"
                    : std::string(" (gnuplot not found: no PNG)"));
   }

@@ -20,7 +20,8 @@ enum class StudyReference
 /**
  * The "Study" subsection: the runs of a convergence study or a work-precision
  * study. The refinement lists are paired entry by entry (N+1_k, dt_k); a list
- * with one entry (or none: the case's own value) is used for every k. Every
+ * with one entry (or none: the case's own value) is used for every k; or
+ * (Refinements = all combinations) every N+1 runs with every dt. Every
  * combination of a discretisation and an integrator runs the whole list.
  */
 struct StudyParameters
@@ -29,6 +30,8 @@ struct StudyParameters
   std::vector<double> time_steps;           ///< dt per refinement [s]; empty: the case's
   std::vector<SpaceMethod> discretisations; ///< empty: the case's
   std::vector<IntegratorType> integrators;  ///< empty: the case's
+  /// Every N+1 with every dt (work precision) instead of entry by entry.
+  bool all_combinations = false;
   StudyReference reference = StudyReference::finest_run;
   SpaceMethod reference_discretisation = SpaceMethod::fem;
   IntegratorType reference_integrator = IntegratorType::bdf2;

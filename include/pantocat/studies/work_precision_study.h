@@ -11,7 +11,8 @@ namespace pantocat
 {
 /**
  * Mode = work precision: every discretisation x integrator x (N+1, dt) of
- * the Study subsection against one separate reference run: the error in
+ * the Study subsection (paired, or all combinations) against one separate
+ * reference run: the error in
  * lambda_p (L2 and max over time, and in max lambda_p) and the CPU time of
  * the run (set-up, 2/omega_max for the half-explicit method, and time loop).
  * Writes <name>.csv (discretisation, integrator, n_intervals, parameter = dt,
@@ -43,6 +44,9 @@ public:
   void write(std::ostream& out) const;
 
 private:
+  /// One curve per method, or per method and grid if the study has several grids.
+  std::string curve_title(const StudyRun& run) const;
+
   ProgramParameters parameters;
   StudyPlan plan_;
   std::vector<Row> rows_;
