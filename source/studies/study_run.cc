@@ -103,7 +103,6 @@ void RunOutcome::pack(std::vector<char>& b) const
   put(b, static_cast<std::uint64_t>(message.size()));
   b.insert(b.end(), message.begin(), message.end());
   put(b, cpu_seconds);
-  put(b, loop_seconds);
   put(b, static_cast<std::uint64_t>(steps));
   put_vector(b, t);
   put_vector(b, lambda_p);
@@ -120,7 +119,6 @@ RunOutcome RunOutcome::unpack(const std::vector<char>& b, std::size_t& pos)
   o.message.assign(b.data() + pos, length);
   pos += length;
   o.cpu_seconds = get<double>(b, pos);
-  o.loop_seconds = get<double>(b, pos);
   o.steps = get<std::uint64_t>(b, pos);
   o.t = get_vector(b, pos);
   o.lambda_p = get_vector(b, pos);
@@ -162,7 +160,6 @@ RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
     return outcome;
   }
   outcome.cpu_seconds = cpu_seconds_since(start);
-  outcome.loop_seconds = result.time_loop_seconds;
   outcome.steps = result.integrator.steps;
 
   if (request.wire_samples > 0)

@@ -52,7 +52,6 @@ private:
   ProgramParameters parameters;
   StudyPlan plan_;
   std::vector<std::vector<Row>> rows_;
-  std::vector<RunOutcome> reference_outcomes;
   bool root = true;
 };
 

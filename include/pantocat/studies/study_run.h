@@ -45,7 +45,6 @@ struct RunOutcome
   Status status = Status::completed;
   std::string message;     ///< why skipped or failed
   double cpu_seconds = 0.; ///< set-up and time loop, CPU time of this process
-  double loop_seconds = 0.;
   unsigned long steps = 0;
   std::vector<double> t, lambda_p; ///< every time point of the run
   std::vector<double> wire;        ///< w_w(x_j, t_e) at the requested samples [m]
