@@ -40,6 +40,12 @@ struct Column
   std::string csv;    ///< column key of the table and the CSV
 };
 
+/// Which plot shows column @p csv: 0 lambda_p, 1 the wire, 2 the frequencies.
+unsigned int plot_of(const std::string& csv)
+{
+  return csv.rfind("lambda_p", 0) == 0 ? 0 : csv.rfind("wire", 0) == 0 ? 1 : 2;
+}
+
 std::vector<Column> columns(const StudyParameters& s, const bool refines_space)
 {
   std::vector<Column> c = {
@@ -134,7 +140,8 @@ void ConvergenceStudy::write(std::ostream& out) const
     csv << ',' << c.csv << ',' << c.csv << "_order";
   csv << ",cpu_seconds,status\n";
 
-  std::vector<LogLogCurve> curves;
+  // One plot per quantity (units differ): lambda_p, the wire, the frequencies.
+  std::vector<LogLogCurve> curves[3];
   for (unsigned int m = 0; m < plan_.n_methods(); ++m)
   {
     const auto& rows = rows_[m];
@@ -202,7 +209,7 @@ void ConvergenceStudy::write(std::ostream& out) const
       for (std::size_t k = 0; k < rows.size(); ++k)
         curve.points.emplace_back(space ? rows[k].run.n_intervals : rows[k].run.time_step,
                                   e[k]);
-      curves.push_back(curve);
+      curves[plot_of(c.csv)].push_back(curve);
     }
     csv << std::setprecision(6);
     for (std::size_t k = 0; k < rows.size(); ++k)
@@ -230,11 +237,21 @@ void ConvergenceStudy::write(std::ostream& out) const
   out << "  wrote " << name << ".txt, " << name << ".csv";
   if (parameters.output.plots)
   {
-    const bool drawn =
-        plot_log_log(dir, name, "Convergence: errors against the reference",
-                     space ? "N+1" : "dt", "error", curves);
-    out << (drawn ? ", " + name + ".png" : std::string(" (gnuplot not found: no PNG)"))
-        << ", " << name << ".gp";
+    const char* suffix[3] = {"", "_wire", "_frequencies"};
+    const char* y_label[3] = {"error of lambda_p [N]",
+                              "error of the contact wire at t_e: L2 [m^1.5], H1 [m^0.5]",
+                              "error of the lowest eigenfrequency [Hz]"};
+    for (unsigned int i = 0; i < 3; ++i)
+      if (!curves[i].empty())
+      {
+        const std::string plot = name + suffix[i];
+        const bool drawn =
+            plot_log_log(dir, plot, "Convergence: errors against the reference",
+                         space ? "N+1" : "dt [s]", y_label[i], curves[i]);
+        out << (drawn ? ", " + plot + ".png"
+                      : std::string(" (gnuplot not found: no PNG)"))
+            << ", " << plot << ".gp";
+      }
   }
   out << " to " << dir << '\n';
 }

@@ -15,9 +15,9 @@ namespace pantocat
  * and/or dt) with each chosen method; errors against the finest run or a
  * separate reference run in lambda_p over time (L2, max), the contact wire at
  * the final time (L2, H1) and the lowest eigenfrequency of each wire; observed
- * orders in a deal.II ConvergenceTable (<name>.txt), <name>.csv and a log-log
- * plot <name>.png. The runs are spread over the MPI ranks (RunDistribution);
- * rank 0 writes the results.
+ * orders in a deal.II ConvergenceTable (<name>.txt), <name>.csv and log-log
+ * plots <name>.png (lambda_p), <name>_wire.png, <name>_frequencies.png. The runs are
+ * spread over the MPI ranks (RunDistribution); rank 0 writes the results.
  */
 class ConvergenceStudy
 {
@@ -45,7 +45,7 @@ public:
   /// Refinement parameter of each row of method @p m: h = L/(N+1) or dt.
   std::vector<double> refinement_parameters(unsigned int m) const;
 
-  /// Prints the tables and writes <name>.txt, <name>.csv, <name>.png (rank 0 only).
+  /// Prints the tables and writes <name>.txt, <name>.csv and the plots (rank 0 only).
   void write(std::ostream& out) const;
 
 private:
