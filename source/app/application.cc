@@ -4,6 +4,8 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/studies/convergence_study.h>
+#include <pantocat/studies/work_precision_study.h>
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/multithread_info.h>
@@ -115,6 +117,12 @@ int run(const CommandLine& cl, int argc, char** argv)
       break;
     case RunMode::dynamics:
       run_dynamics(parameters, out);
+      break;
+    case RunMode::convergence_study:
+      run_convergence_study(parameters, std::cout);
+      break;
+    case RunMode::work_precision:
+      run_work_precision_study(parameters, std::cout);
       break;
     }
   }

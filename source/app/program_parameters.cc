@@ -9,11 +9,15 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
   prm.declare_entry(
-      "Mode", "dynamics", dealii::Patterns::Selection("dynamics|static|eigenfrequencies"),
+      "Mode", "dynamics",
+      dealii::Patterns::Selection(
+          "dynamics|static|eigenfrequencies|convergence study|work precision"),
       "dynamics: the coupled pantograph-catenary run from x_p(0) to the final "
       "position (Sec. 6); static: the initial catenary under gravity, droppers "
       "and the contact load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: "
-      "lowest and highest eigenfrequency of each wire (Table 1).");
+      "lowest and highest eigenfrequency of each wire (Table 1); convergence "
+      "study, work precision: many dynamic runs (subsection Study), spread "
+      "over MPI ranks under mpirun.");
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   prm.declare_entry("Discretisations", "fem, fdm",
@@ -26,15 +30,18 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
   TimeIntegrationParameters::declare_parameters(prm);
   OutputParameters::declare_parameters(prm);
   StatisticsParameters::declare_parameters(prm);
+  StudyParameters::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
   const std::string m = prm.get("Mode");
-  mode = m == "eigenfrequencies" ? RunMode::eigenfrequencies
-         : m == "static"         ? RunMode::static_equilibrium
-                                 : RunMode::dynamics;
+  mode = m == "eigenfrequencies"    ? RunMode::eigenfrequencies
+         : m == "static"            ? RunMode::static_equilibrium
+         : m == "convergence study" ? RunMode::convergence_study
+         : m == "work precision"    ? RunMode::work_precision
+                                    : RunMode::dynamics;
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   eigenfrequency_discretisations.clear();
@@ -48,6 +55,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   time_integration.parse_parameters(prm);
   output.parse_parameters(prm);
   statistics.parse_parameters(prm);
+  study.parse_parameters(prm);
 
   discretisation.check(catenary.span);
   pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta

@@ -209,7 +209,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
       << " m/s, x_p from " << p.pantograph.initial_position << " to "
       << p.pantograph.final_position << " m\n"
       << "  " << simulation.system().n_dofs() << " unknowns, "
-      << simulation.system().n_constraints() << " unilateral constraints\n";
+      << simulation.system().n_constraints()
+      << (p.pantograph.bilateral_constraints ? " bilateral" : " unilateral")
+      << " constraints\n";
 
   TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
   RunStatistics stats;

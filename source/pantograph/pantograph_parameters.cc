@@ -20,6 +20,11 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "lambda_p(0) [N]: the contact load of the initial static catenary.");
   prm.declare_entry("Initial offset", "0", Double(),
                     "w_p1(0) - w_p2(0) [m]: 0 in (13); 0.002 at 48 m/s (Sec. 6).");
+  prm.declare_entry("Constraints", "unilateral",
+                    dealii::Patterns::Selection("unilateral|bilateral"),
+                    "unilateral: droppers and contact may slacken (Sec. 5.3, the "
+                    "paper's model); bilateral: they are equations (4), (32) at all "
+                    "times (a smooth case, e.g. for convergence orders in time).");
   prm.enter_subsection("Two-mass model");
   const TwoMassPantographParameters d;
   prm.declare_entry("Head mass", number_to_string(d.head_mass), Double(0.), "m_1 [kg].");
@@ -48,6 +53,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
   speed = prm.get_double("Speed");
   initial_contact_force = prm.get_double("Initial contact force");
   initial_offset = prm.get_double("Initial offset");
+  bilateral_constraints = prm.get("Constraints") == "bilateral";
   prm.enter_subsection("Two-mass model");
   two_mass.head_mass = prm.get_double("Head mass");
   two_mass.frame_mass = prm.get_double("Frame mass");

@@ -25,7 +25,10 @@ DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
   CoupledSystem built = build_coupled_system(
       *space, *pantograph,
       ContactPointMotion{p.pantograph.initial_position, p.pantograph.speed},
-      Constraint::Kind::unilateral, Constraint::Kind::unilateral);
+      p.pantograph.bilateral_constraints ? Constraint::Kind::bilateral
+                                         : Constraint::Kind::unilateral,
+      p.pantograph.bilateral_constraints ? Constraint::Kind::bilateral
+                                         : Constraint::Kind::unilateral);
   catenary_only = std::move(built.catenary_only);
   coupled = std::move(built.coupled);
   contact = built.contact;
@@ -160,6 +163,7 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   result.time_loop_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.integrator = integrator->statistics();
+  result.final_state = integrator->latest();
   for (auto* o : observers)
     o->finish();
   return result;

@@ -5,6 +5,7 @@
 #include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/studies/study_parameters.h>
 #include <pantocat/time/time_integration_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -18,7 +19,9 @@ enum class RunMode
 {
   static_equilibrium, ///< the initial catenary of Sec. 2.2 / Fig. 5
   eigenfrequencies,   ///< Table 1 of Sec. 6
-  dynamics            ///< the coupled run of Sec. 6 (Figs. 6, 7)
+  dynamics,           ///< the coupled run of Sec. 6 (Figs. 6, 7)
+  convergence_study,  ///< one case for a list of refinements: errors and orders
+  work_precision      ///< error against CPU time for several methods
 };
 
 /// All parameters of one run: one struct per prm subsection.
@@ -33,6 +36,7 @@ struct ProgramParameters
   TimeIntegrationParameters time_integration;
   OutputParameters output;
   StatisticsParameters statistics;
+  StudyParameters study;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   /// Reads every subsection and cross-checks them; throws InputError.

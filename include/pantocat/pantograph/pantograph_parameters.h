@@ -30,6 +30,8 @@ struct PantographParameters
   double speed = 32.0;                 ///< v_p [m/s]
   double initial_contact_force = 8.75; ///< lambda_p(0) [N]
   double initial_offset = 0.0;         ///< w_{p,1}(0) - w_{p,2}(0) [m], (13) and Sec. 6
+  /// Droppers and contact as equations (4), (32) instead of the inequalities of Sec. 5.3.
+  bool bilateral_constraints = false;
   TwoMassPantographParameters two_mass;
 
   /// x_p(t).

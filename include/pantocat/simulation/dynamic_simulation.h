@@ -32,6 +32,7 @@ public:
     double time_loop_seconds = 0.;
     double end_time = 0.;
     double stability_limit = 0.; ///< 2/omega_max [s]
+    DynamicState final_state;    ///< the state at the end time
   };
 
   /// Integrates; throws SimulationError if the run becomes unstable.

@@ -1,0 +1,60 @@
+#pragma once
+
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/studies/series_comparison.h>
+#include <pantocat/studies/study_plan.h>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * Mode = convergence study: one case run for a list of refinements (N+1
+ * and/or dt) with each chosen method; errors against the finest run or a
+ * separate reference run in lambda_p over time (L2, max), the contact wire at
+ * the final time (L2, H1) and the lowest eigenfrequency of each wire; observed
+ * orders in a deal.II ConvergenceTable (<name>.txt), <name>.csv and log-log
+ * plots <name>.png (lambda_p), <name>_wire.png, <name>_frequencies.png. The runs are
+ * spread over the MPI ranks (RunDistribution); rank 0 writes the results.
+ */
+class ConvergenceStudy
+{
+public:
+  explicit ConvergenceStudy(const ProgramParameters& parameters);
+
+  /// One refinement of one method with its errors (NaN where not computed).
+  struct Row
+  {
+    StudyRun run;
+    RunOutcome::Status status = RunOutcome::Status::completed;
+    std::string message;
+    SeriesErrors lambda_p;
+    ProfileErrors wire;
+    double carrier_frequency_error = 0.; ///< |f_min - f_min,ref| [Hz]
+    double contact_wire_frequency_error = 0.;
+    double cpu_seconds = 0.;
+  };
+
+  /// Runs the study (every rank must call it); on rank 0 computes the rows.
+  void run();
+  /// Rows of method @p m, coarse to fine, reference excluded (rank 0 only).
+  const std::vector<Row>& rows(unsigned int m) const { return rows_[m]; }
+  const StudyPlan& plan() const { return plan_; }
+  /// Refinement parameter of each row of method @p m: h = L/(N+1) or dt.
+  std::vector<double> refinement_parameters(unsigned int m) const;
+
+  /// Prints the tables and writes <name>.txt, <name>.csv and the plots (rank 0 only).
+  void write(std::ostream& out) const;
+
+private:
+  ProgramParameters parameters;
+  StudyPlan plan_;
+  std::vector<std::vector<Row>> rows_;
+  bool root = true;
+};
+
+/// Mode = convergence study: runs, prints and writes the study (all ranks call it).
+void run_convergence_study(const ProgramParameters& parameters, std::ostream& out);
+} // namespace pantocat

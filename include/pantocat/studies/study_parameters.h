@@ -1,0 +1,48 @@
+#pragma once
+
+#include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/time/time_integration_parameters.h>
+
+#include <deal.II/base/parameter_handler.h>
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/// What the errors of a study are measured against.
+enum class StudyReference
+{
+  finest_run,  ///< the last (finest) entry of the refinement lists, per method
+  separate_run ///< one extra run with its own discretisation, N+1 and dt
+};
+
+/**
+ * The "Study" subsection: the runs of a convergence study or a work-precision
+ * study. The refinement lists are paired entry by entry (N+1_k, dt_k); a list
+ * with one entry (or none: the case's own value) is used for every k; or
+ * (Refinements = all combinations) every N+1 runs with every dt. Every
+ * combination of a discretisation and an integrator runs the whole list.
+ */
+struct StudyParameters
+{
+  std::vector<unsigned int> n_intervals;    ///< N+1 per refinement; empty: the case's
+  std::vector<double> time_steps;           ///< dt per refinement [s]; empty: the case's
+  std::vector<SpaceMethod> discretisations; ///< empty: the case's
+  std::vector<IntegratorType> integrators;  ///< empty: the case's
+  /// Every N+1 with every dt (work precision) instead of entry by entry.
+  bool all_combinations = false;
+  StudyReference reference = StudyReference::finest_run;
+  SpaceMethod reference_discretisation = SpaceMethod::fem;
+  IntegratorType reference_integrator = IntegratorType::bdf2;
+  unsigned int reference_n_intervals = 1000;
+  double reference_time_step = 1e-5;
+  bool wire_errors = true;           ///< contact wire at t_e in L2 and H1
+  bool eigenfrequency_errors = true; ///< lowest eigenfrequency of each wire
+  double target_relative_error = 0.01;
+  std::string output_name; ///< file base name; empty: convergence | work_precision
+
+  static void declare_parameters(dealii::ParameterHandler& prm);
+  void parse_parameters(dealii::ParameterHandler& prm);
+};
+} // namespace pantocat

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <pantocat/app/program_parameters.h>
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/// One run of a study: the case with its discretisation, N+1, integrator and dt replaced.
+struct StudyRun
+{
+  SpaceMethod discretisation = SpaceMethod::fdm;
+  IntegratorType integrator = IntegratorType::half_explicit;
+  unsigned int n_intervals = 500; ///< N+1
+  double time_step = 5e-5;        ///< dt [s]
+  bool reference = false;         ///< the separate reference run
+
+  /// "fdm + half-explicit".
+  std::string method() const;
+  /// "fdm + half-explicit, N+1 = 500, dt = 5e-05 s".
+  std::string label() const;
+  /// The case @p base with this run's discretisation and time integration.
+  ProgramParameters parameters(const ProgramParameters& base) const;
+};
+
+/// What a study wants from each run besides lambda_p(t).
+struct RunRequest
+{
+  /// Sample the contact wire at t_e at x_j = j L / wire_samples, j = 0..wire_samples
+  /// (0: not at all).
+  unsigned int wire_samples = 0;
+  bool eigenfrequencies = false;
+};
+
+/// What a run of a study gives back (packable, to be gathered from MPI ranks).
+struct RunOutcome
+{
+  enum class Status
+  {
+    completed,
+    skipped, ///< half-explicit step above 2/omega_max: not run
+    failed   ///< SimulationError during the run
+  };
+  Status status = Status::completed;
+  std::string message;     ///< why skipped or failed
+  double cpu_seconds = 0.; ///< set-up and time loop, CPU time of this process
+  unsigned long steps = 0;
+  std::vector<double> t, lambda_p; ///< every time point of the run
+  std::vector<double> wire;        ///< w_w(x_j, t_e) at the requested samples [m]
+  double f_min_carrier = 0., f_min_contact_wire = 0.; ///< [Hz]
+
+  /// Bytes for MPI transfer; unpack() restores the same outcome exactly.
+  void pack(std::vector<char>& buffer) const;
+  static RunOutcome unpack(const std::vector<char>& buffer, std::size_t& position);
+};
+
+const char* to_string(RunOutcome::Status status);
+
+/**
+ * Runs @p run of the case @p base: builds the DynamicSimulation, skips a
+ * half-explicit step above 2/omega_max (DynamicSimulation::check_step_size
+ * would refuse it), integrates and records lambda_p at every time point.
+ */
+RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
+                             const RunRequest& request);
+} // namespace pantocat

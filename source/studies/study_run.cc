@@ -1,0 +1,182 @@
+#include <pantocat/analysis/eigenfrequency_analysis.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/studies/study_run.h>
+
+#include <chrono>
+#include <cstring>
+#include <ctime>
+#include <sstream>
+
+namespace pantocat
+{
+std::string StudyRun::method() const
+{
+  return std::string(to_string(discretisation)) + " + " + to_string(integrator);
+}
+
+std::string StudyRun::label() const
+{
+  std::ostringstream s;
+  s << method() << ", N+1 = " << n_intervals << ", dt = " << time_step << " s";
+  return s.str();
+}
+
+ProgramParameters StudyRun::parameters(const ProgramParameters& base) const
+{
+  ProgramParameters p = base;
+  p.mode = RunMode::dynamics;
+  p.discretisation.method = discretisation;
+  p.discretisation.n_intervals = n_intervals;
+  p.time_integration.integrator = integrator;
+  p.time_integration.time_step = time_step;
+  p.time_integration.force_step_size = false;
+  return p;
+}
+
+const char* to_string(const RunOutcome::Status status)
+{
+  return status == RunOutcome::Status::completed ? "completed"
+         : status == RunOutcome::Status::skipped ? "skipped"
+                                                 : "failed";
+}
+
+namespace
+{
+template <typename T>
+void put(std::vector<char>& b, const T& value)
+{
+  const char* p = reinterpret_cast<const char*>(&value);
+  b.insert(b.end(), p, p + sizeof(T));
+}
+
+template <typename T>
+T get(const std::vector<char>& b, std::size_t& pos)
+{
+  T value;
+  std::memcpy(&value, b.data() + pos, sizeof(T));
+  pos += sizeof(T);
+  return value;
+}
+
+void put_vector(std::vector<char>& b, const std::vector<double>& v)
+{
+  put(b, static_cast<std::uint64_t>(v.size()));
+  for (const double x : v)
+    put(b, x);
+}
+
+std::vector<double> get_vector(const std::vector<char>& b, std::size_t& pos)
+{
+  std::vector<double> v(get<std::uint64_t>(b, pos));
+  for (double& x : v)
+    x = get<double>(b, pos);
+  return v;
+}
+
+/// Records lambda_p (the contact constraint's multiplier) at every time point.
+class ContactForceRecorder : public SimulationObserver
+{
+public:
+  explicit ContactForceRecorder(RunOutcome& outcome) : outcome(outcome) {}
+  void start(const SimulationLayout& layout) override { contact = layout.contact_index; }
+  void observe(const TimePoint& p) override
+  {
+    outcome.t.push_back(p.t);
+    outcome.lambda_p.push_back(p.lambda[contact]);
+  }
+
+private:
+  RunOutcome& outcome;
+  unsigned int contact = 0;
+};
+
+double cpu_seconds_since(const std::clock_t start)
+{
+  return static_cast<double>(std::clock() - start) / CLOCKS_PER_SEC;
+}
+} // namespace
+
+void RunOutcome::pack(std::vector<char>& b) const
+{
+  put(b, static_cast<int>(status));
+  put(b, static_cast<std::uint64_t>(message.size()));
+  b.insert(b.end(), message.begin(), message.end());
+  put(b, cpu_seconds);
+  put(b, static_cast<std::uint64_t>(steps));
+  put_vector(b, t);
+  put_vector(b, lambda_p);
+  put_vector(b, wire);
+  put(b, f_min_carrier);
+  put(b, f_min_contact_wire);
+}
+
+RunOutcome RunOutcome::unpack(const std::vector<char>& b, std::size_t& pos)
+{
+  RunOutcome o;
+  o.status = static_cast<Status>(get<int>(b, pos));
+  const auto length = get<std::uint64_t>(b, pos);
+  o.message.assign(b.data() + pos, length);
+  pos += length;
+  o.cpu_seconds = get<double>(b, pos);
+  o.steps = get<std::uint64_t>(b, pos);
+  o.t = get_vector(b, pos);
+  o.lambda_p = get_vector(b, pos);
+  o.wire = get_vector(b, pos);
+  o.f_min_carrier = get<double>(b, pos);
+  o.f_min_contact_wire = get<double>(b, pos);
+  return o;
+}
+
+RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
+                             const RunRequest& request)
+{
+  RunOutcome outcome;
+  const ProgramParameters p = run.parameters(base);
+  const std::clock_t start = std::clock();
+  DynamicSimulation simulation(p);
+  if (run.integrator == IntegratorType::half_explicit &&
+      run.time_step > simulation.explicit_stability_limit())
+  {
+    std::ostringstream m;
+    m << "dt = " << run.time_step
+      << " s is above the stability limit 2/omega_max = " << std::setprecision(3)
+      << simulation.explicit_stability_limit() << " s of the half-explicit method";
+    outcome.status = RunOutcome::Status::skipped;
+    outcome.message = m.str();
+    return outcome;
+  }
+  ContactForceRecorder recorder(outcome);
+  DynamicSimulation::Result result;
+  try
+  {
+    result = simulation.run({&recorder});
+  }
+  catch (const SimulationError& e)
+  {
+    outcome.status = RunOutcome::Status::failed;
+    outcome.message = e.what();
+    outcome.cpu_seconds = cpu_seconds_since(start);
+    return outcome;
+  }
+  outcome.cpu_seconds = cpu_seconds_since(start);
+  outcome.steps = result.integrator.steps;
+
+  if (request.wire_samples > 0)
+  {
+    const DofBlock& block = simulation.system().block("contact wire");
+    dealii::Vector<double> q(block.size);
+    for (unsigned int i = 0; i < block.size; ++i)
+      q(i) = result.final_state.q(block.first + i);
+    const double span = p.catenary.span;
+    for (unsigned int j = 0; j <= request.wire_samples; ++j)
+      outcome.wire.push_back(simulation.discretisation().displacement(
+          Wire::contact_wire, q, span * j / request.wire_samples));
+  }
+  if (request.eigenfrequencies)
+    for (const auto& f : compute_extreme_frequencies(simulation.discretisation()))
+      (f.subsystem == "carrier" ? outcome.f_min_carrier : outcome.f_min_contact_wire) =
+          f.f_min_hz;
+  return outcome;
+}
+} // namespace pantocat
