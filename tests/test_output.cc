@@ -439,32 +439,3 @@ TEST(ProgressMeter, PrintsPercentAndTimeAndClearsTheLine)
 }
 
 // ---------------------------------------------------------------- plots
-// plot_loglog: the gnuplot script picks the named columns (by header), and
-// with gnuplot installed the PNG exists and is not empty.
-TEST(Plots, LogLogPlotOfNamedColumns)
-{
-  const std::string dir = "test_output_plots";
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream csv(dir + "/study.csv");
-    csv << "n,h,error_l2,error_h1\n";
-    for (unsigned int n = 10; n <= 160; n *= 2)
-      csv << n << ',' << 1. / n << ',' << std::pow(1. / n, 2) << ',' << 1. / n << '\n';
-  }
-  const bool drawn =
-      plot_loglog(dir, "study.csv", "h", {"error_l2", "error_h1"}, "test", "errors.png");
-  const std::string script = read_file(dir + "/errors.gp");
-  EXPECT_NE(script.find("set logscale xy"), std::string::npos);
-  EXPECT_NE(script.find("using 2:3 with linespoints title 'error_l2'"),
-            std::string::npos);
-  EXPECT_NE(script.find("using 2:4 with linespoints title 'error_h1'"),
-            std::string::npos);
-  EXPECT_THROW(plot_loglog(dir, "study.csv", "h", {"nope"}, "test", "x.png"),
-               SimulationError);
-  if (!gnuplot_available())
-    GTEST_SKIP() << "gnuplot not installed: script checked, PNG not drawn";
-  EXPECT_TRUE(drawn);
-  ASSERT_TRUE(std::filesystem::exists(dir + "/errors.png"));
-  EXPECT_GT(std::filesystem::file_size(dir + "/errors.png"), 1000u);
-}

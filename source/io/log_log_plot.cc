@@ -1,4 +1,5 @@
 #include <pantocat/io/log_log_plot.h>
+#include <pantocat/io/plots.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -45,9 +46,6 @@ bool plot_log_log(const std::string& dir, const std::string& name,
       gp << "1/0 notitle";
     gp << '\n';
   }
-  if (std::system("command -v gnuplot > /dev/null 2>&1") != 0)
-    return false;
-  const std::string command = "cd '" + dir + "' && gnuplot " + script + " 2> /dev/null";
-  return std::system(command.c_str()) == 0;
+  return run_gnuplot(dir, script);
 }
 } // namespace pantocat

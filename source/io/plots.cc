@@ -14,67 +14,12 @@ bool gnuplot_available()
   return std::system("command -v gnuplot > /dev/null 2>&1") == 0;
 }
 
-namespace
-{
-/// Runs @p script (a file name in @p dir) with gnuplot inside @p dir.
 bool run_gnuplot(const std::string& dir, const std::string& script)
 {
   if (!gnuplot_available())
     return false;
   const std::string command = "cd '" + dir + "' && gnuplot '" + script + "' 2> /dev/null";
   return std::system(command.c_str()) == 0;
-}
-
-/// 1-based gnuplot column of each name in the header row of @p csv.
-std::vector<unsigned int> column_numbers(const std::string& csv,
-                                         const std::vector<std::string>& names)
-{
-  std::ifstream in(csv);
-  std::string header;
-  if (!std::getline(in, header))
-    throw SimulationError("cannot read the header of " + csv);
-  const auto columns = dealii::Utilities::split_string_list(header, ',');
-  std::vector<unsigned int> numbers;
-  for (const auto& name : names)
-  {
-    const auto it = std::find(columns.begin(), columns.end(), name);
-    if (it == columns.end())
-      throw SimulationError(csv + " has no column " + name + " (header: " + header + ")");
-    numbers.push_back(static_cast<unsigned int>(it - columns.begin()) + 1);
-  }
-  return numbers;
-}
-} // namespace
-
-bool plot_loglog(const std::string& dir, const std::string& csv,
-                 const std::string& x_column, const std::vector<std::string>& y_columns,
-                 const std::string& title, const std::string& png)
-{
-  std::vector<std::string> names{x_column};
-  names.insert(names.end(), y_columns.begin(), y_columns.end());
-  const auto number = column_numbers(dir + "/" + csv, names);
-  const std::string stem = png.size() > 4 && png.compare(png.size() - 4, 4, ".png") == 0
-                               ? png.substr(0, png.size() - 4)
-                               : png;
-  const std::string script = stem + ".gp";
-  {
-    std::ofstream gp(dir + "/" + script);
-    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "set datafile separator ','\n"
-       << "set terminal pngcairo size 800,600 noenhanced\n"
-       << "set output '" << png << "'\n"
-       << "set logscale xy\nset format xy '%g'\nset grid xtics ytics mxtics mytics\n"
-       << "set key top left\nset title '" << title << "'\n"
-       << "set xlabel '" << x_column << "'\n"
-       << "plot ";
-    for (std::size_t k = 1; k < names.size(); ++k)
-      gp << (k > 1 ? ", " : "") << "'" << csv << "' using " << number[0] << ':'
-         << number[k] << " with linespoints title '" << names[k] << "'";
-    gp << '\n';
-    if (!gp)
-      throw SimulationError("cannot write " + dir + "/" + script);
-  }
-  return run_gnuplot(dir, script);
 }
 
 bool plot_contact_force_statistics(const std::string& dir,
