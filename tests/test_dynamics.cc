@@ -360,19 +360,77 @@ TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
   }
 }
 
-TEST(ActiveSet, ACyclingActiveSetIsReportedNotLoopedOn)
+namespace
 {
-  // Sec. 5.3 on a contrived step: the trials violate the opposite conditions
-  // (lambda < 0 while held, gap < 0 once released), so the set goes
-  // {d1, d2} -> {d2} -> {d1, d2}: the second visit is reported, not looped on.
+SemiDiscreteSystem two_dropper_system()
+{
   CatenaryParameters catenary;
   DiscretisationParameters d;
   d.method = SpaceMethod::fdm;
   d.n_intervals = 50;
   const auto space = create_catenary_discretisation(catenary, d);
-  const SemiDiscreteSystem system =
-      build_catenary_system(*space, Constraint::Kind::unilateral);
-  ActiveSetIteration iteration(system, 20);
+  return build_catenary_system(*space, Constraint::Kind::unilateral);
+}
+} // namespace
+
+TEST(Benchmark48, CoarseGridRetensionTouchesInsteadOfCycling)
+{
+  // FDM + half-explicit at N+1 = 250: when dropper 2 re-tensions, it pulls
+  // (lambda < 0) if held and penetrates if released; the paper's iteration
+  // cycled there (t = 0.26065 s). With the touching state the run completes:
+  // dropper 2 slackens once, around the passage of the pantograph
+  // (t = 0.2604 s, within 10 ms), and the contact is kept.
+  ProgramParameters p = benchmark(48., SpaceMethod::fdm, IntegratorType::half_explicit);
+  p.discretisation.n_intervals = 250;
+  DynamicSimulation simulation(p);
+  RunStatistics stats;
+  simulation.run({&stats});
+  const auto slack = stats.dropper_slack_intervals();
+  ASSERT_EQ(slack[1].size(), 1u);
+  EXPECT_NEAR(slack[1][0].first, 0.2604, 0.01);
+  EXPECT_NEAR(slack[1][0].second, 0.2604, 0.01);
+  EXPECT_TRUE(slack[0].empty());
+  EXPECT_TRUE(stats.contact_loss_intervals().empty());
+  EXPECT_LT(stats.max_position_residual(), 1e-12);
+}
+
+TEST(Guards, ARunThatBlowsUpStopsWithTimeStepAndQuantity)
+{
+  // FEM + half-explicit at N+1 = 250 with dt = 2e-5 s, just below
+  // 2/omega_max = 2.15e-5 s of the unconstrained system: at 32 m/s the
+  // coupled run goes unstable near t = 0.106 s (the impacts of dropper 2
+  // excite the highest modes, which the reversible method does not damp). The
+  // run must stop once a displacement exceeds the span (20 m), naming time
+  // and step, long before values overflow.
+  ProgramParameters p = benchmark(32., SpaceMethod::fem, IntegratorType::half_explicit);
+  p.discretisation.n_intervals = 250;
+  p.time_integration.time_step = 2e-5;
+  DynamicSimulation simulation(p);
+  Recorder record;
+  try
+  {
+    simulation.run({&record});
+    FAIL() << "expected a SimulationError";
+  }
+  catch (const SimulationError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("exceeds the span 20 m at t = "), std::string::npos)
+        << message;
+    EXPECT_NE(message.find("(step "), std::string::npos) << message;
+  }
+  ASSERT_FALSE(record.points.empty());
+  EXPECT_LT(record.points.back().t, 0.2);
+}
+
+TEST(ActiveSet, ACyclingActiveSetIsReportedNotLoopedOn)
+{
+  // Sec. 5.3 as in the paper (no touching state) on a contrived step: the
+  // trials violate the opposite conditions (lambda < 0 while held, gap < 0
+  // once released), so the set goes {d1, d2} -> {d2} -> {d1, d2}: the second
+  // visit is reported, not looped on.
+  const SemiDiscreteSystem system = two_dropper_system();
+  ActiveSetIteration iteration(system, 20, false);
   iteration.start({true, true});
   // Dropper 1 pulls with lambda < 0: released.
   EXPECT_FALSE(iteration.accept({0., 0.}, {-1., 5.}, 0.1, 7));
@@ -393,6 +451,29 @@ TEST(ActiveSet, ACyclingActiveSetIsReportedNotLoopedOn)
   iteration.start({true, true});
   EXPECT_TRUE(iteration.accept({0., 0.}, {3., 5.}, 0.2, 8));
   EXPECT_EQ(iteration.changes_in_step(), 0u);
+}
+
+TEST(ActiveSet, AConstraintWithNoConsistentStateTouches)
+{
+  // The same step with the touching state (the default): released for
+  // lambda < 0 and penetrating without it, dropper 1 holds on position and
+  // velocity level without force (g^(II) := lambda = 0); the step is then
+  // accepted, and the dropper counts as holding (no change of the set).
+  const SemiDiscreteSystem system = two_dropper_system();
+  ActiveSetIteration iteration(system, 20);
+  iteration.start({true, true});
+  EXPECT_FALSE(iteration.accept({0., 0.}, {-1., 5.}, 0.1, 7));
+  EXPECT_FALSE(iteration.accept({-1e-3, 0.}, {0., 5.}, 0.1, 7));
+  EXPECT_EQ(iteration.active_indices(), (std::vector<unsigned int>{0, 1}));
+  EXPECT_EQ(iteration.force_indices(), (std::vector<unsigned int>{1}));
+  EXPECT_TRUE(iteration.accept({0., 0.}, {0., 5.}, 0.1, 7));
+  EXPECT_EQ(iteration.changes_in_step(), 0u);
+  // A constraint that closes in the step (an impact) is active with force.
+  iteration.start({true, false});
+  EXPECT_FALSE(iteration.accept({0., -1e-3}, {3., 0.}, 0.2, 8));
+  EXPECT_EQ(iteration.force_indices(), (std::vector<unsigned int>{0, 1}));
+  EXPECT_TRUE(iteration.accept({0., 0.}, {3., -2.}, 0.2, 8));
+  EXPECT_EQ(iteration.changes_in_step(), 1u);
 }
 
 TEST(Bdf2, BlockEliminationSolvesTheFullStepSystem)

@@ -108,18 +108,28 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
 
 namespace
 {
-void check_finite(const DynamicState& s, const unsigned long step)
+/**
+ * Stops a run that goes unstable: non-finite values, or a displacement (or
+ * Hermite slope) beyond @p bound, the span of the catenary: no physical
+ * state of a wire comes near that, while an unstable mode grows through it
+ * within a few steps of exponential growth.
+ */
+void check_bounded(const DynamicState& s, const unsigned long step, const double bound)
 {
-  bool finite = std::isfinite(s.q.l2_norm()) && std::isfinite(s.v.l2_norm());
+  const double largest = s.q.linfty_norm();
+  bool finite = std::isfinite(largest) && std::isfinite(s.v.linfty_norm());
   for (const double l : s.lambda)
     finite = finite && std::isfinite(l);
+  std::ostringstream m;
   if (!finite)
-  {
-    std::ostringstream m;
     m << "unstable: non-finite positions, velocities or multipliers at t = " << s.t
       << " s (step " << step << ")";
-    throw SimulationError(m.str());
-  }
+  else if (largest > bound)
+    m << "unstable: a displacement of " << largest << " m exceeds the span " << bound
+      << " m at t = " << s.t << " s (step " << step << ")";
+  else
+    return;
+  throw SimulationError(m.str());
 }
 } // namespace
 
@@ -154,7 +164,7 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   for (unsigned long n = 1; n <= n_steps; ++n)
   {
     integrator->advance();
-    check_finite(integrator->latest(), n);
+    check_bounded(integrator->latest(), n, parameters.catenary.span);
     notify(integrator->latest());
   }
   integrator->finish();

@@ -7,19 +7,21 @@
 namespace pantocat
 {
 ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
-                                       const unsigned int max_iterations)
-    : system(system), max_iterations(max_iterations)
+                                       const unsigned int max_iterations,
+                                       const bool allow_touching)
+    : system(system), max_iterations(max_iterations), allow_touching(allow_touching)
 {
 }
 
 void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
 {
   at_start = active_at_start;
-  current = active_at_start;
-  // Bilateral constraints are always active.
+  current.assign(at_start.size(), Status::inactive);
   for (unsigned int i = 0; i < current.size(); ++i)
-    if (!system.constraints[i]->is_unilateral())
-      current[i] = true;
+    // Bilateral constraints are always active.
+    if (at_start[i] || !system.constraints[i]->is_unilateral())
+      current[i] = Status::active;
+  released.assign(current.size(), false);
   visited.assign(1, current);
   update_indices();
 }
@@ -27,20 +29,28 @@ void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
 void ActiveSetIteration::update_indices()
 {
   indices.clear();
+  force.clear();
+  holds.assign(current.size(), false);
   for (unsigned int i = 0; i < current.size(); ++i)
-    if (current[i])
+  {
+    holds[i] = current[i] != Status::inactive;
+    if (holds[i])
       indices.push_back(i);
+    if (current[i] == Status::active)
+      force.push_back(i);
+  }
 }
 
-std::string ActiveSetIteration::describe(const std::vector<bool>& set) const
+std::string ActiveSetIteration::describe(const std::vector<Status>& set) const
 {
   std::ostringstream s;
   s << '{';
   bool first = true;
   for (unsigned int i = 0; i < set.size(); ++i)
-    if (set[i])
+    if (set[i] != Status::inactive)
     {
-      s << (first ? "" : ", ") << system.constraints[i]->name();
+      s << (first ? "" : ", ") << system.constraints[i]->name()
+        << (set[i] == Status::touching ? " (touching)" : "");
       first = false;
     }
   s << '}';
@@ -51,16 +61,25 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
                                 const std::vector<double>& lambda, const double t,
                                 const unsigned long step)
 {
-  std::vector<bool> next = current;
+  std::vector<Status> next = current;
   bool changed = false;
   for (unsigned int i = 0; i < current.size(); ++i)
   {
     if (!system.constraints[i]->is_unilateral())
       continue;
-    if (!current[i] && gaps_next[i] < 0.)
-      next[i] = true, changed = true;
-    else if (current[i] && at_start[i] && lambda[i] < 0.)
-      next[i] = false, changed = true;
+    if (current[i] == Status::inactive && gaps_next[i] < 0.)
+    {
+      // Released in this step for a negative force, yet penetrating without
+      // it: touching. Otherwise it closes (an impact).
+      next[i] = allow_touching && released[i] ? Status::touching : Status::active;
+      changed = true;
+    }
+    else if (current[i] == Status::active && at_start[i] && lambda[i] < 0.)
+    {
+      next[i] = Status::inactive;
+      released[i] = true;
+      changed = true;
+    }
   }
   if (!changed)
     return true;
@@ -83,8 +102,8 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
 unsigned int ActiveSetIteration::changes_in_step() const
 {
   unsigned int n = 0;
-  for (unsigned int i = 0; i < current.size(); ++i)
-    n += current[i] != at_start[i];
+  for (unsigned int i = 0; i < holds.size(); ++i)
+    n += holds[i] != at_start[i];
   return n;
 }
 } // namespace pantocat

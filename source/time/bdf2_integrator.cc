@@ -210,33 +210,59 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   x.lambda.assign(m_all, 0.);
   std::vector<double> gaps(m_all);
   active_set.start(active_at_start);
+  // Unknowns: lambda of the constraints with force, eta and mu of all that
+  // hold; rows: g and dg/dt of all that hold, d2g/dt2 of those with force
+  // (a touching constraint has g^(II) := lambda = 0, ActiveSetIteration).
+  struct Entry
+  {
+    unsigned int constraint, kind_or_level;
+  };
+  std::vector<Entry> unknowns, equations;
+  std::vector<double> y_lambda(m_all), y_eta(m_all), y_mu(m_all);
   for (;;)
   {
-    const auto& A = active_set.active_indices();
-    const unsigned int m = A.size();
-    small.reinit(3 * m, 3 * m);
-    small_rhs.reinit(3 * m);
-    small_solution.reinit(3 * m);
-    // Rows: g, dg/dt, d2g/dt2 of each active constraint; columns: lambda, eta, mu.
-    for (unsigned int k = 0; k < m; ++k)
+    const auto &A = active_set.active_indices(), &A_force = active_set.force_indices();
+    unknowns.clear();
+    equations.clear();
+    for (const unsigned int l : A_force)
+      unknowns.push_back({l, lambda}), equations.push_back({l, 2});
+    for (const unsigned int l : A)
     {
-      for (unsigned int l = 0; l < m; ++l)
-        for (unsigned int kind = 0; kind < 3; ++kind)
-          for (unsigned int level = 0; level < 3; ++level)
-            small(level * m + k, kind * m + l) = F[A[k] * m_all + A[l]][kind][level];
-      for (unsigned int level = 0; level < 3; ++level)
-        small_rhs(level * m + k) = -base_levels[A[k]][level];
+      unknowns.push_back({l, eta});
+      unknowns.push_back({l, mu});
+      equations.push_back({l, 0});
+      equations.push_back({l, 1});
+    }
+    const unsigned int size = unknowns.size();
+    small.reinit(size, size);
+    small_rhs.reinit(size);
+    small_solution.reinit(size);
+    for (unsigned int r = 0; r < size; ++r)
+    {
+      const Entry& e = equations[r];
+      for (unsigned int c = 0; c < size; ++c)
+        small(r, c) = F[e.constraint * m_all + unknowns[c].constraint]
+                       [unknowns[c].kind_or_level][e.kind_or_level];
+      small_rhs(r) = -base_levels[e.constraint][e.kind_or_level];
     }
     solve_multiplier_system(small, small_rhs, small_solution, t1, "BDF step");
-    std::fill(x.lambda.begin(), x.lambda.end(), 0.);
-    for (unsigned int l = 0; l < m; ++l)
-      x.lambda[A[l]] = small_solution(lambda * m + l);
+    std::fill(y_lambda.begin(), y_lambda.end(), 0.);
+    std::fill(y_eta.begin(), y_eta.end(), 0.);
+    std::fill(y_mu.begin(), y_mu.end(), 0.);
+    for (unsigned int c = 0; c < size; ++c)
+    {
+      const Entry& u = unknowns[c];
+      (u.kind_or_level == lambda ? y_lambda
+       : u.kind_or_level == eta  ? y_eta
+                                 : y_mu)[u.constraint] = small_solution(c);
+    }
+    x.lambda = y_lambda;
     for (unsigned int k = 0; k < m_all; ++k)
     {
       gaps[k] = base_levels[k][0];
-      for (unsigned int l = 0; l < m; ++l)
-        for (unsigned int kind = 0; kind < 3; ++kind)
-          gaps[k] += small_solution(kind * m + l) * F[k * m_all + A[l]][kind][0];
+      for (unsigned int c = 0; c < size; ++c)
+        gaps[k] += small_solution(c) *
+                   F[k * m_all + unknowns[c].constraint][unknowns[c].kind_or_level][0];
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1))
       break;
@@ -249,14 +275,6 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   //   q = base + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,
   //   v = c q - rho_q - sum_l (mu_l Y_l + eta_l Z_l),  a = c v - rho_v - sum_l eta_l Y_l.
   const auto& A = active_set.active_indices();
-  const unsigned int m = A.size();
-  std::vector<double> y_lambda(m_all, 0.), y_eta(m_all, 0.), y_mu(m_all, 0.);
-  for (unsigned int l = 0; l < m; ++l)
-  {
-    y_lambda[A[l]] = small_solution(lambda * m + l);
-    y_eta[A[l]] = small_solution(eta * m + l);
-    y_mu[A[l]] = small_solution(mu * m + l);
-  }
   // One pass over the unknowns, reading the interleaved columns in place.
   std::vector<std::pair<const double*, std::array<double, 4>>> q_terms, u_terms;
   if (s.moving.empty())

@@ -24,7 +24,7 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(const SemiDiscreteSystem&
     : TimeIntegrator(system), h(time_step), k(rho_infinity),
       c_q((1. - k.alpha_m) / ((1. - k.alpha_f) * k.beta * h * h)),
       c_v(k.gamma / (k.beta * h)), history_load(system), at_next(system),
-      active_set(system, max_iterations), S_columns(system.n_constraints()),
+      active_set(system, max_iterations, false), S_columns(system.n_constraints()),
       M_columns(system.n_constraints())
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");

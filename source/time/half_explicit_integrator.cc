@@ -307,7 +307,8 @@ void HalfExplicitIntegrator::advance()
   active_set.start(active_now);
   for (;;)
   {
-    compute_acceleration(active_set.active_indices());
+    compute_acceleration(
+        active_set.force_indices()); // g^(II): touching ones carry no force
     compute_update(active_set.active_indices());
     if (active_set.accept(gaps, lambda, t + dt, step_number + 1))
       break;

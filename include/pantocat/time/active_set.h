@@ -18,6 +18,17 @@ namespace pantocat
  * A constraint added in this step is not released in the same step: its
  * multiplier on acceleration level may be negative at the impact, and
  * releasing it would undo the impact and cycle.
+ *
+ * Touching constraints. (36), (37) and g^(II) state complementarity level by
+ * level. A constraint of J_n may have lambda_i < 0 when active and a negative
+ * gap at t_{n+1} when released: no choice of "active" or "inactive" is
+ * consistent, and the iteration of the paper cycles (seen at the re-tension
+ * of dropper 2 at 48 m/s on several grids). With touching allowed, such a
+ * constraint becomes *touching*: active on position and velocity level
+ * (g = dg/dt = 0 at t_{n+1}, multipliers mu, eta), inactive on acceleration
+ * level (g^(II)_i := lambda_i = 0). It just holds, without force; the next
+ * step starts with it active again.
+ *
  * All violations are toggled together and the step is repeated; a set seen
  * before in the same step, or more than the allowed number of repetitions,
  * stops the run with a SimulationError that names time, step and constraints.
@@ -25,7 +36,8 @@ namespace pantocat
 class ActiveSetIteration
 {
 public:
-  ActiveSetIteration(const SemiDiscreteSystem& system, unsigned int max_iterations);
+  ActiveSetIteration(const SemiDiscreteSystem& system, unsigned int max_iterations,
+                     bool allow_touching = true);
 
   /// Begin a step from the active set J_n.
   void start(const std::vector<bool>& active_at_start);
@@ -37,21 +49,32 @@ public:
   bool accept(const std::vector<double>& gaps_next, const std::vector<double>& lambda,
               double t, unsigned long step);
 
-  const std::vector<bool>& active() const { return current; }
-  /// Indices of the active constraints.
+  /// Constraints that hold at t_{n+1} (active or touching): positions, velocities.
+  const std::vector<bool>& active() const { return holds; }
+  /// Their indices: the constraints of g^(0) and g^(I).
   const std::vector<unsigned int>& active_indices() const { return indices; }
+  /// The active constraints that carry a force: those of g^(II).
+  const std::vector<unsigned int>& force_indices() const { return force; }
   /// Number of constraints whose state changed in the accepted step.
   unsigned int changes_in_step() const;
   unsigned int iterations_in_step() const { return visited.size(); }
 
 private:
+  enum class Status : char
+  {
+    inactive,
+    active,
+    touching
+  };
   void update_indices();
-  std::string describe(const std::vector<bool>& set) const;
+  std::string describe(const std::vector<Status>& set) const;
 
   const SemiDiscreteSystem& system;
   unsigned int max_iterations;
-  std::vector<bool> at_start, current;
-  std::vector<unsigned int> indices;
-  std::vector<std::vector<bool>> visited;
+  bool allow_touching;
+  std::vector<bool> at_start, holds, released;
+  std::vector<Status> current;
+  std::vector<unsigned int> indices, force;
+  std::vector<std::vector<Status>> visited;
 };
 } // namespace pantocat

@@ -35,7 +35,9 @@ namespace pantocat
  * v <- v + M^-1 G^T eta, so that both residuals stay at round-off like those
  * of the GGL methods (38), and a constraint that closes in a step (Sec. 5.3)
  * closes with an inelastic impact. Unilateral constraints switch by the
- * active-set strategy of Sec. 5.3.
+ * active-set strategy of Sec. 5.3, without the touching state of
+ * ActiveSetIteration (index 3 has no position-level multiplier besides
+ * lambda to hold a constraint without force).
  *
  * Linear algebra as in Bdf2Integrator: S = K + gamma/(beta h) D +
  * (1 - alpha_m)/((1 - alpha_f) beta h^2) M is factorised once; a step solves
