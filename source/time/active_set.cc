@@ -22,7 +22,8 @@ void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
     if (at_start[i] || !system.constraints[i]->is_unilateral())
       current[i] = Status::active;
   released.assign(current.size(), false);
-  visited.assign(1, current);
+  visited.resize(1); // keeps the capacity: no allocation per step
+  visited[0] = current;
   update_indices();
 }
 

@@ -45,6 +45,12 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
       d_used[o] = d_used[o] || d->value() != 0.;
     }
   }
+  forces.symmetric_stiffness = true;
+  for (int o = 1; o <= b; ++o)
+    for (int i = 0; i + o < static_cast<int>(n); ++i)
+      forces.symmetric_stiffness =
+          forces.symmetric_stiffness &&
+          forces.stiffness[b + o][i] == forces.stiffness[b - o][i + o];
   for (int o = 0; o <= 2 * b; ++o)
   {
     if (k_used[o])
@@ -61,28 +67,33 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
 namespace
 {
 /**
- * out = f - K q - D/2 (v_prev + v) in one sweep for half bandwidth B of K and
- * a diagonal D (the FDM and lumped-pantograph case): the offsets are
- * compile-time constants, so the row loop vectorises.
+ * out = scale * (f - K q - D/2 (v_prev + v)) in one sweep for a symmetric K
+ * of half bandwidth B and a diagonal D (the FDM and lumped-pantograph case):
+ * K(i, i+o) = K(i+o, i) is read from the upper diagonals only (fewer streams
+ * through the cache), the offsets are compile-time constants (the row loop
+ * vectorises), and the diagonal scaling of (M + dt/2 D)^-1 is fused in.
  */
 template <int B>
 void banded_forces(const int n, const double* __restrict f,
                    const std::vector<std::vector<double>>& K, const double* __restrict d0,
-                   const double* __restrict q, const double* __restrict vp,
-                   const double* __restrict v, double* __restrict out)
+                   const double* __restrict scale, const double* __restrict q,
+                   const double* __restrict vp, const double* __restrict v,
+                   double* __restrict out)
 {
-  const double* k[2 * B + 1];
-  for (int o = 0; o <= 2 * B; ++o)
-    k[o] = K[o].data();
+  const double* k[B + 1]; // k[o][i] = K(i, i + o)
+  for (int o = 0; o <= B; ++o)
+    k[o] = K[B + o].data();
   auto row = [&](const int i, const bool interior)
   {
-    double s = f[i];
-    for (int o = -B; o <= B; ++o)
-      if (interior || (i + o >= 0 && i + o < n))
-        s -= k[o + B][i] * q[i + o];
-    if (d0)
-      s -= d0[i] * (vp[i] + v[i]);
-    out[i] = s;
+    double s = f[i] - k[0][i] * q[i] - d0[i] * (vp[i] + v[i]);
+    for (int o = 1; o <= B; ++o)
+    {
+      if (interior || i + o < n)
+        s -= k[o][i] * q[i + o];
+      if (interior || i - o >= 0)
+        s -= k[o][i - o] * q[i - o];
+    }
+    out[i] = s * scale[i];
   };
   for (int i = 0; i < std::min(B, n); ++i)
     row(i, false);
@@ -102,18 +113,23 @@ void HalfExplicitIntegrator::compute_forces()
   double* __restrict out = a.begin();
   // Damping is diagonal but for a few rows (a lumped pantograph's dampers):
   // the fused sweep with the diagonal, then those entries.
-  if (forces.off_diagonal_damping.size() <= 16 && b >= 1 && b <= 3)
+  const dealii::Vector<double>* scaling = smoothed_mass_inverse.row_scaling();
+  if (forces.off_diagonal_damping.size() <= 16 && b >= 1 && b <= 3 &&
+      forces.symmetric_stiffness && scaling)
   {
     const double* d0 = forces.half_damping[b].data();
     const double* f = system.load.begin();
+    const double* scale = scaling->begin();
     if (b == 1)
-      banded_forces<1>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+      banded_forces<1>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
     else if (b == 2)
-      banded_forces<2>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+      banded_forces<2>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
     else
-      banded_forces<3>(n, f, forces.stiffness, d0, qq, vp, vv, out);
+      banded_forces<3>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+    // The coupled rows (unscaled by row_scaling) get their dampers, then their block.
     for (const auto& [i, j, d] : forces.off_diagonal_damping)
       out[i] -= d * (vp[j] + vv[j]);
+    smoothed_mass_inverse.apply_coupled_rows(a);
     return;
   }
   std::copy(system.load.begin(), system.load.end(), out);
@@ -132,6 +148,7 @@ void HalfExplicitIntegrator::compute_forces()
     for (int i = first; i < last; ++i)
       out[i] -= d[i] * (vp[i + o] + vv[i + o]);
   }
+  smoothed_mass_inverse.apply(a);
 }
 
 void HalfExplicitIntegrator::factorize()
@@ -217,8 +234,7 @@ void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int
 {
   const auto& sn = at_n.states();
   // (M + dt/2 D) a = f - K q_n - D (v_{n-1} + v_n)/2: the smoothing (41).
-  compute_forces();
-  smoothed_mass_inverse.apply(a);
+  compute_forces(); // a <- (M + dt/2 D)^-1 (f - K q_n - D (v_{n-1} + v_n)/2)
 
   const unsigned int m = A.size();
   small.reinit(m, m);

@@ -51,6 +51,9 @@ void MassInverse::initialize(const dealii::SparseMatrix<double>& matrix,
                             std::to_string(d) + " at unknown " + std::to_string(i));
     inverse_diagonal(i) = 1. / d;
   }
+  scaling = inverse_diagonal;
+  for (const unsigned int i : coupled_rows)
+    scaling(i) = 1.;
   const unsigned int c = coupled_rows.size();
   coupled_inverse.reinit(c, c);
   for (unsigned int k = 0; k < c; ++k)
@@ -108,6 +111,18 @@ void MassInverse::apply(InterleavedColumns& X) const
         s += coupled_inverse(k, l) * coupled[l * w + r];
       X(coupled_rows[k], r) = s;
     }
+}
+
+void MassInverse::apply_coupled_rows(dealii::Vector<double>& x) const
+{
+  const unsigned int c = coupled_rows.size();
+  if (c == 0)
+    return;
+  for (unsigned int k = 0; k < c; ++k)
+    block_in(k) = x(coupled_rows[k]);
+  coupled_inverse.vmult(block_out, block_in);
+  for (unsigned int k = 0; k < c; ++k)
+    x(coupled_rows[k]) = block_out(k);
 }
 
 void MassInverse::apply_block_to_row(const SparseRow& row,

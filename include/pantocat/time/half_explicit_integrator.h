@@ -60,7 +60,8 @@ private:
   void compute_time_dependent_columns();
   void reset_time_dependent_columns();
   void factorize();
-  /// a <- f - K q - D (v_prev + v)/2 in one pass over the rows.
+  /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2), in one pass over the
+  /// rows where (M + dt/2 D) is diagonal but for a few coupled rows.
   void compute_forces();
 
   /// K and D/2 stored by diagonals (offsets -b..b, zero-padded): the
@@ -77,6 +78,7 @@ private:
       double value;
     };
     std::vector<Entry> off_diagonal_damping; ///< D/2 off the diagonal
+    bool symmetric_stiffness = false;        ///< K(i, j) == K(j, i) exactly
   } forces;
 
   double dt;

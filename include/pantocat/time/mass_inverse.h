@@ -33,6 +33,16 @@ public:
   void apply(dealii::Vector<double>& x) const;
   /// Every column of @p X <- A^{-1} column (one batched substitution when factorised).
   void apply(InterleavedColumns& X) const;
+  /**
+   * In the diagonal forms: the scaling 1/A_ii, with 1 on the coupled rows, so
+   * that A^{-1} x = apply_coupled_rows(row_scaling() .* x); null otherwise.
+   */
+  const dealii::Vector<double>* row_scaling() const
+  {
+    return diagonal ? &scaling : nullptr;
+  }
+  /// x[C] <- block^{-1} x[C] on the coupled rows C (diagonal forms only).
+  void apply_coupled_rows(dealii::Vector<double>& x) const;
   /// The sparse factorisation, or null when A is (block-)diagonal.
   const SparseDirectSolver* factorised() const
   {
@@ -55,6 +65,7 @@ private:
 
   bool diagonal = false;
   dealii::Vector<double> inverse_diagonal; ///< 0 on the coupled rows
+  dealii::Vector<double> scaling;          ///< 1 / A_ii, 1 on the coupled rows
   std::vector<unsigned int> coupled_rows;
   dealii::FullMatrix<double> coupled_inverse;
   mutable dealii::Vector<double> block_in, block_out;
