@@ -3,10 +3,13 @@
 //  - FDM + half-explicit against a minimal hand-written loop on plain arrays
 //    that does the same arithmetic (stencils, diagonal masses, the contact
 //    row, the 3x3 and 6x6 multiplier systems);
-//  - FEM + BDF-2 against one hand-written banded Cholesky solve of the same size.
+//  - FEM + BDF-2 against one hand-written banded Cholesky solve of the same size;
+// then the sparse direct solvers (banded Cholesky, UMFPACK, Trilinos KLU) on the
+// same BDF-2 iteration matrices.
 // Every figure is the fastest of 5 batches (noisy machines).
 // Usage: bench_integrators [steps] [N+1 ...]; prints a table (Markdown).
 #include <pantocat/app/program_parameters.h>
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/space/smoothed_delta.h>
@@ -310,6 +313,53 @@ double baseline_banded_solve(int n, unsigned int repetitions)
 }
 } // namespace
 
+/**
+ * The three sparse direct solvers on the same matrix, S = K + c D + c^2 M of
+ * FEM + BDF-2 with dt = c dx^2: factorisation [ms], one solve [us], and a
+ * whole BDF-2 step of the library with that solver [us].
+ */
+void compare_linear_solvers(const std::vector<unsigned int>& grids, unsigned int steps)
+{
+  std::cout << "\n| N+1 | solver | factorise [ms] | solve [us] | FEM+BDF2 step [us] |\n"
+            << "|---|---|---|---|---|\n";
+  for (const unsigned int n : grids)
+  {
+    const double scale = 500. / n, dt = 5e-5 * scale * scale, c = 1.5 / dt;
+    ProgramParameters p = benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt);
+    DynamicSimulation simulation(p);
+    const SemiDiscreteSystem& sys = simulation.system();
+    dealii::SparseMatrix<double> S(*sys.sparsity);
+    S.copy_from(sys.stiffness);
+    S.add(c, sys.damping);
+    S.add(c * c, sys.mass);
+    for (const auto type : {LinearSolverType::banded, LinearSolverType::umfpack,
+                            LinearSolverType::trilinos_klu})
+    {
+      SparseDirectSolver solver;
+      double factorise = 1e300, solve = 1e300;
+      dealii::Vector<double> x(sys.n_dofs());
+      for (unsigned int b = 0; b < batches; ++b)
+      {
+        auto t0 = Clock::now();
+        solver.factorize(S, "S", type);
+        factorise = std::min(factorise, 1e3 * seconds_since(t0));
+        const unsigned int repetitions = 20;
+        t0 = Clock::now();
+        for (unsigned int r = 0; r < repetitions; ++r)
+        {
+          x = 1.;
+          solver.solve(x);
+        }
+        solve = std::min(solve, 1e6 * seconds_since(t0) / repetitions);
+      }
+      p.time_integration.linear_solver = type;
+      const double step = library_step(p, std::max(20u, steps / (n / 250)));
+      std::cout << std::setprecision(3) << "| " << n << " | " << to_string(type) << " | "
+                << factorise << " | " << solve << " | " << step << " |" << std::endl;
+    }
+  }
+}
+
 int main(int argc, char** argv)
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
@@ -346,4 +396,5 @@ int main(int argc, char** argv)
               << " | " << he / loop << " | " << bdf << " | " << banded << " | "
               << bdf / banded << " | " << fdm_bdf << " |" << std::endl;
   }
+  compare_linear_solvers(grids, steps / 4);
 }

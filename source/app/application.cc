@@ -93,9 +93,11 @@ int run(const CommandLine& cl, int argc, char** argv)
   ProgramParameters parameters;
   parameters.parse_parameters(prm);
   // A serial run uses no MPI or Trilinos object: skip MPI's start-up (about
-  // 0.35 s) unless an MPI launcher started us.
+  // 0.35 s) unless an MPI launcher started us or Trilinos solves (its
+  // matrices need MPI).
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  if (launched_by_mpi())
+  if (launched_by_mpi() ||
+      parameters.time_integration.linear_solver == LinearSolverType::trilinos_klu)
     mpi.emplace(argc, argv, 1);
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.

@@ -1,6 +1,10 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 
+#include <deal.II/lac/la_parallel_vector.h>
+#include <deal.II/lac/trilinos_solver.h>
+#include <deal.II/lac/trilinos_sparse_matrix.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -198,28 +202,81 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
   return true;
 }
 
-void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
-                                   const std::string& what)
+const char* to_string(const LinearSolverType type)
 {
-  banded = try_banded_cholesky(matrix);
+  switch (type)
+  {
+  case LinearSolverType::banded:
+    return "banded";
+  case LinearSolverType::umfpack:
+    return "umfpack";
+  case LinearSolverType::trilinos_klu:
+    return "trilinos-klu";
+  }
+  return "";
+}
+
+struct SparseDirectSolver::Klu
+{
+  dealii::TrilinosWrappers::SparseMatrix matrix;
+  dealii::SolverControl control;
+  dealii::TrilinosWrappers::SolverDirect solver{
+      control,
+      dealii::TrilinosWrappers::SolverDirect::AdditionalData(false, "Amesos_Klu")};
+  mutable dealii::LinearAlgebra::distributed::Vector<double> x, b;
+};
+
+SparseDirectSolver::SparseDirectSolver() = default;
+SparseDirectSolver::~SparseDirectSolver() = default;
+
+void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
+                                   const std::string& what, const LinearSolverType type)
+{
+  klu.reset();
+  banded = type == LinearSolverType::banded && try_banded_cholesky(matrix);
   if (banded)
     return;
+  n = matrix.m();
   band.clear();
   independent_blocks.clear();
   try
   {
-    umfpack.initialize(matrix);
+    if (type == LinearSolverType::trilinos_klu)
+    {
+      klu = std::make_unique<Klu>();
+      klu->matrix.reinit(matrix);
+      klu->solver.initialize(klu->matrix);
+      klu->x.reinit(n);
+      klu->b.reinit(n);
+    }
+    else
+      umfpack.initialize(matrix);
   }
   catch (const std::exception&)
   {
-    throw SimulationError("the " + what + " is singular and cannot be factorised");
+    throw SimulationError("the " + what + " is singular and cannot be factorised (" +
+                          to_string(type) + ")");
   }
+}
+
+void SparseDirectSolver::solve_general(dealii::Vector<double>& x) const
+{
+  if (!klu)
+  {
+    umfpack.solve(x);
+    return;
+  }
+  for (int i = 0; i < n; ++i)
+    klu->b[i] = x[i];
+  klu->solver.solve(klu->x, klu->b);
+  for (int i = 0; i < n; ++i)
+    x[i] = klu->x[i];
 }
 
 void SparseDirectSolver::solve(dealii::Vector<double>& x) const
 {
   if (!banded)
-    umfpack.solve(x);
+    solve_general(x);
   else
     solve_interleaved(x.begin(), 1);
 }
@@ -274,7 +331,7 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
     {
       for (int i = 0; i < n; ++i)
         column[i] = X[i * k + r];
-      umfpack.solve(column);
+      solve_general(column);
       for (int i = 0; i < n; ++i)
         X[i * k + r] = column[i];
     }

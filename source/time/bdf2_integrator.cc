@@ -43,7 +43,7 @@ enum MassColumn : unsigned int
 struct Bdf2Integrator::Stage
 {
   Stage(const SemiDiscreteSystem& system, const MassInverse& mass_inverse,
-        const DampingOverMass& damping_over_mass, double c)
+        const DampingOverMass& damping_over_mass, double c, LinearSolverType solver)
       : system(system), mass_inverse(mass_inverse), damping_over_mass(damping_over_mass),
         c(c), S_columns(system.n_constraints()), M_columns(system.n_constraints())
   {
@@ -51,7 +51,7 @@ struct Bdf2Integrator::Stage
     S.copy_from(system.stiffness);
     S.add(c, system.damping);
     S.add(c * c, system.mass);
-    S_inverse.factorize(S, "BDF iteration matrix K + c D + c^2 M");
+    S_inverse.factorize(S, "BDF iteration matrix K + c D + c^2 M", solver);
     for (unsigned int i = 0; i < system.n_constraints(); ++i)
       (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
     base_owner = moving.empty() ? system.n_constraints() : moving.front();
@@ -140,11 +140,14 @@ struct Bdf2Integrator::Stage
 };
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
-                               const unsigned int max_iterations)
-    : TimeIntegrator(system), dt(time_step), damping_over_mass(system),
-      history_load(system), at_next(system), active_set(system, max_iterations)
+                               const unsigned int max_iterations,
+                               const LinearSolverType linear_solver)
+    : TimeIntegrator(system), dt(time_step), linear_solver(linear_solver),
+      damping_over_mass(system), history_load(system), at_next(system),
+      active_set(system, max_iterations)
 {
-  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
+                          linear_solver);
 }
 
 Bdf2Integrator::~Bdf2Integrator() = default;
@@ -319,8 +322,8 @@ void Bdf2Integrator::richardson_start()
 {
   // Backward Euler with dt, and twice with dt/2; extrapolate (2nd order), Sec. 5.2.
   const DynamicState x0 = current;
-  Stage full(system, mass_inverse, damping_over_mass, 1. / dt),
-      half(system, mass_inverse, damping_over_mass, 2. / dt);
+  Stage full(system, mass_inverse, damping_over_mass, 1. / dt, linear_solver),
+      half(system, mass_inverse, damping_over_mass, 2. / dt, linear_solver);
   dealii::Vector<double> rho_q(x0.q), rho_v(x0.v);
   rho_q *= 1. / dt;
   rho_v *= 1. / dt;
@@ -355,7 +358,8 @@ void Bdf2Integrator::advance()
   else
   {
     if (!bdf2)
-      bdf2 = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1.5 / dt);
+      bdf2 = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1.5 / dt,
+                                     linear_solver);
     // rho = (4 x_n - x_{n-1}) / (2 dt)
     dealii::Vector<double> rho_q(current.q), rho_v(current.v);
     rho_q.sadd(2. / dt, -0.5 / dt, previous.q);

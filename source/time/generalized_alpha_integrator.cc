@@ -17,22 +17,23 @@ GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
 {
 }
 
-GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(const SemiDiscreteSystem& system,
-                                                       const double time_step,
-                                                       const double rho_infinity,
-                                                       const unsigned int max_iterations)
+GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
+    const SemiDiscreteSystem& system, const double time_step, const double rho_infinity,
+    const unsigned int max_iterations, const LinearSolverType linear_solver)
     : TimeIntegrator(system), h(time_step), k(rho_infinity),
       c_q((1. - k.alpha_m) / ((1. - k.alpha_f) * k.beta * h * h)),
       c_v(k.gamma / (k.beta * h)), history_load(system), at_next(system),
       active_set(system, max_iterations, false), S_columns(system.n_constraints()),
       M_columns(system.n_constraints())
 {
-  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
+                          linear_solver);
   dealii::SparseMatrix<double> S(*system.sparsity);
   S.copy_from(system.stiffness);
   S.add(c_v, system.damping);
   S.add(c_q, system.mass);
-  S_inverse.factorize(S, "generalized-alpha iteration matrix K + c_v D + c_q M");
+  S_inverse.factorize(S, "generalized-alpha iteration matrix K + c_v D + c_q M",
+                      linear_solver);
   for (unsigned int i = 0; i < system.n_constraints(); ++i)
     (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
   base_owner = moving.empty() ? system.n_constraints() : moving.front();

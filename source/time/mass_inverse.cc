@@ -23,7 +23,8 @@ std::vector<unsigned int> rows_with_coupling(const dealii::SparseMatrix<double>&
 } // namespace
 
 void MassInverse::initialize(const dealii::SparseMatrix<double>& matrix,
-                             const bool is_diagonal, const std::string& what)
+                             const bool is_diagonal, const std::string& what,
+                             const LinearSolverType solver)
 {
   coupled_rows = is_diagonal ? std::vector<unsigned int>() : rows_with_coupling(matrix);
   // A small coupled block (a lumped pantograph) beside a diagonal rest.
@@ -37,7 +38,7 @@ void MassInverse::initialize(const dealii::SparseMatrix<double>& matrix,
   if (!diagonal)
   {
     coupled_rows.clear();
-    factorization.factorize(matrix, what);
+    factorization.factorize(matrix, what, solver);
     return;
   }
   inverse_diagonal.reinit(matrix.m());

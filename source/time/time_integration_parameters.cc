@@ -39,6 +39,14 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
                     "generalized-alpha: rho_inf in [0, 1], the damping of the highest "
                     "frequencies per step (1: none, the trapezoidal rule; 0: "
                     "asymptotic annihilation).");
+  prm.declare_entry(
+      "Linear solver", "banded",
+      dealii::Patterns::Selection("banded|umfpack|trilinos-klu"),
+      "Sparse direct solver of the implicit integrators (bdf2, generalized-alpha) "
+      "for their constant iteration matrices and M: banded (banded Cholesky of "
+      "LAPACK where the matrix is symmetric positive definite with a narrow "
+      "band, else UMFPACK; the fastest, doc/benchmarks.md), umfpack (deal.II's "
+      "SparseDirectUMFPACK), trilinos-klu (Trilinos Amesos KLU).");
   prm.declare_entry("Maximum active-set iterations", "20", dealii::Patterns::Integer(1),
                     "Bound on the repetitions of one step while the active set of the "
                     "unilateral constraints changes (Sec. 5.3).");
@@ -53,6 +61,10 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
                : name == "generalized-alpha" ? IntegratorType::generalized_alpha
                                              : IntegratorType::half_explicit;
   rho_infinity = prm.get_double("Spectral radius at infinity");
+  const std::string solver = prm.get("Linear solver");
+  linear_solver = solver == "umfpack"        ? LinearSolverType::umfpack
+                  : solver == "trilinos-klu" ? LinearSolverType::trilinos_klu
+                                             : LinearSolverType::banded;
   time_step = prm.get_double("Time step");
   force_step_size = prm.get_bool("Force step size");
   max_active_set_iterations = prm.get_integer("Maximum active-set iterations");

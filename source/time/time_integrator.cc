@@ -10,10 +10,11 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
 {
   if (p.integrator == IntegratorType::bdf2)
     return std::make_unique<Bdf2Integrator>(system, p.time_step,
-                                            p.max_active_set_iterations);
+                                            p.max_active_set_iterations, p.linear_solver);
   if (p.integrator == IntegratorType::generalized_alpha)
     return std::make_unique<GeneralizedAlphaIntegrator>(
-        system, p.time_step, p.rho_infinity, p.max_active_set_iterations);
+        system, p.time_step, p.rho_infinity, p.max_active_set_iterations,
+        p.linear_solver);
   return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
                                                   p.max_active_set_iterations);
 }

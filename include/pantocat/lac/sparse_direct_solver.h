@@ -4,11 +4,21 @@
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <string>
 #include <vector>
 
 namespace pantocat
 {
+/// The sparse direct solver behind SparseDirectSolver (`Linear solver` in the prm).
+enum class LinearSolverType
+{
+  banded,      ///< banded Cholesky (LAPACK dpbtrf) where the matrix allows, else UMFPACK
+  umfpack,     ///< deal.II's SparseDirectUMFPACK
+  trilinos_klu ///< Trilinos Amesos KLU through deal.II's TrilinosWrappers (needs MPI)
+};
+
+const char* to_string(LinearSolverType type);
 /**
  * A factorised sparse matrix: factorise once, solve many times. The implicit
  * integrators use it for their constant iteration matrices.
@@ -27,8 +37,13 @@ namespace pantocat
 class SparseDirectSolver
 {
 public:
-  /// Factorises @p matrix; throws SimulationError naming @p what if it is singular.
-  void factorize(const dealii::SparseMatrix<double>& matrix, const std::string& what);
+  SparseDirectSolver();
+  ~SparseDirectSolver();
+
+  /// Factorises @p matrix with @p type; throws SimulationError naming @p what if it
+  /// is singular.
+  void factorize(const dealii::SparseMatrix<double>& matrix, const std::string& what,
+                 LinearSolverType type = LinearSolverType::banded);
   /// x <- A^{-1} x
   void solve(dealii::Vector<double>& x) const;
   /**
@@ -61,7 +76,11 @@ public:
 private:
   bool try_banded_cholesky(const dealii::SparseMatrix<double>& matrix);
   void find_blocks(const dealii::SparseMatrix<double>& matrix);
+  /// One right-hand side with UMFPACK or KLU.
+  void solve_general(dealii::Vector<double>& x) const;
 
+  struct Klu; ///< Trilinos matrix and Amesos KLU solver
+  std::unique_ptr<Klu> klu;
   bool banded = false;
   int n = 0, kd = 0;
   std::vector<double> band;       ///< LAPACK upper band storage of the Cholesky factor U

@@ -49,7 +49,8 @@ class Bdf2Integrator : public TimeIntegrator
 {
 public:
   Bdf2Integrator(const SemiDiscreteSystem& system, double time_step,
-                 unsigned int max_active_set_iterations);
+                 unsigned int max_active_set_iterations,
+                 LinearSolverType linear_solver = LinearSolverType::banded);
   ~Bdf2Integrator() override;
 
   std::string name() const override { return "bdf2"; }
@@ -68,6 +69,7 @@ private:
   void richardson_start();
 
   double dt;
+  LinearSolverType linear_solver;
   MassInverse mass_inverse;
   DampingOverMass damping_over_mass;
   HistoryLoad history_load;

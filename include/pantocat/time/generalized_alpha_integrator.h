@@ -48,7 +48,8 @@ class GeneralizedAlphaIntegrator : public TimeIntegrator
 {
 public:
   GeneralizedAlphaIntegrator(const SemiDiscreteSystem& system, double time_step,
-                             double rho_infinity, unsigned int max_active_set_iterations);
+                             double rho_infinity, unsigned int max_active_set_iterations,
+                             LinearSolverType linear_solver = LinearSolverType::banded);
 
   std::string name() const override { return "generalized-alpha"; }
   void initialize(const DynamicState& initial) override;

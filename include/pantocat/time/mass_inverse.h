@@ -27,7 +27,8 @@ class MassInverse
 {
 public:
   void initialize(const dealii::SparseMatrix<double>& matrix, bool is_diagonal,
-                  const std::string& what);
+                  const std::string& what,
+                  LinearSolverType solver = LinearSolverType::banded);
 
   /// x <- A^{-1} x
   void apply(dealii::Vector<double>& x) const;

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/lac/sparse_direct_solver.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
@@ -22,6 +24,7 @@ struct TimeIntegrationParameters
   double time_step = 5e-5;      ///< Delta t [s]
   bool force_step_size = false; ///< run an explicit method above its stability limit
   double rho_infinity = 0.5;    ///< generalized-alpha: spectral radius at infinity
+  LinearSolverType linear_solver = LinearSolverType::banded; ///< implicit integrators
   unsigned int max_active_set_iterations = 20;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

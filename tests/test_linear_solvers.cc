@@ -1,0 +1,113 @@
+// The sparse direct solvers behind the implicit integrators (issue 4):
+// banded Cholesky, deal.II's UMFPACK and Trilinos Amesos KLU must give the
+// same solutions and the same BDF-2 steps.
+#include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/time/bdf2_integrator.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pantocat;
+
+namespace
+{
+ProgramParameters fem_bdf2(unsigned int n_intervals)
+{
+  ProgramParameters p;
+  p.mode = RunMode::dynamics;
+  p.pantograph.speed = 48.;
+  p.pantograph.initial_offset = 0.002;
+  p.discretisation.method = SpaceMethod::fem;
+  p.discretisation.n_intervals = n_intervals;
+  p.time_integration.integrator = IntegratorType::bdf2;
+  return p;
+}
+
+double relative_difference(const dealii::Vector<double>& a,
+                           const dealii::Vector<double>& b)
+{
+  dealii::Vector<double> d(a);
+  d -= b;
+  return d.linfty_norm() / b.linfty_norm();
+}
+} // namespace
+
+TEST(LinearSolvers, AllBackendsSolveTheBdfIterationMatrix)
+{
+  // S = K + c D + c^2 M of FEM, N+1 = 100 (301 unknowns, condition number
+  // about 1e5): the three solvers agree to 1e-12 relative (round-off times
+  // the condition number); the interleaved four-column solve of each equals
+  // its single solves to round-off as well.
+  DynamicSimulation simulation(fem_bdf2(100));
+  const SemiDiscreteSystem& sys = simulation.system();
+  const double c = 1.5 / 5e-5;
+  dealii::SparseMatrix<double> S(*sys.sparsity);
+  S.copy_from(sys.stiffness);
+  S.add(c, sys.damping);
+  S.add(c * c, sys.mass);
+  const unsigned int n = sys.n_dofs();
+  dealii::Vector<double> b(n);
+  for (unsigned int i = 0; i < n; ++i)
+    b(i) = std::sin(0.37 * i) + 0.1 * (i % 5);
+  std::vector<dealii::Vector<double>> x;
+  for (const auto type : {LinearSolverType::banded, LinearSolverType::umfpack,
+                          LinearSolverType::trilinos_klu})
+  {
+    SparseDirectSolver solver;
+    solver.factorize(S, "S", type);
+    EXPECT_EQ(solver.is_banded(), type == LinearSolverType::banded);
+    x.push_back(b);
+    solver.solve(x.back());
+    InterleavedColumns X;
+    X.reinit(n);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int k = 0; k < 4; ++k)
+        X(i, k) = (k + 1.) * b(i);
+    solver.solve_interleaved(X.data(), 4);
+    double worst = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int k = 0; k < 4; ++k)
+        worst = std::max(worst, std::abs(X(i, k) - (k + 1.) * x.back()(i)));
+    EXPECT_LT(worst, 1e-12 * 4. * x.back().linfty_norm()) << to_string(type);
+  }
+  EXPECT_LT(relative_difference(x[1], x[0]), 1e-12);
+  EXPECT_LT(relative_difference(x[2], x[0]), 1e-12);
+  // The residual of the banded solution is at round-off.
+  dealii::Vector<double> r(n);
+  S.vmult(r, x[0]);
+  r -= b;
+  EXPECT_LT(r.linfty_norm(), 1e-12 * b.linfty_norm() * 1e3);
+}
+
+TEST(LinearSolvers, BdfStepsDoNotDependOnTheSolver)
+{
+  // 300 BDF-2 steps of the 48 m/s benchmark (FEM, N+1 = 100): the contact and
+  // dropper forces with UMFPACK and with KLU equal those of the banded
+  // Cholesky to 1e-9 relative (forces ~ 10-100 N; the elimination order
+  // differs, so results agree to round-off, not bit for bit).
+  DynamicSimulation simulation(fem_bdf2(100));
+  std::vector<std::unique_ptr<Bdf2Integrator>> runs;
+  for (const auto type : {LinearSolverType::banded, LinearSolverType::umfpack,
+                          LinearSolverType::trilinos_klu})
+  {
+    runs.push_back(std::make_unique<Bdf2Integrator>(simulation.system(), 5e-5, 20, type));
+    runs.back()->initialize(simulation.initial_state());
+  }
+  double worst = 0.;
+  for (unsigned int step = 0; step < 300; ++step)
+    for (auto& r : runs)
+    {
+      r->advance();
+      if (r == runs.back())
+        for (unsigned int i = 0; i < runs[0]->latest().lambda.size(); ++i)
+          for (unsigned int k = 1; k < 3; ++k)
+            worst = std::max(worst, std::abs(runs[k]->latest().lambda[i] -
+                                             runs[0]->latest().lambda[i]) /
+                                        100.);
+    }
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_LT(relative_difference(runs[2]->latest().q, runs[0]->latest().q), 1e-10);
+}
