@@ -29,7 +29,7 @@ enum Column : unsigned int
   lambda = 0,
   eta = 1,
   mu = 2,
-  base = 3
+  base = IterationMatrix::base_column
 };
 /// Columns of the M batch: Y = M^-1 G^T, Z = M^-1 G_t^T.
 enum MassColumn : unsigned int
@@ -40,32 +40,14 @@ enum MassColumn : unsigned int
 } // namespace
 
 /// The block solver for one c: S = K + c D + c^2 M and the constraint columns.
-struct Bdf2Integrator::Stage
+struct Bdf2Integrator::Stage : IterationMatrix
 {
   Stage(const SemiDiscreteSystem& system, const MassInverse& mass_inverse,
         const DampingOverMass& damping_over_mass, double c, LinearSolverType solver)
-      : system(system), mass_inverse(mass_inverse), damping_over_mass(damping_over_mass),
-        c(c), S_columns(system.n_constraints()), M_columns(system.n_constraints())
+      : IterationMatrix(system, c, c * c, "BDF iteration matrix K + c D + c^2 M", solver),
+        system(system), mass_inverse(mass_inverse), damping_over_mass(damping_over_mass),
+        c(c)
   {
-    dealii::SparseMatrix<double> S(*system.sparsity);
-    S.copy_from(system.stiffness);
-    S.add(c, system.damping);
-    S.add(c * c, system.mass);
-    S_inverse.factorize(S, "BDF iteration matrix K + c D + c^2 M", solver);
-    for (unsigned int i = 0; i < system.n_constraints(); ++i)
-      (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
-    base_owner = moving.empty() ? system.n_constraints() : moving.front();
-    for (auto* batches : {&S_columns, &M_columns})
-      for (auto& X : *batches)
-        X.reinit(system.n_dofs());
-    if (moving.empty())
-      base_only.reinit(system.n_dofs());
-  }
-
-  /// The batch whose column `base` holds the base solution.
-  InterleavedColumns& base_batch()
-  {
-    return moving.empty() ? base_only : S_columns[base_owner];
   }
 
   /**
@@ -101,10 +83,10 @@ struct Bdf2Integrator::Stage
     // Independent right-hand sides: S and M substitute side by side.
     const SparseDirectSolver* M = mass_inverse.factorised();
     if (sparse_damping && M)
-      S_inverse.solve_interleaved_with(X.data(), *M, U.data());
+      inverse.solve_interleaved_with(X.data(), *M, U.data());
     else
     {
-      S_inverse.solve_interleaved(X.data(), InterleavedColumns::width);
+      inverse.solve_interleaved(X.data(), InterleavedColumns::width);
       if (sparse_damping)
         mass_inverse.apply(U);
     }
@@ -130,12 +112,6 @@ struct Bdf2Integrator::Stage
   const MassInverse& mass_inverse;
   const DampingOverMass& damping_over_mass;
   double c;
-  SparseDirectSolver S_inverse;
-  std::vector<unsigned int> fixed, moving; ///< constraints with constant / moving rows
-  unsigned int base_owner; ///< the constraint whose S batch holds the base
-  std::vector<InterleavedColumns> S_columns, M_columns; ///< per constraint
-  InterleavedColumns base_only; ///< the base solution when no constraint moves
-  bool fixed_columns_ready = false;
   SparseRow DY, DZ; ///< workspace
 };
 
@@ -170,9 +146,9 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // batch with the columns of the first moving constraint.
   dealii::Vector<double> history(rho_v);
   history.add(c, rho_q);
-  history_load.apply(history, rho_q, s.base_batch(), base);
+  history_load.apply(history, rho_q, s.base_batch(), IterationMatrix::base_column);
   if (s.moving.empty())
-    s.S_inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
+    s.inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
   for (const unsigned int l : s.moving)
     s.compute_columns(l, rows[l]);
   const InterleavedColumns& B = s.base_batch();

@@ -7,7 +7,7 @@ namespace pantocat
 namespace
 {
 /// Columns of the S batch: X = S^-1 G^T and, for the owner, the base solution.
-constexpr unsigned int lambda_column = 0, base_column = 3;
+constexpr unsigned int lambda_column = 0, base_column = IterationMatrix::base_column;
 } // namespace
 
 GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
@@ -22,26 +22,13 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
     const unsigned int max_iterations, const LinearSolverType linear_solver)
     : TimeIntegrator(system), h(time_step), k(rho_infinity),
       c_q((1. - k.alpha_m) / ((1. - k.alpha_f) * k.beta * h * h)),
-      c_v(k.gamma / (k.beta * h)), history_load(system), at_next(system),
-      active_set(system, max_iterations, false), S_columns(system.n_constraints()),
-      M_columns(system.n_constraints())
+      c_v(k.gamma / (k.beta * h)),
+      S(system, c_v, c_q, "generalized-alpha iteration matrix K + c_v D + c_q M",
+        linear_solver),
+      history_load(system), at_next(system), active_set(system, max_iterations, false)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
-  dealii::SparseMatrix<double> S(*system.sparsity);
-  S.copy_from(system.stiffness);
-  S.add(c_v, system.damping);
-  S.add(c_q, system.mass);
-  S_inverse.factorize(S, "generalized-alpha iteration matrix K + c_v D + c_q M",
-                      linear_solver);
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
-  base_owner = moving.empty() ? system.n_constraints() : moving.front();
-  for (auto* batches : {&S_columns, &M_columns})
-    for (auto& X : *batches)
-      X.reinit(system.n_dofs());
-  if (moving.empty())
-    base_only.reinit(system.n_dofs());
 }
 
 void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
@@ -54,17 +41,17 @@ void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
 void GeneralizedAlphaIntegrator::compute_columns(const unsigned int l,
                                                  const ConstraintState& r)
 {
-  InterleavedColumns &X = S_columns[l], &U = M_columns[l];
+  InterleavedColumns &X = S.S_columns[l], &U = S.M_columns[l];
   for (unsigned int i = 0; i < X.size(); ++i) // keep the base column
     X(i, lambda_column) = 0.;
   U.clear();
   X.add_row(lambda_column, r.G, 1.);
   U.add_row(0, r.G, 1.);
   if (const SparseDirectSolver* M = mass_inverse.factorised())
-    S_inverse.solve_interleaved_with(X.data(), *M, U.data());
+    S.inverse.solve_interleaved_with(X.data(), *M, U.data());
   else
   {
-    S_inverse.solve_interleaved(X.data(), InterleavedColumns::width);
+    S.inverse.solve_interleaved(X.data(), InterleavedColumns::width);
     mass_inverse.apply(U);
   }
 }
@@ -74,11 +61,11 @@ void GeneralizedAlphaIntegrator::advance()
   const unsigned int n = system.n_dofs(), m_all = system.n_constraints();
   const double t1 = current.t + h;
   const auto& rows = at_next.at(t1, 1);
-  if (!fixed_columns_ready)
+  if (!S.fixed_columns_ready)
   {
-    for (const unsigned int l : fixed)
+    for (const unsigned int l : S.fixed)
       compute_columns(l, rows[l]);
-    fixed_columns_ready = true;
+    S.fixed_columns_ready = true;
   }
   // Predictors: q^ = q_n + h v_n + h^2 (1/2 - beta) a_n, v^ = v_n + h (1 - gamma) a_n,
   // w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f). Then
@@ -94,11 +81,11 @@ void GeneralizedAlphaIntegrator::advance()
   mass_part -= w;
   damping_part.equ(c_v, q_hat);
   damping_part -= v_hat;
-  InterleavedColumns& B = moving.empty() ? base_only : S_columns[base_owner];
+  InterleavedColumns& B = S.base_batch();
   history_load.apply(mass_part, damping_part, B, base_column);
-  if (moving.empty())
-    S_inverse.solve_interleaved(B.data(), InterleavedColumns::width);
-  for (const unsigned int l : moving)
+  if (S.moving.empty())
+    S.inverse.solve_interleaved(B.data(), InterleavedColumns::width);
+  for (const unsigned int l : S.moving)
     compute_columns(l, rows[l]);
 
   // G_k X_l and the base gaps.
@@ -107,7 +94,7 @@ void GeneralizedAlphaIntegrator::advance()
   {
     base_gap[i] = B.dot(rows[i].G, base_column) + rows[i].z;
     for (unsigned int l = 0; l < m_all; ++l)
-      GX[i * m_all + l] = S_columns[l].dot(rows[i].G, lambda_column);
+      GX[i * m_all + l] = S.S_columns[l].dot(rows[i].G, lambda_column);
   }
 
   DynamicState x;
@@ -149,12 +136,12 @@ void GeneralizedAlphaIntegrator::advance()
 
   // q = q0 + sum_l lambda_l X_l, then a, v, a_c from the Newmark relations.
   x.q.reinit(n);
-  if (moving.empty())
+  if (S.moving.empty())
     B.add_combination({{0., 0., 0., 1.}}, x.q);
   for (unsigned int l = 0; l < m_all; ++l)
-    if (x.active[l] || l == base_owner)
-      S_columns[l].add_combination({{x.lambda[l], 0., 0., l == base_owner ? 1. : 0.}},
-                                   x.q);
+    if (x.active[l] || l == S.base_owner)
+      S.S_columns[l].add_combination({{x.lambda[l], 0., 0., l == S.base_owner ? 1. : 0.}},
+                                     x.q);
   dealii::Vector<double> a_next(x.q);
   a_next.add(-1., q_hat);
   a_next *= 1. / (h * h * k.beta);
@@ -175,12 +162,12 @@ void GeneralizedAlphaIntegrator::advance()
     {
       const ConstraintState& r = rows[A[i]];
       for (unsigned int l = 0; l < m; ++l)
-        small(i, l) = M_columns[A[l]].dot(r.G, 0);
+        small(i, l) = S.M_columns[A[l]].dot(r.G, 0);
       small_rhs(i) = -r.velocity_residual(x.q, x.v);
     }
     solve_multiplier_system(small, small_rhs, small_solution, t1, "velocity projection");
     for (unsigned int l = 0; l < m; ++l)
-      M_columns[A[l]].add_combination({{small_solution(l), 0., 0., 0.}}, x.v);
+      S.M_columns[A[l]].add_combination({{small_solution(l), 0., 0., 0.}}, x.v);
   }
   pseudo_acceleration.swap(a_next);
   current = std::move(x);

@@ -5,6 +5,7 @@
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/history_load.h>
+#include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 

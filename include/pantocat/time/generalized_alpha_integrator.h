@@ -5,6 +5,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/history_load.h>
+#include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -73,15 +74,10 @@ private:
   Coefficients k;
   double c_q, c_v; ///< S = K + c_v D + c_q M
   MassInverse mass_inverse;
-  SparseDirectSolver S_inverse;
+  IterationMatrix S; ///< K + c_v D + c_q M and the column batches
   HistoryLoad history_load;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
-  std::vector<unsigned int> fixed, moving;
-  unsigned int base_owner;
-  std::vector<InterleavedColumns> S_columns, M_columns; ///< per constraint
-  InterleavedColumns base_only;
-  bool fixed_columns_ready = false;
   DynamicState current;
   dealii::Vector<double> pseudo_acceleration;
   unsigned long step_number = 0;

@@ -1,0 +1,40 @@
+#pragma once
+
+#include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/semi_discrete_system.h>
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * The constant matrix S = K + c_D D + c_M M of an implicit step (BDF-2:
+ * c_D = c, c_M = c^2; generalized-alpha: c_D = gamma/(beta h),
+ * c_M = (1 - alpha_m)/((1 - alpha_f) beta h^2)), factorised once, with the
+ * batches of right-hand sides that the integrators solve with it: per
+ * constraint an S batch (its columns and, for the first moving constraint,
+ * the base solution in the last column) and an M batch (M^-1 G^T, ...). The
+ * constraints are split into those with constant rows (droppers: columns once)
+ * and moving ones (the contact: columns every step).
+ */
+class IterationMatrix
+{
+public:
+  IterationMatrix(const SemiDiscreteSystem& system, double damping_factor,
+                  double mass_factor, const std::string& what, LinearSolverType solver);
+
+  /// The batch whose last column holds the base solution.
+  InterleavedColumns& base_batch();
+  /// Column of the base solution in base_batch().
+  static constexpr unsigned int base_column = InterleavedColumns::width - 1;
+
+  SparseDirectSolver inverse;
+  std::vector<unsigned int> fixed, moving; ///< constraints with constant / moving rows
+  unsigned int base_owner; ///< the constraint whose S batch holds the base
+  std::vector<InterleavedColumns> S_columns, M_columns; ///< per constraint
+  InterleavedColumns base_only; ///< the base solution when no constraint moves
+  bool fixed_columns_ready = false;
+};
+} // namespace pantocat

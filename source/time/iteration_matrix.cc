@@ -1,0 +1,29 @@
+#include <pantocat/time/iteration_matrix.h>
+
+namespace pantocat
+{
+IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
+                                 const double damping_factor, const double mass_factor,
+                                 const std::string& what, const LinearSolverType solver)
+    : S_columns(system.n_constraints()), M_columns(system.n_constraints())
+{
+  dealii::SparseMatrix<double> S(*system.sparsity);
+  S.copy_from(system.stiffness);
+  S.add(damping_factor, system.damping);
+  S.add(mass_factor, system.mass);
+  inverse.factorize(S, what, solver);
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
+  base_owner = moving.empty() ? system.n_constraints() : moving.front();
+  for (auto* batches : {&S_columns, &M_columns})
+    for (auto& X : *batches)
+      X.reinit(system.n_dofs());
+  if (moving.empty())
+    base_only.reinit(system.n_dofs());
+}
+
+InterleavedColumns& IterationMatrix::base_batch()
+{
+  return moving.empty() ? base_only : S_columns[base_owner];
+}
+} // namespace pantocat
