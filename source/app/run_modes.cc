@@ -144,15 +144,38 @@ void write_summary(const std::string& file, const ProgramParameters& p,
     json.intervals("", list);
   json.end_array();
   json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
-  json.value("event_resolution", "step");
+  // Events: located in time by the integrator (IDA's root finding), or at
+  // step resolution from the reported time points.
+  const auto& layout = simulation.layout();
+  json.value("event_resolution", r.integrator.events_localised ? "localised" : "step");
   json.begin_array("events");
-  for (const ConstraintEvent& e : events.events())
+  auto event = [&](double t, const std::string& constraint, const std::string& kind)
+  {
     json.begin_object()
-        .value("t", e.t)
-        .value("constraint", e.constraint)
-        .value("kind", e.kind)
+        .value("t", t)
+        .value("constraint", constraint)
+        .value("kind", kind)
         .end_object();
+  };
+  if (r.integrator.events_localised)
+    for (const SwitchEvent& e : r.integrator.localised_events)
+    {
+      const bool contact = e.constraint == layout.contact_index;
+      event(e.t, layout.constraint_names[e.constraint],
+            contact ? (e.closes ? "contact_return" : "contact_loss")
+                    : (e.closes ? "dropper_taut" : "dropper_slack"));
+    }
+  else
+    for (const ConstraintEvent& e : events.events())
+      event(e.t, e.constraint, e.kind);
   json.end_array();
+  if (!r.integrator.counters.empty())
+  {
+    json.begin_object("integrator_counters");
+    for (const auto& [name, value] : r.integrator.counters)
+      json.value(name, static_cast<unsigned long>(value));
+    json.end_object();
+  }
   json.value("steps", r.integrator.steps)
       .value("active_set_changes", r.integrator.active_set_changes)
       .value("active_set_iterations", r.integrator.active_set_iterations);

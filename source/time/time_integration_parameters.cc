@@ -13,6 +13,8 @@ const char* to_string(const IntegratorType type)
     return "bdf2";
   case IntegratorType::generalized_alpha:
     return "generalized-alpha";
+  case IntegratorType::ida:
+    return "ida";
   }
   return "";
 }
@@ -22,13 +24,15 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
   prm.enter_subsection("Time integration");
   prm.declare_entry(
       "Integrator", "half-explicit",
-      dealii::Patterns::Selection("half-explicit|bdf2|generalized-alpha"),
+      dealii::Patterns::Selection("half-explicit|bdf2|generalized-alpha|ida"),
       "half-explicit: the reversible half-explicit method (39)-(41) (explicit "
       "in the unknowns, stable for dt < 2/omega_max); bdf2: two-step BDF on "
       "the stabilised index-2 formulation (38) with a Richardson start; "
       "generalized-alpha: the Chung-Hulbert method for the constrained "
       "second-order system (Arnold-Bruels form, positions on the constraints, "
-      "velocities projected onto the hidden constraints).");
+      "velocities projected onto the hidden constraints); ida: SUNDIALS IDA "
+      "(variable order and step) on the GGL index-2 system, events located "
+      "by root finding.");
   prm.declare_entry("Time step", "5e-5", dealii::Patterns::Double(0.),
                     "Constant step size dt [s], > 0 (Sec. 6: 5e-5 s).");
   prm.declare_entry("Force step size", "false", dealii::Patterns::Bool(),
@@ -47,6 +51,10 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
       "LAPACK where the matrix is symmetric positive definite with a narrow "
       "band, else UMFPACK; the fastest, doc/benchmarks.md), umfpack (deal.II's "
       "SparseDirectUMFPACK), trilinos-klu (Trilinos Amesos KLU).");
+  prm.declare_entry("IDA relative tolerance", "1e-6", dealii::Patterns::Double(0.),
+                    "ida: relative tolerance of the local error (q, v).");
+  prm.declare_entry("IDA absolute tolerance", "1e-8", dealii::Patterns::Double(0.),
+                    "ida: absolute tolerance of the local error (q [m], v [m/s]).");
   prm.declare_entry("Maximum active-set iterations", "20", dealii::Patterns::Integer(1),
                     "Bound on the repetitions of one step while the active set of the "
                     "unilateral constraints changes (Sec. 5.3).");
@@ -59,7 +67,10 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
   const std::string name = prm.get("Integrator");
   integrator = name == "bdf2"                ? IntegratorType::bdf2
                : name == "generalized-alpha" ? IntegratorType::generalized_alpha
+               : name == "ida"               ? IntegratorType::ida
                                              : IntegratorType::half_explicit;
+  ida_relative_tolerance = prm.get_double("IDA relative tolerance");
+  ida_absolute_tolerance = prm.get_double("IDA absolute tolerance");
   rho_infinity = prm.get_double("Spectral radius at infinity");
   const std::string solver = prm.get("Linear solver");
   linear_solver = solver == "umfpack"        ? LinearSolverType::umfpack
@@ -70,5 +81,9 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
   max_active_set_iterations = prm.get_integer("Maximum active-set iterations");
   prm.leave_subsection();
   require(time_step > 0., "Time integration/Time step", time_step, "must be > 0");
+  require(ida_relative_tolerance > 0., "Time integration/IDA relative tolerance",
+          ida_relative_tolerance, "must be > 0");
+  require(ida_absolute_tolerance > 0., "Time integration/IDA absolute tolerance",
+          ida_absolute_tolerance, "must be > 0");
 }
 } // namespace pantocat

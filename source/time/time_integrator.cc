@@ -1,6 +1,7 @@
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
+#include <pantocat/time/ida_integrator.h>
 #include <pantocat/time/time_integrator.h>
 
 namespace pantocat
@@ -11,6 +12,9 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
   if (p.integrator == IntegratorType::bdf2)
     return std::make_unique<Bdf2Integrator>(system, p.time_step,
                                             p.max_active_set_iterations, p.linear_solver);
+  if (p.integrator == IntegratorType::ida)
+    return std::make_unique<IdaIntegrator>(system, p.time_step, p.ida_relative_tolerance,
+                                           p.ida_absolute_tolerance);
   if (p.integrator == IntegratorType::generalized_alpha)
     return std::make_unique<GeneralizedAlphaIntegrator>(
         system, p.time_step, p.rho_infinity, p.max_active_set_iterations,

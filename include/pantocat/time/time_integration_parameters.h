@@ -11,9 +11,10 @@ namespace pantocat
 /// The time integrators of Sec. 5.2.
 enum class IntegratorType
 {
-  half_explicit,    ///< the reversible half-explicit method (39)-(41)
-  bdf2,             ///< two-step BDF on the GGL formulation (38), Richardson start
-  generalized_alpha ///< Chung-Hulbert generalized-alpha (Arnold-Bruels form)
+  half_explicit,     ///< the reversible half-explicit method (39)-(41)
+  bdf2,              ///< two-step BDF on the GGL formulation (38), Richardson start
+  generalized_alpha, ///< Chung-Hulbert generalized-alpha (Arnold-Bruels form)
+  ida                ///< SUNDIALS IDA, variable order and step, located events
 };
 
 const char* to_string(IntegratorType type);
@@ -25,6 +26,8 @@ struct TimeIntegrationParameters
   bool force_step_size = false; ///< run an explicit method above its stability limit
   double rho_infinity = 0.5;    ///< generalized-alpha: spectral radius at infinity
   LinearSolverType linear_solver = LinearSolverType::banded; ///< implicit integrators
+  double ida_relative_tolerance = 1e-6;
+  double ida_absolute_tolerance = 1e-8;
   unsigned int max_active_set_iterations = 20;
 
   static void declare_parameters(dealii::ParameterHandler& prm);

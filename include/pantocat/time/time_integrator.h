@@ -6,15 +6,30 @@
 
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace pantocat
 {
+/// A switch of unilateral constraint @p constraint located in time by an integrator.
+struct SwitchEvent
+{
+  double t = 0.;
+  unsigned int constraint = 0;
+  bool closes = false; ///< true: becomes active (impact); false: released
+};
+
 /// Work counters of an integrator run.
 struct IntegratorStatistics
 {
   unsigned long steps = 0;
   unsigned long active_set_iterations = 0; ///< repeated trial steps (Sec. 5.3)
   unsigned long active_set_changes = 0;    ///< constraints switched in accepted steps
+  /// Switches located in time (root finding); empty for step-resolved integrators.
+  bool events_localised = false;
+  std::vector<SwitchEvent> localised_events;
+  /// Further counters of the integrator (e.g. IDA's), name and value.
+  std::vector<std::pair<std::string, long>> counters;
 };
 
 /**

@@ -1,0 +1,442 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/time/ida_integrator.h>
+#include <pantocat/time/multiplier_system.h>
+
+#include <idas/idas.h>
+#include <nvector/nvector_serial.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace pantocat
+{
+/// SUNDIALS objects and the callbacks of IDA (residual, Jacobian, roots).
+struct IdaIntegrator::Sundials
+{
+  explicit Sundials(IdaIntegrator& owner) : owner(owner)
+  {
+    if (SUNContext_Create(nullptr, &context) != 0)
+      throw SimulationError("IDA: cannot create a SUNDIALS context");
+    const sunindextype size = 2 * owner.n + 2 * owner.m;
+    y = N_VNew_Serial(size, context);
+    yp = N_VNew_Serial(size, context);
+    id = N_VNew_Serial(size, context);
+    tolerances = N_VNew_Serial(size, context);
+    double* flags = N_VGetArrayPointer(id);
+    for (sunindextype i = 0; i < size; ++i)
+      flags[i] =
+          i < 2 * static_cast<sunindextype>(owner.n) ? 1. : 0.; // q, v differential
+    // Non-zeros: M, D, K twice each (at most), constraint rows and their
+    // transposes, the identity of inactive multipliers.
+    const auto& sys = owner.system;
+    nnz = 4 * sys.sparsity->n_nonzero_elements() + 2 * size;
+    J = SUNSparseMatrix(size, size, nnz, CSC_MAT, context);
+    solver = SUNLinSol_KLU(y, J, context);
+    memory = IDACreate(context);
+    // M, D, K on their shared pattern as plain arrays (the residual's pass).
+    load = sys.load;
+    row_start.assign(1, 0);
+    for (unsigned int i = 0; i < owner.n; ++i)
+    {
+      auto d = sys.damping.begin(i);
+      auto k = sys.stiffness.begin(i);
+      for (auto it = sys.mass.begin(i); it != sys.mass.end(i); ++it, ++d, ++k)
+      {
+        column.push_back(it->column());
+        mass.push_back(it->value());
+        damping.push_back(d->value());
+        stiffness.push_back(k->value());
+      }
+      row_start.push_back(column.size());
+    }
+  }
+  ~Sundials()
+  {
+    IDAFree(&memory);
+    SUNLinSolFree(solver);
+    SUNMatDestroy(J);
+    N_VDestroy(y);
+    N_VDestroy(yp);
+    N_VDestroy(id);
+    N_VDestroy(tolerances);
+    SUNContext_Free(&context);
+  }
+
+  static int residual(realtype t, N_Vector yy, N_Vector yyp, N_Vector rr, void* data);
+  static int jacobian(realtype t, realtype cj, N_Vector yy, N_Vector yyp, N_Vector rr,
+                      SUNMatrix Jac, void* data, N_Vector, N_Vector, N_Vector);
+  static int roots(realtype t, N_Vector yy, N_Vector yyp, realtype* gout, void* data);
+
+  IdaIntegrator& owner;
+  SUNContext context = nullptr;
+  N_Vector y = nullptr, yp = nullptr, id = nullptr, tolerances = nullptr;
+  SUNMatrix J = nullptr;
+  SUNLinearSolver solver = nullptr;
+  void* memory = nullptr;
+  sunindextype nnz = 0;
+  std::vector<sunindextype> pattern; ///< of the last Jacobian (column starts, rows)
+  dealii::Vector<double> load;
+  std::vector<unsigned int> row_start, column;
+  std::vector<double> mass, damping, stiffness;
+};
+
+int IdaIntegrator::Sundials::residual(realtype t, N_Vector yy, N_Vector yyp, N_Vector rr,
+                                      void* data)
+{
+  IdaIntegrator& I = static_cast<Sundials*>(data)->owner;
+  const unsigned int n = I.n, m = I.m;
+  const double *y = N_VGetArrayPointer(yy), *yp = N_VGetArrayPointer(yyp);
+  double* r = N_VGetArrayPointer(rr);
+  const double *q = y, *v = y + n, *lambda = y + 2 * n, *mu = y + 2 * n + m;
+  const double *qp = yp, *vp = yp + n;
+  const auto& c = I.rows.at(t, 1);
+  const Sundials& S = *static_cast<Sundials*>(data);
+  // F_q = M (q' - v), F_v = M v' + D v + K q - f: one pass over the shared pattern.
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    double fq = 0., fv = -S.load[i];
+    for (unsigned int e = S.row_start[i]; e < S.row_start[i + 1]; ++e)
+    {
+      const unsigned int j = S.column[e];
+      fq += S.mass[e] * (qp[j] - v[j]);
+      fv += S.mass[e] * vp[j] + S.damping[e] * v[j] + S.stiffness[e] * q[j];
+    }
+    r[i] = fq;
+    r[n + i] = fv;
+  }
+  // - G^T mu, - G^T lambda and the constraints.
+  for (unsigned int k = 0; k < m; ++k)
+    if (I.active[k])
+    {
+      c[k].G.add_transpose_to(r, -mu[k]);
+      for (std::size_t e = 0; e < c[k].G.size(); ++e)
+        r[n + c[k].G.index[e]] -= lambda[k] * c[k].G.value[e];
+      // velocity and position constraints
+      double gv = c[k].z_t, g = c[k].z;
+      for (std::size_t e = 0; e < c[k].G.size(); ++e)
+        gv += c[k].G.value[e] * v[c[k].G.index[e]],
+            g += c[k].G.value[e] * q[c[k].G.index[e]];
+      for (std::size_t e = 0; e < c[k].G_t.size(); ++e)
+        gv += c[k].G_t.value[e] * q[c[k].G_t.index[e]];
+      r[2 * n + k] = gv;
+      r[2 * n + m + k] = g;
+    }
+    else
+    {
+      r[2 * n + k] = lambda[k];
+      r[2 * n + m + k] = mu[k];
+    }
+  return 0;
+}
+
+int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vector,
+                                      N_Vector, SUNMatrix Jac, void* data, N_Vector,
+                                      N_Vector, N_Vector)
+{
+  Sundials& S = *static_cast<Sundials*>(data);
+  IdaIntegrator& I = S.owner;
+  const unsigned int n = I.n, m = I.m;
+  const auto& sys = I.system;
+  const auto& c = I.rows.at(t, 1);
+  // Columns of J = dF/dy + cj dF/dy' (CSC). M, D, K are symmetric: column j = row j.
+  std::vector<std::vector<std::pair<unsigned int, double>>> column(2 * n + 2 * m);
+  for (unsigned int j = 0; j < n; ++j)
+  {
+    for (auto it = sys.mass.begin(j); it != sys.mass.end(j); ++it)
+    {
+      column[j].push_back({it->column(), cj * it->value()});         // F_q by q
+      column[n + j].push_back({it->column(), -it->value()});         // F_q by v
+      column[n + j].push_back({n + it->column(), cj * it->value()}); // F_v by v
+    }
+    for (auto it = sys.damping.begin(j); it != sys.damping.end(j); ++it)
+      column[n + j].push_back({n + it->column(), it->value()});
+    for (auto it = sys.stiffness.begin(j); it != sys.stiffness.end(j); ++it)
+      column[j].push_back({n + it->column(), it->value()});
+  }
+  for (unsigned int k = 0; k < m; ++k)
+    if (I.active[k])
+    {
+      for (std::size_t e = 0; e < c[k].G.size(); ++e)
+      {
+        const unsigned int i = c[k].G.index[e];
+        const double g = c[k].G.value[e];
+        column[2 * n + k].push_back({n + i, -g}); // F_v by lambda
+        column[2 * n + m + k].push_back({i, -g}); // F_q by mu
+        column[n + i].push_back({2 * n + k, g});  // velocity constraint by v
+        column[i].push_back({2 * n + m + k, g});  // position constraint by q
+      }
+      for (std::size_t e = 0; e < c[k].G_t.size(); ++e)
+        column[c[k].G_t.index[e]].push_back({2 * n + k, c[k].G_t.value[e]});
+    }
+    else
+    {
+      column[2 * n + k].push_back({2 * n + k, 1.});
+      column[2 * n + m + k].push_back({2 * n + m + k, 1.});
+    }
+  sunindextype total = 0;
+  for (auto& col : column)
+  {
+    std::sort(col.begin(), col.end());
+    total += col.size();
+  }
+  if (total > SM_NNZ_S(Jac))
+    SUNSparseMatrix_Reallocate(Jac, total);
+  sunindextype* start = SM_INDEXPTRS_S(Jac);
+  sunindextype* row = SM_INDEXVALS_S(Jac);
+  double* value = SM_DATA_S(Jac);
+  sunindextype e = 0;
+  for (std::size_t j = 0; j < column.size(); ++j)
+  {
+    start[j] = e;
+    for (std::size_t k = 0; k < column[j].size(); ++k)
+    {
+      // Merge repeated rows (several constraints on one unknown).
+      if (k > 0 && column[j][k].first == column[j][k - 1].first)
+      {
+        value[e - 1] += column[j][k].second;
+        continue;
+      }
+      row[e] = column[j][k].first;
+      value[e] = column[j][k].second;
+      ++e;
+    }
+  }
+  start[column.size()] = e;
+  // The moving contact row changes the pattern: KLU's numeric refactorisation
+  // assumes the pattern of its symbolic analysis, so a new pattern needs a
+  // new analysis (SUNLinSol_KLUReInit frees the factorisations).
+  std::vector<sunindextype> pattern(start, start + column.size() + 1);
+  pattern.insert(pattern.end(), row, row + e);
+  if (pattern != S.pattern)
+  {
+    S.pattern.swap(pattern);
+    SUNLinSol_KLUReInit(S.solver, Jac, SM_NNZ_S(Jac), SUNKLU_REINIT_PARTIAL);
+  }
+  return 0;
+}
+
+int IdaIntegrator::Sundials::roots(realtype t, N_Vector yy, N_Vector, realtype* gout,
+                                   void* data)
+{
+  IdaIntegrator& I = static_cast<Sundials*>(data)->owner;
+  const double* y = N_VGetArrayPointer(yy);
+  const auto& c = I.rows.at(t, 1);
+  for (unsigned int k = 0; k < I.m; ++k)
+    if (!I.system.constraints[k]->is_unilateral())
+      gout[k] = 1.; // never switches
+    else if (I.active[k])
+      gout[k] = y[2 * I.n + k]; // lambda: release when it falls through 0
+    else
+      gout[k] = c[k].position_residual(y); // gap: closes when it falls through 0
+  return 0;
+}
+
+IdaIntegrator::IdaIntegrator(const SemiDiscreteSystem& system, const double output_step,
+                             const double relative_tolerance,
+                             const double absolute_tolerance)
+    : TimeIntegrator(system), dt(output_step), rtol(relative_tolerance),
+      atol(absolute_tolerance), n(system.n_dofs()), m(system.n_constraints()),
+      rows(system)
+{
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
+  stats.events_localised = true;
+}
+
+IdaIntegrator::~IdaIntegrator() = default;
+
+void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
+{
+  double* y = N_VGetArrayPointer(sun->y);
+  double* yp = N_VGetArrayPointer(sun->yp);
+  const auto& c = rows.at(t, 2);
+  dealii::Vector<double> q(n), v(n);
+  std::copy(y, y + n, q.begin());
+  std::copy(y + n, y + 2 * n, v.begin());
+  // Columns Y_k = M^-1 G_k^T of all constraints.
+  std::vector<dealii::Vector<double>> Y(m, dealii::Vector<double>(n));
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    c[k].G.add_transpose_to(Y[k], 1.);
+    mass_inverse.apply(Y[k]);
+  }
+  auto project = [&](dealii::Vector<double>& x, auto residual, const char* what)
+  {
+    std::vector<unsigned int> A;
+    for (unsigned int k = 0; k < m; ++k)
+      if (set[k])
+        A.push_back(k);
+    dealii::FullMatrix<double> W(A.size(), A.size());
+    dealii::Vector<double> rhs(A.size()), sol(A.size());
+    for (unsigned int i = 0; i < A.size(); ++i)
+    {
+      for (unsigned int l = 0; l < A.size(); ++l)
+        W(i, l) = c[A[i]].G.dot(Y[A[l]]);
+      rhs(i) = -residual(A[i]);
+    }
+    solve_multiplier_system(W, rhs, sol, t, what);
+    for (unsigned int l = 0; l < A.size(); ++l)
+      x.add(sol(l), Y[A[l]]);
+    return std::make_pair(A, sol);
+  };
+  dealii::Vector<double> a(n);
+  std::vector<double> lambda(m, 0.);
+  for (unsigned int round = 0; round <= m; ++round)
+  {
+    // Positions and velocities onto g = dg/dt = 0 (an inelastic impact where a
+    // constraint closes; round-off elsewhere).
+    project(
+        q, [&](unsigned int k) { return c[k].position_residual(q); }, "IDA event");
+    project(
+        v, [&](unsigned int k) { return c[k].velocity_residual(q, v); }, "IDA event");
+    // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0.
+    system.stiffness.vmult(a, q);
+    system.damping.vmult_add(a, v);
+    a.sadd(-1., 1., system.load);
+    mass_inverse.apply(a);
+    const auto [A, sol] = project(
+        a,
+        [&](unsigned int k)
+        { return c[k].G.dot(a) + 2. * c[k].G_t.dot(v) + c[k].G_tt.dot(q) + c[k].z_tt; },
+        "IDA event");
+    std::fill(lambda.begin(), lambda.end(), 0.);
+    bool released = false;
+    for (unsigned int l = 0; l < A.size(); ++l)
+    {
+      lambda[A[l]] = sol(l);
+      if (sol(l) < 0. && system.constraints[A[l]]->is_unilateral())
+        set[A[l]] = false, released = true; // separates: g'' > 0 without it
+    }
+    if (!released)
+      break;
+  }
+  for (unsigned int k = 0; k < m; ++k)
+    if (set[k] != active[k])
+    {
+      stats.localised_events.push_back({t, k, set[k]});
+      ++stats.active_set_changes;
+    }
+  active = set;
+  std::copy(q.begin(), q.end(), y);
+  std::copy(v.begin(), v.end(), y + n);
+  for (unsigned int k = 0; k < m; ++k)
+    y[2 * n + k] = lambda[k], y[2 * n + m + k] = 0.;
+  std::copy(v.begin(), v.end(), yp);
+  std::copy(a.begin(), a.end(), yp + n);
+  std::fill(yp + 2 * n, yp + 2 * n + 2 * m, 0.);
+}
+
+void IdaIntegrator::initialize(const DynamicState& initial)
+{
+  sun = std::make_unique<Sundials>(*this);
+  active = initial.active;
+  double* y = N_VGetArrayPointer(sun->y);
+  double* yp = N_VGetArrayPointer(sun->yp);
+  std::copy(initial.q.begin(), initial.q.end(), y);
+  std::copy(initial.v.begin(), initial.v.end(), y + n);
+  for (unsigned int k = 0; k < m; ++k)
+    y[2 * n + k] = initial.lambda[k], y[2 * n + m + k] = 0.;
+  std::copy(initial.v.begin(), initial.v.end(), yp);
+  std::copy(initial.a.begin(), initial.a.end(), yp + n);
+  std::fill(yp + 2 * n, yp + 2 * n + 2 * m, 0.);
+  // Absolute tolerances: atol on q [m] and v [m/s]; the multipliers are
+  // excluded from the error test (IDASetSuppressAlg) but weigh in IDA's Newton
+  // convergence test, where a tolerance of atol on forces of ~100 N (lambda)
+  // and on the GGL multiplier mu (~0) makes the test fail for no reason:
+  // 1e-6 of their scale (1 N) there.
+  double* tol = N_VGetArrayPointer(sun->tolerances);
+  for (unsigned int i = 0; i < 2 * n + 2 * m; ++i)
+    tol[i] = i < 2 * n ? atol : 1e-6;
+  void* mem = sun->memory;
+  bool ok = IDAInit(mem, Sundials::residual, initial.t, sun->y, sun->yp) == IDA_SUCCESS &&
+            IDASetUserData(mem, sun.get()) == IDA_SUCCESS &&
+            IDASVtolerances(mem, rtol, sun->tolerances) == IDA_SUCCESS &&
+            IDASetId(mem, sun->id) == IDA_SUCCESS &&
+            IDASetSuppressAlg(mem, SUNTRUE) == IDA_SUCCESS &&
+            IDASetLinearSolver(mem, sun->solver, sun->J) == IDA_SUCCESS &&
+            IDASetJacFn(mem, Sundials::jacobian) == IDA_SUCCESS &&
+            IDARootInit(mem, m, Sundials::roots) == IDA_SUCCESS &&
+            IDASetMaxNumSteps(mem, 100000) == IDA_SUCCESS;
+  std::vector<int> direction(m, -1); // gaps and forces falling through zero
+  ok = ok && IDASetRootDirection(mem, direction.data()) == IDA_SUCCESS;
+  if (!ok)
+    throw SimulationError("IDA: the solver could not be set up");
+  current = initial;
+  stats.localised_events.clear();
+  counted.clear();
+}
+
+void IdaIntegrator::read_state(const double t)
+{
+  const double* y = N_VGetArrayPointer(sun->y);
+  const double* yp = N_VGetArrayPointer(sun->yp);
+  current.t = t;
+  current.q.reinit(n, true);
+  current.v.reinit(n, true);
+  current.a.reinit(n, true);
+  std::copy(y, y + n, current.q.begin());
+  std::copy(y + n, y + 2 * n, current.v.begin());
+  std::copy(yp + n, yp + 2 * n, current.a.begin());
+  current.lambda.assign(y + 2 * n, y + 2 * n + m);
+  current.active = active;
+}
+
+void IdaIntegrator::advance()
+{
+  const double t_out = current.t + dt;
+  double t = current.t;
+  while (t < t_out - 1e-14 * std::max(1., std::abs(t_out)))
+  {
+    const int flag = IDASolve(sun->memory, t_out, &t, sun->y, sun->yp, IDA_NORMAL);
+    if (flag == IDA_ROOT_RETURN)
+    {
+      std::vector<int> found(m, 0);
+      IDAGetRootInfo(sun->memory, found.data());
+      std::vector<bool> set = active;
+      for (unsigned int k = 0; k < m; ++k)
+        if (found[k] != 0)
+          set[k] = !active[k];
+      make_consistent(t, set);
+      collect_counters();
+      counted = stats.counters; // IDAReInit resets IDA's counters
+      if (IDAReInit(sun->memory, t, sun->y, sun->yp) != IDA_SUCCESS)
+        throw SimulationError("IDA: restart after an event failed");
+      continue;
+    }
+    if (flag < 0)
+    {
+      std::ostringstream s;
+      s << "IDA failed at t = " << t << " s: " << IDAGetReturnFlagName(flag);
+      throw SimulationError(s.str());
+    }
+  }
+  // The derivative at t_out (IDA returns y' with y).
+  read_state(t_out);
+  ++stats.steps;
+  collect_counters();
+}
+
+void IdaIntegrator::collect_counters()
+{
+  long steps = 0, residuals = 0, jacobians = 0, error_failures = 0,
+       nonlinear_failures = 0, setups = 0, roots = 0;
+  IDAGetNumSteps(sun->memory, &steps);
+  IDAGetNumResEvals(sun->memory, &residuals);
+  IDAGetNumJacEvals(sun->memory, &jacobians);
+  IDAGetNumErrTestFails(sun->memory, &error_failures);
+  IDAGetNumNonlinSolvConvFails(sun->memory, &nonlinear_failures);
+  IDAGetNumLinSolvSetups(sun->memory, &setups);
+  IDAGetNumGEvals(sun->memory, &roots);
+  stats.counters = {{"ida_steps", steps},
+                    {"residual_evaluations", residuals},
+                    {"jacobian_evaluations", jacobians},
+                    {"error_test_failures", error_failures},
+                    {"nonlinear_convergence_failures", nonlinear_failures},
+                    {"linear_solver_setups", setups},
+                    {"root_function_evaluations", roots}};
+  for (std::size_t i = 0; i < counted.size(); ++i)
+    stats.counters[i].second += counted[i].second;
+}
+} // namespace pantocat
