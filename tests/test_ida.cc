@@ -1,5 +1,6 @@
 // SUNDIALS IDA with located events (issue 4): agreement with the paper's
 // methods, the events of the 48 m/s run located in time, IDA's counters.
+#include <pantocat/app/run_modes.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/time/ida_integrator.h>
@@ -7,6 +8,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 using namespace pantocat;
 
@@ -83,4 +87,27 @@ TEST(Ida, LocatesTheSlackeningOfDropper2At48MetresPerSecond)
   for (const auto& [name, value] : r.integrator.counters)
     has_steps = has_steps || (name == "ida_steps" && value > 0);
   EXPECT_TRUE(has_steps);
+}
+
+TEST(Ida, SummaryReportsCountersAndLocatedEvents)
+{
+  // summary.json of an IDA run carries IDA's work counters and says that its
+  // events are located (a short run: FDM, N+1 = 100, x_p from 2 to 2.5 m).
+  ProgramParameters p = benchmark(32., IntegratorType::ida, 100);
+  p.pantograph.final_position = 2.5;
+  p.output.directory = "test_ida_summary";
+  p.output.plots = false;
+  std::filesystem::remove_all(p.output.directory);
+  std::filesystem::create_directories(p.output.directory);
+  std::ostringstream screen;
+  run_dynamics(p, screen);
+  std::ifstream in(p.output.directory + "/summary.json");
+  std::stringstream summary;
+  summary << in.rdbuf();
+  const std::string text = summary.str();
+  for (const char* key :
+       {"\"integrator_counters\"", "\"ida_steps\"", "\"residual_evaluations\"",
+        "\"jacobian_evaluations\"", "\"error_test_failures\"",
+        "\"nonlinear_convergence_failures\"", "\"event_resolution\": \"localised\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " missing in\n" << text;
 }
