@@ -96,8 +96,9 @@ int run(const CommandLine& cl, int argc, char** argv)
   // 0.35 s) unless an MPI launcher started us or Trilinos solves (its
   // matrices need MPI).
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
-  if (launched_by_mpi() ||
-      parameters.time_integration.linear_solver == LinearSolverType::trilinos_klu)
+  const auto& ti = parameters.time_integration;
+  if (launched_by_mpi() || ti.linear_solver == LinearSolverType::trilinos_klu ||
+      (ti.integrator == IntegratorType::ida && ti.ida_linear_solver == "trilinos-klu"))
     mpi.emplace(argc, argv, 1);
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.

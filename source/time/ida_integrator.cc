@@ -7,12 +7,105 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 namespace pantocat
 {
+namespace
+{
+/**
+ * A SUNDIALS linear solver on the project's SparseDirectSolver (UMFPACK or
+ * Trilinos Amesos KLU): setup copies IDA's sparse Jacobian (CSC) into a
+ * deal.II matrix, rebuilding the pattern when the moving contact changed it,
+ * and factorises; solve applies the factorisation. Exceptions do not cross
+ * the C callbacks: they become a failure code, which IDA reports.
+ */
+struct DealiiDirectSolver
+{
+  LinearSolverType type;
+  dealii::SparsityPattern pattern;
+  dealii::SparseMatrix<double> matrix;
+  std::vector<sunindextype> last_pattern;
+  SparseDirectSolver solver;
+  dealii::Vector<double> x;
+
+  static SUNLinearSolver_Type get_type(SUNLinearSolver) { return SUNLINEARSOLVER_DIRECT; }
+  static int setup(SUNLinearSolver S, SUNMatrix A)
+  {
+    auto& d = *static_cast<DealiiDirectSolver*>(S->content);
+    try
+    {
+      const sunindextype n = SM_COLUMNS_S(A);
+      const sunindextype* start = SM_INDEXPTRS_S(A);
+      const sunindextype* row = SM_INDEXVALS_S(A);
+      const double* value = SM_DATA_S(A);
+      std::vector<sunindextype> now(start, start + n + 1);
+      now.insert(now.end(), row, row + start[n]);
+      if (now != d.last_pattern)
+      {
+        dealii::DynamicSparsityPattern dsp(n, n);
+        for (sunindextype j = 0; j < n; ++j)
+          for (sunindextype e = start[j]; e < start[j + 1]; ++e)
+            dsp.add(row[e], j);
+        d.matrix.clear();
+        d.pattern.copy_from(dsp);
+        d.matrix.reinit(d.pattern);
+        d.last_pattern.swap(now);
+        d.x.reinit(n);
+      }
+      d.matrix = 0.;
+      for (sunindextype j = 0; j < n; ++j)
+        for (sunindextype e = start[j]; e < start[j + 1]; ++e)
+          d.matrix.set(row[e], j, value[e]);
+      d.solver.factorize(d.matrix, "IDA Jacobian", d.type);
+      return 0;
+    }
+    catch (...)
+    {
+      return SUNLS_PACKAGE_FAIL_UNREC;
+    }
+  }
+  static int solve(SUNLinearSolver S, SUNMatrix, N_Vector x, N_Vector b, realtype)
+  {
+    auto& d = *static_cast<DealiiDirectSolver*>(S->content);
+    try
+    {
+      const double* bb = N_VGetArrayPointer(b);
+      std::copy(bb, bb + d.x.size(), d.x.begin());
+      d.solver.solve(d.x);
+      std::copy(d.x.begin(), d.x.end(), N_VGetArrayPointer(x));
+      return 0;
+    }
+    catch (...)
+    {
+      return SUNLS_PACKAGE_FAIL_UNREC;
+    }
+  }
+  static int free(SUNLinearSolver S)
+  {
+    delete static_cast<DealiiDirectSolver*>(S->content);
+    S->content = nullptr;
+    SUNLinSolFreeEmpty(S);
+    return 0;
+  }
+};
+
+SUNLinearSolver make_dealii_solver(LinearSolverType type, SUNContext context)
+{
+  SUNLinearSolver S = SUNLinSolNewEmpty(context);
+  S->content = new DealiiDirectSolver{type, {}, {}, {}, {}, {}};
+  S->ops->gettype = DealiiDirectSolver::get_type;
+  S->ops->setup = DealiiDirectSolver::setup;
+  S->ops->solve = DealiiDirectSolver::solve;
+  S->ops->free = DealiiDirectSolver::free;
+  return S;
+}
+} // namespace
+
 /// SUNDIALS objects and the callbacks of IDA (residual, Jacobian, roots).
 struct IdaIntegrator::Sundials
 {
@@ -34,7 +127,12 @@ struct IdaIntegrator::Sundials
     const auto& sys = owner.system;
     nnz = 4 * sys.sparsity->n_nonzero_elements() + 2 * size;
     J = SUNSparseMatrix(size, size, nnz, CSC_MAT, context);
-    solver = SUNLinSol_KLU(y, J, context);
+    solver = owner.linear_solver == IdaLinearSolver::sundials_klu
+                 ? SUNLinSol_KLU(y, J, context)
+                 : make_dealii_solver(owner.linear_solver == IdaLinearSolver::umfpack
+                                          ? LinearSolverType::umfpack
+                                          : LinearSolverType::trilinos_klu,
+                                      context);
     memory = IDACreate(context);
     // M, D, K on their shared pattern as plain arrays (the residual's pass).
     load = sys.load;
@@ -213,7 +311,8 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
   if (pattern != S.pattern)
   {
     S.pattern.swap(pattern);
-    SUNLinSol_KLUReInit(S.solver, Jac, SM_NNZ_S(Jac), SUNKLU_REINIT_PARTIAL);
+    if (I.linear_solver == IdaLinearSolver::sundials_klu)
+      SUNLinSol_KLUReInit(S.solver, Jac, SM_NNZ_S(Jac), SUNKLU_REINIT_PARTIAL);
   }
   return 0;
 }
@@ -236,10 +335,11 @@ int IdaIntegrator::Sundials::roots(realtype t, N_Vector yy, N_Vector, realtype* 
 
 IdaIntegrator::IdaIntegrator(const SemiDiscreteSystem& system, const double output_step,
                              const double relative_tolerance,
-                             const double absolute_tolerance)
+                             const double absolute_tolerance,
+                             const IdaLinearSolver solver)
     : TimeIntegrator(system), dt(output_step), rtol(relative_tolerance),
-      atol(absolute_tolerance), n(system.n_dofs()), m(system.n_constraints()),
-      rows(system)
+      atol(absolute_tolerance), linear_solver(solver), n(system.n_dofs()),
+      m(system.n_constraints()), rows(system)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   stats.events_localised = true;

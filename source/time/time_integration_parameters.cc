@@ -55,6 +55,12 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
                     "ida: relative tolerance of the local error (q, v).");
   prm.declare_entry("IDA absolute tolerance", "1e-8", dealii::Patterns::Double(0.),
                     "ida: absolute tolerance of the local error (q [m], v [m/s]).");
+  prm.declare_entry(
+      "IDA linear solver", "sundials-klu",
+      dealii::Patterns::Selection("sundials-klu|trilinos-klu|umfpack"),
+      "ida: sparse direct solver of the Newton iterations on the Jacobian "
+      "(not banded: the constraint rows couple distant unknowns): SUNDIALS' "
+      "KLU (the fastest, doc/dynamics.md), Trilinos Amesos KLU, or UMFPACK.");
   prm.declare_entry("Maximum active-set iterations", "20", dealii::Patterns::Integer(1),
                     "Bound on the repetitions of one step while the active set of the "
                     "unilateral constraints changes (Sec. 5.3).");
@@ -71,6 +77,7 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
                                              : IntegratorType::half_explicit;
   ida_relative_tolerance = prm.get_double("IDA relative tolerance");
   ida_absolute_tolerance = prm.get_double("IDA absolute tolerance");
+  ida_linear_solver = prm.get("IDA linear solver");
   rho_infinity = prm.get_double("Spectral radius at infinity");
   const std::string solver = prm.get("Linear solver");
   linear_solver = solver == "umfpack"        ? LinearSolverType::umfpack

@@ -13,8 +13,11 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
     return std::make_unique<Bdf2Integrator>(system, p.time_step,
                                             p.max_active_set_iterations, p.linear_solver);
   if (p.integrator == IntegratorType::ida)
-    return std::make_unique<IdaIntegrator>(system, p.time_step, p.ida_relative_tolerance,
-                                           p.ida_absolute_tolerance);
+    return std::make_unique<IdaIntegrator>(
+        system, p.time_step, p.ida_relative_tolerance, p.ida_absolute_tolerance,
+        p.ida_linear_solver == "umfpack"        ? IdaLinearSolver::umfpack
+        : p.ida_linear_solver == "trilinos-klu" ? IdaLinearSolver::trilinos_klu
+                                                : IdaLinearSolver::sundials_klu);
   if (p.integrator == IntegratorType::generalized_alpha)
     return std::make_unique<GeneralizedAlphaIntegrator>(
         system, p.time_step, p.rho_infinity, p.max_active_set_iterations,

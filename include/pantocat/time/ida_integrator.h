@@ -9,6 +9,14 @@
 
 namespace pantocat
 {
+/// The sparse direct solver of IDA's Newton iterations.
+enum class IdaLinearSolver
+{
+  sundials_klu, ///< SUNDIALS' SUNLinSol_KLU (SuiteSparse KLU)
+  trilinos_klu, ///< Trilinos Amesos KLU through SparseDirectSolver
+  umfpack       ///< deal.II's UMFPACK through SparseDirectSolver
+};
+
 /**
  * SUNDIALS IDA (the IDAS library that deal.II links, through its C API:
  * deal.II 9.4's wrapper has no root finding) on the GGL-stabilised index-2
@@ -21,7 +29,8 @@ namespace pantocat
  * with y = (q, v, lambda, mu); lambda and mu are algebraic and excluded from
  * the error test. Variable order and step, tolerances from the prm; the
  * sparse Jacobian dF/dy + cj dF/dy' is assembled from M, D, K and the
- * constraint rows and factorised by KLU (SUNDIALS' SUNLinSol_KLU).
+ * constraint rows and factorised by KLU (SUNDIALS' SUNLinSol_KLU, the
+ * default), by Trilinos Amesos KLU or by UMFPACK (through SparseDirectSolver).
  *
  * Events are located by IDA's root finding: the gap of each inactive
  * unilateral constraint (closing) and the multiplier of each active one
@@ -36,7 +45,8 @@ class IdaIntegrator : public TimeIntegrator
 {
 public:
   IdaIntegrator(const SemiDiscreteSystem& system, double output_step,
-                double relative_tolerance, double absolute_tolerance);
+                double relative_tolerance, double absolute_tolerance,
+                IdaLinearSolver solver = IdaLinearSolver::sundials_klu);
   ~IdaIntegrator() override;
 
   std::string name() const override { return "ida"; }
@@ -56,6 +66,7 @@ private:
 
   double dt;
   double rtol, atol;
+  IdaLinearSolver linear_solver;
   unsigned int n, m;
   MassInverse mass_inverse;
   ConstraintEvaluator rows;
