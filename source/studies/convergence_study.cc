@@ -80,6 +80,7 @@ std::vector<double> ConvergenceStudy::refinement_parameters(const unsigned int m
 
 void ConvergenceStudy::run()
 {
+  check_study_grids(plan_.runs(), parameters);
   RunRequest request;
   request.wire_samples = parameters.study.wire_errors ? plan_.finest_n_intervals() : 0;
   request.eigenfrequencies =

@@ -2,6 +2,9 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/studies/study_run.h>
+#include <pantocat/system/catenary_system_builder.h>
+
+#include <set>
 
 #include <chrono>
 #include <cstring>
@@ -126,6 +129,28 @@ RunOutcome RunOutcome::unpack(const std::vector<char>& b, std::size_t& pos)
   o.f_min_carrier = get<double>(b, pos);
   o.f_min_contact_wire = get<double>(b, pos);
   return o;
+}
+
+void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameters& base)
+{
+  std::set<std::pair<std::string, unsigned int>> checked;
+  for (const StudyRun& run : runs)
+  {
+    const ProgramParameters p = run.parameters(base);
+    if (!checked
+             .insert({to_string(p.discretisation.method), p.discretisation.n_intervals})
+             .second)
+      continue;
+    try
+    {
+      const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
+      build_catenary_system(*space, Constraint::Kind::unilateral);
+    }
+    catch (const InputError& e)
+    {
+      throw InputError("Study: run " + run.label() + ": " + e.what());
+    }
+  }
 }
 
 RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,

@@ -33,6 +33,7 @@ WorkPrecisionStudy::WorkPrecisionStudy(const ProgramParameters& p)
 
 void WorkPrecisionStudy::run()
 {
+  check_study_grids(plan_.runs(), parameters);
   const RunDistribution distribution;
   root = distribution.is_root();
   const std::vector<RunOutcome> outcomes = distribution.run_and_gather(

@@ -58,6 +58,13 @@ struct RunOutcome
 const char* to_string(RunOutcome::Status status);
 
 /**
+ * Refuses, before any run starts, a study whose grids cannot carry the case
+ * (e.g. N+1 too small for the droppers): an InputError that names the run and
+ * says what is allowed. Each distinct discretisation and N+1 is built once.
+ */
+void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameters& base);
+
+/**
  * Runs @p run of the case @p base: builds the DynamicSimulation, skips a
  * half-explicit step above 2/omega_max (DynamicSimulation::check_step_size
  * would refuse it), integrates and records lambda_p at every time point.
