@@ -119,7 +119,7 @@ Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double ti
                                const unsigned int max_iterations,
                                const LinearSolverType linear_solver)
     : TimeIntegrator(system), dt(time_step), linear_solver(linear_solver),
-      damping_over_mass(system), history_load(system), at_next(system),
+      damping_over_mass(system), operators(system), at_next(system),
       active_set(system, max_iterations)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
@@ -146,7 +146,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // batch with the columns of the first moving constraint.
   dealii::Vector<double> history(rho_v);
   history.add(c, rho_q);
-  history_load.apply(history, rho_q, s.base_batch(), IterationMatrix::base_column);
+  operators.history(history, rho_q, s.base_batch(), IterationMatrix::base_column);
   if (s.moving.empty())
     s.inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
   for (const unsigned int l : s.moving)

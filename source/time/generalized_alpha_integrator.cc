@@ -25,7 +25,7 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
       c_v(k.gamma / (k.beta * h)),
       S(system, c_v, c_q, "generalized-alpha iteration matrix K + c_v D + c_q M",
         linear_solver),
-      history_load(system), at_next(system), active_set(system, max_iterations, false)
+      operators(system), at_next(system), active_set(system, max_iterations, false)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
@@ -82,7 +82,7 @@ void GeneralizedAlphaIntegrator::advance()
   damping_part.equ(c_v, q_hat);
   damping_part -= v_hat;
   InterleavedColumns& B = S.base_batch();
-  history_load.apply(mass_part, damping_part, B, base_column);
+  operators.history(mass_part, damping_part, B, base_column);
   if (S.moving.empty())
     S.inverse.solve_interleaved(B.data(), InterleavedColumns::width);
   for (const unsigned int l : S.moving)

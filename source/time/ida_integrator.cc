@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/ida_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -109,7 +110,7 @@ SUNLinearSolver make_dealii_solver(LinearSolverType type, SUNContext context)
 /// SUNDIALS objects and the callbacks of IDA (residual, Jacobian, roots).
 struct IdaIntegrator::Sundials
 {
-  explicit Sundials(IdaIntegrator& owner) : owner(owner)
+  explicit Sundials(IdaIntegrator& owner) : owner(owner), operators(owner.system)
   {
     if (SUNContext_Create(nullptr, &context) != 0)
       throw SimulationError("IDA: cannot create a SUNDIALS context");
@@ -134,22 +135,6 @@ struct IdaIntegrator::Sundials
                                           : LinearSolverType::trilinos_klu,
                                       context);
     memory = IDACreate(context);
-    // M, D, K on their shared pattern as plain arrays (the residual's pass).
-    load = sys.load;
-    row_start.assign(1, 0);
-    for (unsigned int i = 0; i < owner.n; ++i)
-    {
-      auto d = sys.damping.begin(i);
-      auto k = sys.stiffness.begin(i);
-      for (auto it = sys.mass.begin(i); it != sys.mass.end(i); ++it, ++d, ++k)
-      {
-        column.push_back(it->column());
-        mass.push_back(it->value());
-        damping.push_back(d->value());
-        stiffness.push_back(k->value());
-      }
-      row_start.push_back(column.size());
-    }
   }
   ~Sundials()
   {
@@ -176,9 +161,7 @@ struct IdaIntegrator::Sundials
   void* memory = nullptr;
   sunindextype nnz = 0;
   std::vector<sunindextype> pattern; ///< of the last Jacobian (column starts, rows)
-  dealii::Vector<double> load;
-  std::vector<unsigned int> row_start, column;
-  std::vector<double> mass, damping, stiffness;
+  PatternOperators operators;        ///< M, D, K, f for the residual's pass
 };
 
 int IdaIntegrator::Sundials::residual(realtype t, N_Vector yy, N_Vector yyp, N_Vector rr,
@@ -193,34 +176,16 @@ int IdaIntegrator::Sundials::residual(realtype t, N_Vector yy, N_Vector yyp, N_V
   const auto& c = I.rows.at(t, 1);
   const Sundials& S = *static_cast<Sundials*>(data);
   // F_q = M (q' - v), F_v = M v' + D v + K q - f: one pass over the shared pattern.
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    double fq = 0., fv = -S.load[i];
-    for (unsigned int e = S.row_start[i]; e < S.row_start[i + 1]; ++e)
-    {
-      const unsigned int j = S.column[e];
-      fq += S.mass[e] * (qp[j] - v[j]);
-      fv += S.mass[e] * vp[j] + S.damping[e] * v[j] + S.stiffness[e] * q[j];
-    }
-    r[i] = fq;
-    r[n + i] = fv;
-  }
+  S.operators.motion(q, v, qp, vp, r, r + n);
   // - G^T mu, - G^T lambda and the constraints.
   for (unsigned int k = 0; k < m; ++k)
     if (I.active[k])
     {
-      c[k].G.add_transpose_to(r, -mu[k]);
-      for (std::size_t e = 0; e < c[k].G.size(); ++e)
-        r[n + c[k].G.index[e]] -= lambda[k] * c[k].G.value[e];
-      // velocity and position constraints
-      double gv = c[k].z_t, g = c[k].z;
-      for (std::size_t e = 0; e < c[k].G.size(); ++e)
-        gv += c[k].G.value[e] * v[c[k].G.index[e]],
-            g += c[k].G.value[e] * q[c[k].G.index[e]];
-      for (std::size_t e = 0; e < c[k].G_t.size(); ++e)
-        gv += c[k].G_t.value[e] * q[c[k].G_t.index[e]];
-      r[2 * n + k] = gv;
-      r[2 * n + m + k] = g;
+      c[k].G.add_transpose_to(r, -mu[k]); // F_q -= G^T mu
+      double* r_v = r + n;
+      c[k].G.add_transpose_to(r_v, -lambda[k]); // F_v -= G^T lambda
+      r[2 * n + k] = c[k].velocity_residual(q, v);
+      r[2 * n + m + k] = c[k].position_residual(q);
     }
     else
     {

@@ -1,10 +1,10 @@
 #pragma once
 
 #include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
-#include <pantocat/time/history_load.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
@@ -73,7 +73,7 @@ private:
   LinearSolverType linear_solver;
   MassInverse mass_inverse;
   DampingOverMass damping_over_mass;
-  HistoryLoad history_load;
+  PatternOperators operators;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   std::unique_ptr<Stage> bdf2;

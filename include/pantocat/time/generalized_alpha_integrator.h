@@ -2,9 +2,9 @@
 
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
-#include <pantocat/time/history_load.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
@@ -75,7 +75,7 @@ private:
   double c_q, c_v; ///< S = K + c_v D + c_q M
   MassInverse mass_inverse;
   IterationMatrix S; ///< K + c_v D + c_q M and the column batches
-  HistoryLoad history_load;
+  PatternOperators operators;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   DynamicState current;
