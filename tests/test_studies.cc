@@ -28,7 +28,8 @@ ProgramParameters smooth_bilateral_case(const IntegratorType integrator)
   ProgramParameters p;
   p.mode = RunMode::convergence_study;
   p.pantograph.final_position = 3.6;
-  p.pantograph.bilateral_constraints = true;
+  p.scene.droppers = DropperModel::bilateral;
+  p.scene.contact = Constraint::Kind::bilateral;
   p.discretisation.method = SpaceMethod::fdm;
   p.discretisation.n_intervals = 50;
   p.study.integrators = {integrator};

@@ -24,6 +24,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
                     dealii::Patterns::List(dealii::Patterns::Selection("fem|fdm"), 1),
                     "Space discretisations compared in eigenfrequency mode.");
   prm.leave_subsection();
+  SceneParameters::declare_parameters(prm);
   CatenaryParameters::declare_parameters(prm);
   PantographParameters::declare_parameters(prm);
   DiscretisationParameters::declare_parameters(prm);
@@ -49,6 +50,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
        dealii::Utilities::split_string_list(prm.get("Discretisations")))
     eigenfrequency_discretisations.push_back(space_method_from_string(name));
   prm.leave_subsection();
+  scene.parse_parameters(prm);
   catenary.parse_parameters(prm);
   pantograph.parse_parameters(prm);
   discretisation.parse_parameters(prm);
@@ -57,6 +59,12 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   statistics.parse_parameters(prm);
   study.parse_parameters(prm);
 
+  scene.check();
+  if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
+    require(scene.has_pantograph_body() && scene.contact_wire == WireModel::elastic,
+            "Scene/Pantograph", to_string(scene.pantograph),
+            "studies measure the contact force lambda_p on the elastic wire: allowed "
+            "two-mass | three-mass with Contact wire = elastic");
   discretisation.check(catenary.span);
   pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
                                       ? discretisation.load_half_width

@@ -113,10 +113,31 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
 
 namespace
 {
+/// The energy's range over the reported time points (Output/Energy).
+struct EnergyRange : SimulationObserver
+{
+  void observe(const TimePoint& point) override
+  {
+    if (count++ == 0)
+      initial = min = max = point.energy;
+    min = std::min(min, point.energy);
+    max = std::max(max, point.energy);
+    final = point.energy;
+  }
+  /// max |E(t) - E(0)| / |E(0)|.
+  double relative_variation() const
+  {
+    return std::max(max - initial, initial - min) / std::abs(initial);
+  }
+  unsigned long count = 0;
+  double initial = 0., min = 0., max = 0., final = 0.;
+};
+
 void write_summary(const std::string& file, const ProgramParameters& p,
                    const DynamicSimulation& simulation,
                    const DynamicSimulation::Result& r, const RunStatistics& stats,
-                   const EventLog& events, const ContactForceStatistics& contact)
+                   const EventLog& events, const ContactForceStatistics* contact,
+                   const EnergyRange& energy)
 {
   std::ofstream out(file);
   JsonWriter json(out);
@@ -132,18 +153,34 @@ void write_summary(const std::string& file, const ProgramParameters& p,
       .value("unknowns", static_cast<unsigned long>(simulation.system().n_dofs()))
       .value("constraints",
              static_cast<unsigned long>(simulation.system().n_constraints()));
-  json.begin_object("contact_force")
-      .value("max", stats.contact_force_max())
-      .value("min", stats.contact_force_min())
-      .value("mean", stats.contact_force_mean())
-      .value("std", stats.contact_force_std())
-      .end_object();
-  write_statistics(json, contact);
+  json.begin_array("scene");
+  for (const std::string& effect : simulation.active_effects())
+    json.value("", effect);
+  json.end_array();
+  if (contact != nullptr)
+  {
+    json.begin_object("contact_force")
+        .value("max", stats.contact_force_max())
+        .value("min", stats.contact_force_min())
+        .value("mean", stats.contact_force_mean())
+        .value("std", stats.contact_force_std())
+        .end_object();
+    write_statistics(json, *contact);
+  }
+  if (energy.count > 0)
+    json.begin_object("energy")
+        .value("initial", energy.initial)
+        .value("min", energy.min)
+        .value("max", energy.max)
+        .value("final", energy.final)
+        .value("max_relative_variation", energy.relative_variation())
+        .end_object();
   json.begin_array("dropper_slack_intervals");
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
   json.end_array();
-  json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  if (simulation.layout().has_contact())
+    json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
   // Events: located in time by the integrator (IDA's root finding), or at
   // step resolution from the reported time points.
   const auto& layout = simulation.layout();
@@ -216,6 +253,32 @@ void list_files(std::ostream& out, const std::string& dir)
 }
 } // namespace
 
+namespace
+{
+/// Which effects the scene assembles, which it leaves out, and the problem size.
+void print_scene(std::ostream& out, const DynamicSimulation& simulation)
+{
+  const SemiDiscreteSystem& system = simulation.system();
+  const SimulationLayout& layout = simulation.layout();
+  out << "  scene: " << simulation.active_effects().size() << " effects\n";
+  for (const std::string& effect : simulation.active_effects())
+    out << "    " << effect << '\n';
+  if (!simulation.inactive_effects().empty())
+  {
+    out << "  left out (not assembled):";
+    for (const std::string& name : simulation.inactive_effects())
+      out << (name == simulation.inactive_effects().front() ? " " : ", ") << name;
+    out << '\n';
+  }
+  out << "  problem size: " << system.n_dofs() << " unknowns (";
+  for (const DofBlock& b : system.blocks)
+    out << (&b == &system.blocks.front() ? "" : ", ") << b.name << ' ' << b.size;
+  out << "), " << system.n_constraints() << " constraints ("
+      << layout.dropper_indices.size() << " droppers"
+      << (layout.has_contact() ? ", contact" : "") << ")\n";
+}
+} // namespace
+
 void run_dynamics(const ProgramParameters& p, std::ostream& out)
 {
   dealii::TimerOutput timer(out, dealii::TimerOutput::never,
@@ -225,34 +288,44 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   simulation.check_step_size(); // before any output is written
   timer.leave_subsection();
   const std::string& dir = p.output.directory;
-  out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
+  out << "Dynamic run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
       << to_string(p.time_integration.integrator)
       << ", dt = " << p.time_integration.time_step << " s, v_p = " << p.pantograph.speed
       << " m/s, x_p from " << p.pantograph.initial_position << " to "
-      << p.pantograph.final_position << " m\n"
-      << "  " << simulation.system().n_dofs() << " unknowns, "
-      << simulation.system().n_constraints()
-      << (p.pantograph.bilateral_constraints ? " bilateral" : " unilateral")
-      << " constraints\n";
-
+      << p.pantograph.final_position << " m\n";
+  print_scene(out, simulation);
   TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
   RunStatistics stats;
   EventLog events;
+  const bool has_contact = simulation.layout().has_contact();
   struct FirstPoint : SimulationObserver
   {
+    void start(const SimulationLayout& layout) override
+    {
+      contact = layout.contact_index;
+    }
     void observe(const TimePoint& point) override
     {
       if (!seen)
-        t = point.t, lambda_p = point.lambda.back(), seen = true;
+        t = point.t, lambda_p = point.lambda[contact], seen = true;
     }
+    unsigned int contact = 0;
     bool seen = false;
     double t = 0., lambda_p = 0.;
   } first;
-  ContactStatistics contact(p.statistics, simulation.discretisation(),
-                            simulation.system());
-  std::vector<SimulationObserver*> observers{&series, &stats, &events, &first, &contact};
+  EnergyRange energy;
+  std::vector<SimulationObserver*> observers{&series, &stats, &events};
   // Observers that are not asked for are not attached: they cost nothing.
+  std::optional<ContactStatistics> contact;
+  if (has_contact)
+  {
+    observers.push_back(&first);
+    observers.push_back(
+        &contact.emplace(p.statistics, simulation.discretisation(), simulation.system()));
+  }
+  if (p.output.energy)
+    observers.push_back(&energy);
   std::optional<VtuTimeSeriesWriter> vtu;
   if (p.output.vtu_interval > 0.)
     observers.push_back(
@@ -284,29 +357,40 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                           ? simulation.explicit_stability_limit()
                           : std::numeric_limits<double>::quiet_NaN();
   timer.enter_subsection("output (summary, plots)");
-  write_summary(dir + "/summary.json", p, simulation, r, stats, events, contact.result());
-  write_contact_force(dir + "/contact_force.csv", contact);
+  write_summary(dir + "/summary.json", p, simulation, r, stats, events,
+                contact ? &contact->result() : nullptr, energy);
+  if (contact)
+    write_contact_force(dir + "/contact_force.csv", *contact);
 
-  out << std::setprecision(6) << "  first time point t = " << first.t
-      << " s: lambda_p = " << first.lambda_p
-      << " N (lambda_p(0) = " << p.pantograph.initial_contact_force << " N)\n"
-      << "  " << r.integrator.steps << " steps in " << std::setprecision(3)
+  if (has_contact)
+    out << std::setprecision(6) << "  first time point t = " << first.t
+        << " s: lambda_p = " << first.lambda_p
+        << " N (lambda_p(0) = " << p.pantograph.initial_contact_force << " N)\n";
+  out << "  " << r.integrator.steps << " steps in " << std::setprecision(3)
       << r.time_loop_seconds
-      << " s; active-set changes: " << r.integrator.active_set_changes << '\n'
-      << std::setprecision(5) << "  contact force: max " << stats.contact_force_max()
-      << " N, min " << stats.contact_force_min() << " N, mean "
-      << stats.contact_force_mean() << " N, std " << stats.contact_force_std() << " N\n";
+      << " s; active-set changes: " << r.integrator.active_set_changes << '\n';
+  if (has_contact)
+    out << std::setprecision(5) << "  contact force: max " << stats.contact_force_max()
+        << " N, min " << stats.contact_force_min() << " N, mean "
+        << stats.contact_force_mean() << " N, std " << stats.contact_force_std()
+        << " N\n";
+  if (energy.count > 0)
+    out << std::setprecision(6) << "  energy: initial " << energy.initial << " J, final "
+        << energy.final << " J, max |E - E(0)| / |E(0)| = " << std::setprecision(3)
+        << energy.relative_variation() << '\n';
   const auto slack = stats.dropper_slack_intervals();
   for (unsigned int j = 0; j < slack.size(); ++j)
     out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
-  out << "  contact lost: " << format_intervals(stats.contact_loss_intervals()) << '\n'
-      << std::setprecision(3) << "  max constraint residual: position "
+  if (has_contact)
+    out << "  contact lost: " << format_intervals(stats.contact_loss_intervals()) << '\n';
+  out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
       << " m/s\n";
   if (p.output.verbosity == Verbosity::detailed)
     out << "  active-set iterations: " << r.integrator.active_set_iterations << '\n';
-  print_statistics(out, contact.result());
-  if (p.output.plots)
+  if (contact)
+    print_statistics(out, contact->result());
+  if (p.output.plots && contact)
   {
     std::ostringstream title;
     title << to_string(p.discretisation.method) << " + "
@@ -316,7 +400,8 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
         plot_time_series(dir, p.catenary.n_droppers(),
                          simulation.layout().pantograph_coordinates, title.str());
     const bool drawn =
-        plot_contact_force_statistics(dir, contact.result(), title.str()) && series_drawn;
+        plot_contact_force_statistics(dir, contact->result(), title.str()) &&
+        series_drawn;
     if (!drawn)
       out << (gnuplot_available()
                   ? "  (gnuplot failed on a .gp script in the directory)\n"
@@ -324,10 +409,12 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                     "PNG plots)\n");
   }
   timer.leave_subsection();
-  out << "  wrote time_series.csv, contact_force.csv, summary.json"
-      << (p.output.plots ? ", contact_force.png, dropper_forces.png, pantograph.png, "
-                           "contact_force_statistics.png"
-                         : "")
+  out << "  wrote time_series.csv" << (contact ? ", contact_force.csv" : "")
+      << ", summary.json"
+      << (p.output.plots && contact
+              ? ", contact_force.png, dropper_forces.png, pantograph.png, "
+                "contact_force_statistics.png"
+              : "")
       << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
                     " frames in vtu/"
               : "")

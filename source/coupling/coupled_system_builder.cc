@@ -1,5 +1,5 @@
 #include <pantocat/coupling/coupled_system_builder.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/scene/scene_builder.h>
 
 namespace pantocat
 {
@@ -9,17 +9,18 @@ CoupledSystem build_coupled_system(const CatenaryDiscretisation& discretisation,
                                    const Constraint::Kind dropper_kind,
                                    const Constraint::Kind contact_kind)
 {
+  SceneParameters scene;
+  scene.droppers = dropper_kind == Constraint::Kind::bilateral ? DropperModel::bilateral
+                                                               : DropperModel::unilateral;
+  scene.contact = contact_kind;
+  BuiltScene built = build_scene(scene, discretisation.catenary_parameters(),
+                                 discretisation, &pantograph, motion);
   CoupledSystem s;
-  s.catenary_only = build_catenary_system(discretisation, dropper_kind);
-  BlockOperator pantograph_operator;
-  pantograph.assemble(pantograph_operator);
-  s.coupled = build_catenary_system(discretisation, dropper_kind, {&pantograph_operator});
-  auto contact = std::make_unique<ContactConstraint>(
-      discretisation, pantograph, s.coupled.block("contact wire").first,
-      s.coupled.block("pantograph").first, motion, contact_kind);
-  s.contact = contact.get();
-  s.contact_index = s.coupled.n_constraints();
-  s.coupled.add_constraint(std::move(contact));
+  s.catenary_only = std::move(built.catenary_only);
+  s.coupled = std::move(built.system);
+  s.contact_index = built.contact_index;
+  s.contact = dynamic_cast<const ContactConstraint*>(
+      s.coupled.constraints[s.contact_index].get());
   return s;
 }
 } // namespace pantocat

@@ -1,5 +1,7 @@
 #include <pantocat/io/output_parameters.h>
 
+#include <deal.II/base/utilities.h>
+
 namespace pantocat
 {
 void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
@@ -19,6 +21,14 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Simulated time [s] between the ParaView frames of a dynamic run "
                     "(solution.pvd and vtu/*.vtu: both wires, pantograph and dropper "
                     "clamps); 0: no frames.");
+  prm.declare_entry("Probe positions", "",
+                    dealii::Patterns::List(dealii::Patterns::Double()),
+                    "Positions x [m] on the contact wire whose displacement w_w(x) goes "
+                    "into time_series.csv (columns w_w(x)); empty: none.");
+  prm.declare_entry("Energy", "false", dealii::Patterns::Bool(),
+                    "Write the energy v^T M v / 2 + q^T K q / 2 - f(t)^T q of the "
+                    "semi-discrete system to time_series.csv and its range to "
+                    "summary.json (costs one product with M and K per time point).");
   prm.declare_entry("Verbosity", "normal",
                     dealii::Patterns::Selection("quiet|normal|detailed"),
                     "quiet: print only errors; normal: the summary, the contact-force "
@@ -36,6 +46,9 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");
   vtu_interval = prm.get_double("VTU interval");
+  probe_positions = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("Probe positions")));
+  energy = prm.get_bool("Energy");
   const std::string v = prm.get("Verbosity");
   verbosity = v == "quiet"      ? Verbosity::quiet
               : v == "detailed" ? Verbosity::detailed

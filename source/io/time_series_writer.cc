@@ -14,18 +14,22 @@ TimeSeriesWriter::TimeSeriesWriter(const std::string& file, const unsigned int e
 void TimeSeriesWriter::start(const SimulationLayout& l)
 {
   layout = l;
-  out << "t,x_p,lambda_p";
+  const bool contact = l.has_contact();
+  out << "t,x_p" << (contact ? ",lambda_p" : "");
   for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
     out << ",lambda_d" << j + 1;
   for (const auto& name : l.pantograph_coordinates)
     out << ',' << name;
-  out << ",gap_p";
+  out << (contact ? ",gap_p" : "");
   for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
     out << ",gap_d" << j + 1;
-  out << ",active_p";
+  out << (contact ? ",active_p" : "");
   for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
     out << ",active_d" << j + 1;
-  out << ",residual_position,residual_velocity\n";
+  out << ",residual_position,residual_velocity";
+  for (const double x : l.probe_positions)
+    out << ",w_w(" << x << ')';
+  out << (l.energy ? ",energy" : "") << '\n';
 }
 
 void TimeSeriesWriter::observe(const TimePoint& p)
@@ -33,18 +37,28 @@ void TimeSeriesWriter::observe(const TimePoint& p)
   if (seen++ % every != 0)
     return;
   const unsigned int c = layout.contact_index;
-  out << p.t << ',' << p.x_p << ',' << p.lambda[c];
+  const bool contact = layout.has_contact();
+  out << p.t << ',' << p.x_p;
+  if (contact)
+    out << ',' << p.lambda[c];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.lambda[i];
   for (const double w : p.pantograph)
     out << ',' << w;
-  out << ',' << p.gap[c];
+  if (contact)
+    out << ',' << p.gap[c];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.gap[i];
-  out << ',' << p.active[c];
+  if (contact)
+    out << ',' << p.active[c];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.active[i];
-  out << ',' << p.position_residual << ',' << p.velocity_residual << '\n';
+  out << ',' << p.position_residual << ',' << p.velocity_residual;
+  for (const double w : p.probes)
+    out << ',' << w;
+  if (layout.energy)
+    out << ',' << p.energy;
+  out << '\n';
   out.flush();
 }
 

@@ -19,8 +19,11 @@ namespace
 SparseRow global_row(const CatenaryDiscretisation& d, const SemiDiscreteSystem& system,
                      const Wire wire, const double x)
 {
+  const std::string name = wire == Wire::carrier ? "carrier" : "contact wire";
+  if (!system.has_block(name)) // a rigid wire of the scene: displacement 0
+    return {};
   SparseRow row = d.point_row(wire, x);
-  row.shift(system.block(wire == Wire::carrier ? "carrier" : "contact wire").first);
+  row.shift(system.block(name).first);
   return row;
 }
 
@@ -74,6 +77,8 @@ VtuTimeSeriesWriter::VtuTimeSeriesWriter(const std::string& directory,
 void VtuTimeSeriesWriter::start(const SimulationLayout& l)
 {
   layout = l;
+  if (l.dropper_indices.empty()) // a scene without droppers
+    dropper_rows.clear();
   next_frame = 0;
   written.clear();
   std::error_code error;
@@ -149,7 +154,8 @@ void VtuTimeSeriesWriter::write_points(const TimePoint& p, const DynamicState& s
     patch.data(2, 0) = id;
     patches.push_back(patch);
   };
-  add(p.x_p, p.pantograph.at(0), layout.contact_index, 0.);
+  if (layout.has_contact())
+    add(p.x_p, p.pantograph.at(0), layout.contact_index, 0.);
   for (std::size_t j = 0; j < dropper_rows.size(); ++j)
     add(dropper_x[j], dropper_rows[j].dot(s.q), layout.dropper_indices[j], j + 1.);
   std::ofstream out(directory + "/" + file);

@@ -2,6 +2,8 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
 
+#include <deal.II/base/utilities.h>
+
 namespace pantocat
 {
 using dealii::Patterns::Double;
@@ -9,8 +11,6 @@ using dealii::Patterns::Double;
 void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Pantograph");
-  prm.declare_entry("Model", "two-mass", dealii::Patterns::Selection("two-mass"),
-                    "Lumped-mass pantograph model: two-mass = Eq. (12).");
   prm.declare_entry("Initial position", "2", Double(),
                     "x_p(0) [m], inside (epsilon, L - epsilon).");
   prm.declare_entry("Final position", "18", Double(),
@@ -20,11 +20,6 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "lambda_p(0) [N]: the contact load of the initial static catenary.");
   prm.declare_entry("Initial offset", "0", Double(),
                     "w_p1(0) - w_p2(0) [m]: 0 in (13); 0.002 at 48 m/s (Sec. 6).");
-  prm.declare_entry("Constraints", "unilateral",
-                    dealii::Patterns::Selection("unilateral|bilateral"),
-                    "unilateral: droppers and contact may slacken (Sec. 5.3, the "
-                    "paper's model); bilateral: they are equations (4), (32) at all "
-                    "times (a smooth case, e.g. for convergence orders in time).");
   prm.enter_subsection("Two-mass model");
   const TwoMassPantographParameters d;
   prm.declare_entry("Head mass", number_to_string(d.head_mass), Double(0.), "m_1 [kg].");
@@ -41,19 +36,34 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Uplift force", number_to_string(d.uplift_force), Double(),
                     "Static uplift force F_0 on body 2 [N].");
   prm.leave_subsection();
+  prm.enter_subsection("Three-mass model");
+  const ThreeMassPantographParameters t;
+  const auto list = [](const std::array<double, 3>& a)
+  {
+    return number_to_string(a[0]) + ", " + number_to_string(a[1]) + ", " +
+           number_to_string(a[2]);
+  };
+  const dealii::Patterns::List three(Double(0.), 3, 3);
+  prm.declare_entry("Masses", list(t.masses), three,
+                    "m_1, m_2, m_3 [kg]: head, upper frame, lower frame.");
+  prm.declare_entry("Stiffnesses", list(t.stiffnesses), three,
+                    "c_1, c_2, c_3 [N/m]: head-upper, upper-lower, lower-ground.");
+  prm.declare_entry("Dampings", list(t.dampings), three,
+                    "d_1, d_2, d_3 [N s/m]: head-upper, upper-lower, lower-ground.");
+  prm.declare_entry("Uplift force", number_to_string(t.uplift_force), Double(),
+                    "Static uplift force F_0 on body 3 [N].");
+  prm.leave_subsection();
   prm.leave_subsection();
 }
 
 void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Pantograph");
-  model = prm.get("Model");
   initial_position = prm.get_double("Initial position");
   final_position = prm.get_double("Final position");
   speed = prm.get_double("Speed");
   initial_contact_force = prm.get_double("Initial contact force");
   initial_offset = prm.get_double("Initial offset");
-  bilateral_constraints = prm.get("Constraints") == "bilateral";
   prm.enter_subsection("Two-mass model");
   two_mass.head_mass = prm.get_double("Head mass");
   two_mass.frame_mass = prm.get_double("Frame mass");
@@ -62,6 +72,18 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
   two_mass.head_damping = prm.get_double("Head damping");
   two_mass.frame_damping = prm.get_double("Frame damping");
   two_mass.uplift_force = prm.get_double("Uplift force");
+  prm.leave_subsection();
+  prm.enter_subsection("Three-mass model");
+  const auto read = [&](const std::string& name, std::array<double, 3>& a)
+  {
+    const auto values = dealii::Utilities::string_to_double(
+        dealii::Utilities::split_string_list(prm.get(name)));
+    std::copy(values.begin(), values.end(), a.begin());
+  };
+  read("Masses", three_mass.masses);
+  read("Stiffnesses", three_mass.stiffnesses);
+  read("Dampings", three_mass.dampings);
+  three_mass.uplift_force = prm.get_double("Uplift force");
   prm.leave_subsection();
   prm.leave_subsection();
 }
@@ -83,5 +105,8 @@ void PantographParameters::check(const double span, const double eps) const
           two_mass.head_mass, "must be > 0");
   require(two_mass.frame_mass > 0., "Pantograph/Two-mass model/Frame mass",
           two_mass.frame_mass, "must be > 0");
+  for (unsigned int i = 0; i < 3; ++i)
+    require(three_mass.masses[i] > 0., "Pantograph/Three-mass model/Masses",
+            three_mass.masses[i], "every mass must be > 0");
 }
 } // namespace pantocat

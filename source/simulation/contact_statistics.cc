@@ -67,6 +67,8 @@ ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
                                      const SemiDiscreteSystem& system)
     : parameters(parameters)
 {
+  if (!system.has_block("contact wire")) // a rigid wire: no uplift to measure
+    return;
   const unsigned int offset = system.block("contact wire").first;
   for (const double x : d.catenary_parameters().dropper_positions)
   {

@@ -1,8 +1,9 @@
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
-#include <pantocat/coupling/coupled_system_builder.h>
+#include <pantocat/pantograph/three_mass_pantograph.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
+#include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/initial_state.h>
 
@@ -13,38 +14,50 @@
 
 namespace pantocat
 {
-std::unique_ptr<PantographModel> create_pantograph(const PantographParameters& p)
+std::unique_ptr<PantographModel> create_pantograph(const SceneParameters& scene,
+                                                   const PantographParameters& p)
 {
-  return std::make_unique<TwoMassPantograph>(p.two_mass);
+  if (scene.pantograph == PantographType::two_mass)
+    return std::make_unique<TwoMassPantograph>(p.two_mass);
+  if (scene.pantograph == PantographType::three_mass)
+    return std::make_unique<ThreeMassPantograph>(p.three_mass);
+  return nullptr;
 }
 
 DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
     : parameters(p), space(create_catenary_discretisation(p.catenary, p.discretisation)),
-      pantograph(create_pantograph(p.pantograph))
+      pantograph(create_pantograph(p.scene, p.pantograph)),
+      motion{p.pantograph.initial_position, p.pantograph.speed}
 {
-  CoupledSystem built = build_coupled_system(
-      *space, *pantograph,
-      ContactPointMotion{p.pantograph.initial_position, p.pantograph.speed},
-      p.pantograph.bilateral_constraints ? Constraint::Kind::bilateral
-                                         : Constraint::Kind::unilateral,
-      p.pantograph.bilateral_constraints ? Constraint::Kind::bilateral
-                                         : Constraint::Kind::unilateral);
+  BuiltScene built = build_scene(p.scene, p.catenary, *space, pantograph.get(), motion);
   catenary_only = std::move(built.catenary_only);
-  coupled = std::move(built.coupled);
-  contact = built.contact;
+  coupled = std::move(built.system);
+  effects = built.active_effects;
+  left_out = built.inactive_effects;
 
   for (unsigned int i = 0; i < coupled.n_constraints(); ++i)
-  {
     layout_.constraint_names.push_back(coupled.constraints[i]->name());
-    if (i + 1 < coupled.n_constraints())
-      layout_.dropper_indices.push_back(i);
+  layout_.dropper_indices = built.dropper_indices;
+  layout_.contact_index = built.contact_index;
+  if (pantograph)
+    layout_.pantograph_coordinates = pantograph->coordinate_names();
+  layout_.probe_positions = p.output.probe_positions;
+  layout_.energy = p.output.energy;
+  for (const double x : p.output.probe_positions)
+  {
+    require(coupled.has_block("contact wire"), "Output/Probe positions", x,
+            "probes measure the contact wire, which this scene holds rigid");
+    require(x > 0. && x < p.catenary.span, "Output/Probe positions", x,
+            "must lie inside (0, Span)");
+    probe_rows.push_back(space->point_row(Wire::contact_wire, x));
+    probe_rows.back().shift(coupled.block("contact wire").first);
   }
-  layout_.contact_index = coupled.n_constraints() - 1;
-  layout_.pantograph_coordinates = pantograph->coordinate_names();
 
-  initial = consistent_initial_state(catenary_only, coupled, *pantograph, *contact,
-                                     p.pantograph.initial_contact_force,
-                                     p.pantograph.initial_offset);
+  initial = p.scene.initial_shape == InitialShape::static_equilibrium
+                ? consistent_initial_state(
+                      catenary_only, coupled, pantograph.get(), built.contact_index,
+                      p.pantograph.initial_contact_force, p.pantograph.initial_offset)
+                : shaped_initial_state(coupled, *space, p.scene);
 }
 
 DynamicSimulation::~DynamicSimulation() = default;
@@ -83,7 +96,7 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
 {
   TimePoint p;
   p.t = s.t;
-  p.x_p = contact->motion().position(s.t);
+  p.x_p = motion.position(s.t);
   p.lambda = s.lambda;
   p.active = s.active;
   const unsigned int m = coupled.n_constraints();
@@ -100,9 +113,21 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
           std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
     }
   }
-  const DofBlock& b = coupled.block("pantograph");
-  for (unsigned int i = 0; i < b.size; ++i)
-    p.pantograph.push_back(s.q(b.first + i));
+  if (pantograph)
+  {
+    const DofBlock& b = coupled.block("pantograph");
+    for (unsigned int i = 0; i < b.size; ++i)
+      p.pantograph.push_back(s.q(b.first + i));
+  }
+  for (const SparseRow& row : probe_rows)
+    p.probes.push_back(row.dot(s.q));
+  if (layout_.energy)
+  {
+    // v^T M v / 2 + q^T K q / 2 - f(t)^T q
+    coupled.load_at(s.t, scratch_load);
+    p.energy = 0.5 * coupled.mass.matrix_norm_square(s.v) +
+               0.5 * coupled.stiffness.matrix_norm_square(s.q) - scratch_load * s.q;
+  }
   return p;
 }
 

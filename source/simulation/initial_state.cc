@@ -3,75 +3,128 @@
 #include <pantocat/simulation/initial_state.h>
 #include <pantocat/time/mass_inverse.h>
 
+#include <deal.II/base/numbers.h>
+
+#include <cmath>
+
 namespace pantocat
 {
-DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
-                                      const SemiDiscreteSystem& coupled,
-                                      const PantographModel& pantograph,
-                                      const ContactConstraint& contact,
-                                      const double contact_force, const double offset)
+namespace
 {
-  const unsigned int n = coupled.n_dofs(), m = coupled.n_constraints();
-  const unsigned int contact_index = m - 1;
+/// a = M^-1 (f(0) - K q - D v + sum_i G_i^T lambda_i): step 4 of Sec. 2.2.
+void complete_accelerations(const SemiDiscreteSystem& system, DynamicState& s)
+{
+  const unsigned int n = system.n_dofs();
+  dealii::Vector<double> force(n), tmp(n);
+  system.load_at(0., force);
+  system.stiffness.vmult(tmp, s.q);
+  force -= tmp;
+  system.damping.vmult(tmp, s.v);
+  force -= tmp;
   ConstraintState rows;
-  contact.evaluate(0., rows);
-
-  // 1. The catenary at rest under lambda_p(0): the wire part of G is F_w(0).
-  dealii::Vector<double> contact_load(catenary_only.n_dofs());
-  for (std::size_t k = 0; k < rows.G.size(); ++k)
-    if (rows.G.index[k] < catenary_only.n_dofs())
-      contact_load(rows.G.index[k]) += contact_force * rows.G.value[k];
-  const StaticEquilibrium rest = solve_static_equilibrium(catenary_only, contact_load);
-
-  DynamicState s;
-  s.t = 0.;
-  s.q.reinit(n);
-  s.v.reinit(n);
-  s.a.reinit(n);
-  for (unsigned int i = 0; i < catenary_only.n_dofs(); ++i)
-    s.q(i) = rest.q(i);
-
-  // 2. Head position, velocity and acceleration from g = 0, dg/dt = 0,
-  //    d2g/dt2 = 0 with the catenary at rest: B x_MBS = (wire part of the rows) q.
-  const double head_position = rows.G.dot(s.q); // pantograph entries of q are still 0
-  const double head_velocity = rows.G_t.dot(s.q);
-  const double head_acceleration = rows.G_tt.dot(s.q);
-
-  // 3. The pantograph's own equations complete its state.
-  dealii::Vector<double> q_mbs, v_mbs;
-  pantograph.consistent_state(head_position, head_velocity, head_acceleration,
-                              contact_force, offset, q_mbs, v_mbs);
-  const DofBlock& block = coupled.block("pantograph");
-  for (unsigned int i = 0; i < block.size; ++i)
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
   {
-    s.q(block.first + i) = q_mbs(i);
-    s.v(block.first + i) = v_mbs(i);
-  }
-
-  // 4. Multipliers and accelerations of the whole system.
-  s.lambda.assign(m, 0.);
-  s.active.assign(m, true);
-  for (unsigned int i = 0; i < rest.multipliers.size(); ++i)
-  {
-    s.lambda[i] = rest.multipliers[i];
-    s.active[i] = rest.active[i];
-  }
-  s.lambda[contact_index] = contact_force;
-  dealii::Vector<double> force(coupled.load), tmp(n);
-  coupled.stiffness.vmult(tmp, s.q);
-  force -= tmp;
-  coupled.damping.vmult(tmp, s.v);
-  force -= tmp;
-  std::vector<ConstraintState> states(m);
-  for (unsigned int i = 0; i < m; ++i)
-  {
-    coupled.constraints[i]->evaluate(0., states[i]);
-    states[i].G.add_transpose_to(force, s.lambda[i]);
+    system.constraints[i]->evaluate(0., rows);
+    rows.G.add_transpose_to(force, s.lambda[i]);
   }
   MassInverse mass_inverse;
-  mass_inverse.initialize(coupled.mass, coupled.mass_is_diagonal, "mass matrix M");
+  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   s.a = force;
   mass_inverse.apply(s.a);
+}
+
+DynamicState zero_state(const SemiDiscreteSystem& system)
+{
+  DynamicState s;
+  s.t = 0.;
+  s.q.reinit(system.n_dofs());
+  s.v.reinit(system.n_dofs());
+  s.a.reinit(system.n_dofs());
+  s.lambda.assign(system.n_constraints(), 0.);
+  s.active.assign(system.n_constraints(), true);
+  return s;
+}
+} // namespace
+
+DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
+                                      const SemiDiscreteSystem& coupled,
+                                      const PantographModel* pantograph,
+                                      const unsigned int contact_index,
+                                      const double contact_force, const double offset)
+{
+  const unsigned int n_catenary = catenary_only.n_dofs();
+  const bool has_contact = contact_index != dealii::numbers::invalid_unsigned_int;
+  ConstraintState rows;
+  if (has_contact)
+    coupled.constraints[contact_index]->evaluate(0., rows);
+
+  // 1. The catenary at rest under its time-dependent loads at t = 0 and
+  //    lambda_p(0): the wire part of G is F_w(0).
+  DynamicState s = zero_state(coupled);
+  if (n_catenary > 0)
+  {
+    dealii::Vector<double> f0(coupled.n_dofs()), extra(n_catenary);
+    coupled.load_at(0., f0);
+    for (unsigned int i = 0; i < n_catenary; ++i)
+      extra(i) = f0(i) - coupled.load(i);
+    if (has_contact)
+      for (std::size_t k = 0; k < rows.G.size(); ++k)
+        if (rows.G.index[k] < n_catenary)
+          extra(rows.G.index[k]) += contact_force * rows.G.value[k];
+    const StaticEquilibrium rest = solve_static_equilibrium(catenary_only, extra);
+    for (unsigned int i = 0; i < n_catenary; ++i)
+      s.q(i) = rest.q(i);
+    for (unsigned int i = 0; i < rest.multipliers.size(); ++i)
+    {
+      s.lambda[i] = rest.multipliers[i];
+      s.active[i] = rest.active[i];
+    }
+  }
+
+  if (pantograph != nullptr && has_contact)
+  {
+    // 2. Head position, velocity and acceleration from g = 0, dg/dt = 0,
+    //    d2g/dt2 = 0 with the catenary at rest: B x_MBS = (wire part of the rows) q + z.
+    const double head_position = rows.G.dot(s.q) + rows.z; // pantograph entries still 0
+    const double head_velocity = rows.G_t.dot(s.q) + rows.z_t;
+    const double head_acceleration = rows.G_tt.dot(s.q) + rows.z_tt;
+
+    // 3. The pantograph's own equations complete its state.
+    dealii::Vector<double> q_mbs, v_mbs;
+    pantograph->consistent_state(head_position, head_velocity, head_acceleration,
+                                 contact_force, offset, q_mbs, v_mbs);
+    const DofBlock& block = coupled.block("pantograph");
+    for (unsigned int i = 0; i < block.size; ++i)
+    {
+      s.q(block.first + i) = q_mbs(i);
+      s.v(block.first + i) = v_mbs(i);
+    }
+    s.lambda[contact_index] = contact_force;
+  }
+
+  // 4. Accelerations of the whole system.
+  complete_accelerations(coupled, s);
+  return s;
+}
+
+DynamicState shaped_initial_state(const SemiDiscreteSystem& system,
+                                  const CatenaryDiscretisation& space,
+                                  const SceneParameters& scene)
+{
+  DynamicState s = zero_state(system);
+  if (scene.initial_shape == InitialShape::sine_mode)
+  {
+    const double k = scene.initial_mode * M_PI / space.catenary_parameters().span;
+    const double A = scene.initial_amplitude;
+    dealii::Vector<double> q_w;
+    space.interpolate(
+        Wire::contact_wire, [&](const double x) { return A * std::sin(k * x); },
+        [&](const double x) { return A * k * std::cos(k * x); }, q_w);
+    const DofBlock& block = system.block("contact wire");
+    for (unsigned int i = 0; i < block.size; ++i)
+      s.q(block.first + i) = q_w(i);
+  }
+  complete_accelerations(system, s);
   return s;
 }
 } // namespace pantocat

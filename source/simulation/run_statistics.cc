@@ -14,14 +14,17 @@ void RunStatistics::start(const SimulationLayout& l)
 
 void RunStatistics::observe(const TimePoint& p)
 {
-  const double f = p.lambda[layout.contact_index];
-  max_force = std::max(max_force, f);
-  min_force = std::min(min_force, f);
-  // Welford's update: no cancellation in the variance.
-  ++count;
-  const double delta = f - mean;
-  mean += delta / count;
-  m2 += delta * (f - mean);
+  if (layout.has_contact())
+  {
+    const double f = p.lambda[layout.contact_index];
+    max_force = std::max(max_force, f);
+    min_force = std::min(min_force, f);
+    // Welford's update: no cancellation in the variance.
+    ++count;
+    const double delta = f - mean;
+    mean += delta / count;
+    m2 += delta * (f - mean);
+  }
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
   for (unsigned int i = 0; i < p.active.size(); ++i)
@@ -68,6 +71,6 @@ std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() cons
 
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
-  return intervals[layout.contact_index];
+  return layout.has_contact() ? intervals[layout.contact_index] : std::vector<Interval>{};
 }
 } // namespace pantocat

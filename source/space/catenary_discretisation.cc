@@ -16,6 +16,18 @@ const WireParameters& CatenaryDiscretisation::wire_parameters(const Wire wire) c
   return wire == Wire::carrier ? catenary.carrier : catenary.contact_wire;
 }
 
+void CatenaryDiscretisation::assemble(const Wire wire, BlockOperator& op) const
+{
+  const WireParameters& p = wire_parameters(wire);
+  // The carrier is a string, Eq. (2): no bending term.
+  const double bending = wire == Wire::contact_wire ? p.bending_stiffness : 0.;
+  initialize_operator(wire, bending > 0., op);
+  add_terms(wire,
+            {p.mass_per_length, p.damping, p.tension, bending,
+             p.mass_per_length * catenary.gravity},
+            op);
+}
+
 double CatenaryDiscretisation::displacement(const Wire wire,
                                             const dealii::Vector<double>& q,
                                             const double x) const

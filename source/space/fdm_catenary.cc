@@ -13,14 +13,11 @@ FdmCatenary::FdmCatenary(const CatenaryParameters& catenary,
 {
 }
 
-void FdmCatenary::assemble(const Wire wire, BlockOperator& op) const
+void FdmCatenary::initialize_operator(const Wire wire, const bool with_bending,
+                                      BlockOperator& op) const
 {
-  const WireParameters& p = wire_parameters(wire);
   const unsigned int n = n_dofs(wire);
-  const double dx = cell_size();
-  const bool beam = wire == Wire::contact_wire && p.bending_stiffness > 0.;
-  const unsigned int bandwidth = beam ? 2 : 1;
-
+  const unsigned int bandwidth = with_bending ? 2 : 1;
   op.name = wire == Wire::carrier ? "carrier" : "contact wire";
   dealii::DynamicSparsityPattern dsp(n, n);
   for (unsigned int i = 0; i < n; ++i)
@@ -30,32 +27,55 @@ void FdmCatenary::assemble(const Wire wire, BlockOperator& op) const
   op.sparsity->copy_from(dsp);
   op.reinit_matrices(n);
   op.mass_is_diagonal = true;
+}
 
+void FdmCatenary::add_terms(const Wire wire, const WireTerms& p, BlockOperator& op) const
+{
+  const unsigned int n = n_dofs(wire);
+  const double dx = cell_size();
   // Tension: -T w'' -> (T/dx) tridiag(-1, 2, -1).
   const double t = p.tension / dx;
   // Bending: EI w'''' -> (EI/dx^3) Q^2, Q = tridiag(1, -2, 1) with the
   // boundary values q''_0 = q''_{N+1} = 0 of (3).
-  const double b = beam ? p.bending_stiffness / (dx * dx * dx) : 0.;
+  const bool beam = wire == Wire::contact_wire && p.bending != 0.;
+  const double b = beam ? p.bending / (dx * dx * dx) : 0.;
+  const auto add = [&](const unsigned int i, const unsigned int j, const double value)
+  {
+    if (value != 0.)
+      op.stiffness.add(i, j, value);
+  };
   for (unsigned int i = 0; i < n; ++i)
   {
-    op.mass.set(i, i, p.mass_per_length * dx);
-    op.damping.set(i, i, p.damping * dx);
+    if (p.mass != 0.)
+      op.mass.add(i, i, p.mass * dx);
+    if (p.damping != 0.)
+      op.damping.add(i, i, p.damping * dx);
     const bool first_or_last = (i == 0 || i + 1 == n);
-    op.stiffness.set(i, i, 2. * t + b * (first_or_last ? 5. : 6.));
+    if (n > 1)
+      add(i, i, 2. * t + b * (first_or_last ? 5. : 6.));
     if (i + 1 < n)
     {
-      op.stiffness.set(i, i + 1, -t - 4. * b);
-      op.stiffness.set(i + 1, i, -t - 4. * b);
+      add(i, i + 1, -t - 4. * b);
+      add(i + 1, i, -t - 4. * b);
     }
     if (beam && i + 2 < n)
     {
-      op.stiffness.set(i, i + 2, b);
-      op.stiffness.set(i + 2, i, b);
+      add(i, i + 2, b);
+      add(i + 2, i, b);
     }
-    op.load(i) = -p.mass_per_length * catenary.gravity * dx;
+    op.load(i) -= p.weight * dx;
   }
   if (n == 1) // a single unknown: Q = (-2), Q^2 = (4)
-    op.stiffness.set(0, 0, 2. * t + 4. * b);
+    add(0, 0, 2. * t + 4. * b);
+}
+
+void FdmCatenary::interpolate(const Wire wire, const std::function<double(double)>& w,
+                              const std::function<double(double)>& /*dw*/,
+                              dealii::Vector<double>& q) const
+{
+  q.reinit(n_dofs(wire));
+  for (unsigned int i = 0; i < q.size(); ++i)
+    q(i) = w((i + 1) * cell_size());
 }
 
 unsigned int FdmCatenary::control_volume_node(const double x) const

@@ -74,14 +74,12 @@ const std::vector<unsigned int>& FemCatenary::free_index(const Wire wire) const
   return space(wire).free;
 }
 
-void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
+void FemCatenary::initialize_operator(const Wire wire, bool /*with_bending*/,
+                                      BlockOperator& op) const
 {
-  const WireParameters& p = wire_parameters(wire);
+  // The Hermite pattern already couples all dofs of a cell: bending adds no entries.
   const WireSpace& s = space(wire);
-  const dealii::FiniteElement<1>& fe = s.dofs.get_fe();
-  const unsigned int n_local = fe.n_dofs_per_cell();
-  std::vector<dealii::types::global_dof_index> dofs(n_local);
-
+  std::vector<dealii::types::global_dof_index> dofs(s.dofs.get_fe().n_dofs_per_cell());
   op.name = wire == Wire::carrier ? "carrier" : "contact wire";
   dealii::DynamicSparsityPattern dsp(s.n_free, s.n_free);
   for (const auto& cell : s.dofs.active_cell_iterators())
@@ -95,8 +93,16 @@ void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
   op.sparsity->copy_from(dsp);
   op.reinit_matrices(s.n_free);
   op.mass_is_diagonal = false;
+}
 
-  const bool beam = wire == Wire::contact_wire && p.bending_stiffness > 0.;
+void FemCatenary::add_terms(const Wire wire, const WireTerms& t, BlockOperator& op) const
+{
+  const WireSpace& s = space(wire);
+  const dealii::FiniteElement<1>& fe = s.dofs.get_fe();
+  const unsigned int n_local = fe.n_dofs_per_cell();
+  std::vector<dealii::types::global_dof_index> dofs(n_local);
+  // Linear Lagrange (the carrier) has no second derivatives inside a cell.
+  const bool beam = wire == Wire::contact_wire && t.bending != 0.;
   const dealii::QGauss<1> quadrature(4);
   dealii::FEValues<1> fe_values(
       fe, quadrature,
@@ -116,27 +122,51 @@ void FemCatenary::assemble(const Wire wire, BlockOperator& op) const
         if (I == invalid)
           continue;
         const double vi = fe_values.shape_value(i, q);
-        op.load(I) -= p.mass_per_length * catenary.gravity * vi * jxw;
+        if (t.weight != 0.)
+          op.load(I) -= t.weight * vi * jxw;
         for (unsigned int j = 0; j < n_local; ++j)
         {
           const unsigned int J = s.free[dofs[j]];
           if (J == invalid)
             continue;
           const double vivj = vi * fe_values.shape_value(j, q) * jxw;
-          op.mass.add(I, J, p.mass_per_length * vivj);
-          op.damping.add(I, J, p.damping * vivj);
+          if (t.mass != 0.)
+            op.mass.add(I, J, t.mass * vivj);
+          if (t.damping != 0.)
+            op.damping.add(I, J, t.damping * vivj);
           // Weak form (16): T int v' w' + EI int v'' w''.
           // Products first, so that K is symmetric to the last bit.
           double k =
-              p.tension * (fe_values.shape_grad(i, q)[0] * fe_values.shape_grad(j, q)[0]);
+              t.tension * (fe_values.shape_grad(i, q)[0] * fe_values.shape_grad(j, q)[0]);
           if (beam)
-            k += p.bending_stiffness * (fe_values.shape_hessian(i, q)[0][0] *
-                                        fe_values.shape_hessian(j, q)[0][0]);
-          op.stiffness.add(I, J, k * jxw);
+            k += t.bending * (fe_values.shape_hessian(i, q)[0][0] *
+                              fe_values.shape_hessian(j, q)[0][0]);
+          if (k != 0.)
+            op.stiffness.add(I, J, k * jxw);
         }
       }
     }
   }
+}
+
+void FemCatenary::interpolate(const Wire wire, const std::function<double(double)>& w,
+                              const std::function<double(double)>& dw,
+                              dealii::Vector<double>& q) const
+{
+  const WireSpace& s = space(wire);
+  q.reinit(s.n_free);
+  const unsigned int components = s.dofs.get_fe().n_dofs_per_vertex();
+  for (const auto& cell : s.dofs.active_cell_iterators())
+    for (unsigned int v = 0; v < 2; ++v)
+    {
+      const double x = cell->vertex(v)[0];
+      for (unsigned int c = 0; c < components; ++c)
+      {
+        const unsigned int I = s.free[cell->vertex_dof_index(v, c)];
+        if (I != invalid)
+          q(I) = c == 0 ? w(x) : dw(x);
+      }
+    }
 }
 
 unsigned int FemCatenary::cell_index(const double x) const

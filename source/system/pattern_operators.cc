@@ -2,7 +2,8 @@
 
 namespace pantocat
 {
-PatternOperators::PatternOperators(const SemiDiscreteSystem& system) : load(system.load)
+PatternOperators::PatternOperators(const SemiDiscreteSystem& system)
+    : system(system), load(system.load)
 {
   row_start.assign(1, 0);
   for (unsigned int i = 0; i < system.n_dofs(); ++i)
@@ -18,6 +19,12 @@ PatternOperators::PatternOperators(const SemiDiscreteSystem& system) : load(syst
     }
     row_start.push_back(column.size());
   }
+}
+
+void PatternOperators::set_time(const double t) const
+{
+  if (system.has_time_dependent_load())
+    system.load_at(t, load);
 }
 
 void PatternOperators::history(const dealii::Vector<double>& h,

@@ -47,6 +47,18 @@ void SemiDiscreteSystem::add_constraint(std::unique_ptr<Constraint> constraint)
   constraints.push_back(std::move(constraint));
 }
 
+void SemiDiscreteSystem::add_time_dependent_load(std::unique_ptr<TimeDependentLoad> f)
+{
+  time_dependent_loads.push_back(std::move(f));
+}
+
+void SemiDiscreteSystem::load_at(const double t, dealii::Vector<double>& f) const
+{
+  f = load;
+  for (const auto& extra : time_dependent_loads)
+    extra->add_to(t, f);
+}
+
 bool SemiDiscreteSystem::has_block(const std::string& name) const
 {
   for (const auto& b : blocks)

@@ -146,6 +146,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // batch with the columns of the first moving constraint.
   dealii::Vector<double> history(rho_v);
   history.add(c, rho_q);
+  operators.set_time(t1);
   operators.history(history, rho_q, s.base_batch(), IterationMatrix::base_column);
   if (s.moving.empty())
     s.inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);

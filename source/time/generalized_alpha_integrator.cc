@@ -82,6 +82,7 @@ void GeneralizedAlphaIntegrator::advance()
   damping_part.equ(c_v, q_hat);
   damping_part -= v_hat;
   InterleavedColumns& B = S.base_batch();
+  operators.set_time(t1);
   operators.history(mass_part, damping_part, B, base_column);
   if (S.moving.empty())
     S.inverse.solve_interleaved(B.data(), InterleavedColumns::width);

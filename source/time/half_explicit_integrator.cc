@@ -104,6 +104,14 @@ void banded_forces(const int n, const double* __restrict f,
 }
 } // namespace
 
+const double* HalfExplicitIntegrator::load_at_time_n()
+{
+  if (!system.has_time_dependent_load())
+    return system.load.begin();
+  system.load_at(t, load_now);
+  return load_now.begin();
+}
+
 void HalfExplicitIntegrator::compute_forces()
 {
   const int n = q.size(), b = forces.bandwidth;
@@ -118,7 +126,7 @@ void HalfExplicitIntegrator::compute_forces()
       forces.symmetric_stiffness && scaling)
   {
     const double* d0 = forces.half_damping[b].data();
-    const double* f = system.load.begin();
+    const double* f = load_at_time_n();
     const double* scale = scaling->begin();
     if (b == 1)
       banded_forces<1>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
@@ -132,7 +140,8 @@ void HalfExplicitIntegrator::compute_forces()
     smoothed_mass_inverse.apply_coupled_rows(a);
     return;
   }
-  std::copy(system.load.begin(), system.load.end(), out);
+  const double* f = load_at_time_n();
+  std::copy(f, f + n, out);
   // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
   for (const int o : forces.stiffness_offsets)
   {

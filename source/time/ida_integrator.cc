@@ -176,6 +176,7 @@ int IdaIntegrator::Sundials::residual(realtype t, N_Vector yy, N_Vector yyp, N_V
   const auto& c = I.rows.at(t, 1);
   const Sundials& S = *static_cast<Sundials*>(data);
   // F_q = M (q' - v), F_v = M v' + D v + K q - f: one pass over the shared pattern.
+  S.operators.set_time(t);
   S.operators.motion(q, v, qp, vp, r, r + n);
   // - G^T mu, - G^T lambda and the constraints.
   for (unsigned int k = 0; k < m; ++k)
@@ -346,7 +347,8 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
       x.add(sol(l), Y[A[l]]);
     return std::make_pair(A, sol);
   };
-  dealii::Vector<double> a(n);
+  dealii::Vector<double> a(n), f(n);
+  system.load_at(t, f);
   std::vector<double> lambda(m, 0.);
   for (unsigned int round = 0; round <= m; ++round)
   {
@@ -359,7 +361,7 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
     // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0.
     system.stiffness.vmult(a, q);
     system.damping.vmult_add(a, v);
-    a.sadd(-1., 1., system.load);
+    a.sadd(-1., 1., f);
     mass_inverse.apply(a);
     const auto [A, sol] = project(
         a,

@@ -3,6 +3,7 @@
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
+#include <pantocat/scene/scene_parameters.h>
 #include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/studies/study_parameters.h>
@@ -30,6 +31,7 @@ struct ProgramParameters
   RunMode mode = RunMode::static_equilibrium;
   std::vector<SpaceMethod> eigenfrequency_discretisations = {SpaceMethod::fem,
                                                              SpaceMethod::fdm};
+  SceneParameters scene;
   CatenaryParameters catenary;
   PantographParameters pantograph;
   DiscretisationParameters discretisation;

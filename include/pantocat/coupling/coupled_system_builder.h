@@ -20,7 +20,8 @@ struct CoupledSystem
 };
 
 /**
- * Assembles the catenary (29)-(31), appends the pantograph block (10) and the
+ * The paper's scene (build_scene() with the default SceneParameters): the
+ * catenary (29)-(31), the pantograph block (10) and the
  * contact constraint (32): the coupling layer knows the pantograph only
  * through its operators and b, B.
  */

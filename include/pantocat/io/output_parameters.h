@@ -3,6 +3,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -24,6 +25,8 @@ struct OutputParameters
   bool plots = true;                     ///< PNG plots with gnuplot, if installed
   double vtu_interval = 0.; ///< simulated seconds between VTU frames; 0: none
   Verbosity verbosity = Verbosity::normal;
+  std::vector<double> probe_positions; ///< x of the w_w(x) columns [m]
+  bool energy = false;                 ///< energy column and range
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);

@@ -14,9 +14,9 @@
 namespace pantocat
 {
 /**
- * One coupled pantograph-catenary run (Sec. 6): builds the space
- * discretisation, the pantograph, the semi-discrete system with droppers and
- * contact, the consistent initial state and the integrator, then integrates
+ * One dynamic run of a scene (Sec. 6 for the paper's): builds the space
+ * discretisation, the pantograph, the semi-discrete system of the scene's
+ * effects (build_scene), the initial state and the integrator, then integrates
  * from x_p(0) to the final position and hands every time point to the
  * observers.
  */
@@ -53,19 +53,26 @@ public:
   void check_step_size() const;
   /// Builds the time point of a state (gaps and residuals evaluated here).
   TimePoint time_point(const DynamicState& state) const;
+  /// One line per effect of the scene (what is assembled), and the effects left out.
+  const std::vector<std::string>& active_effects() const { return effects; }
+  const std::vector<std::string>& inactive_effects() const { return left_out; }
 
 private:
   ProgramParameters parameters;
   std::unique_ptr<CatenaryDiscretisation> space;
-  std::unique_ptr<PantographModel> pantograph;
+  std::unique_ptr<PantographModel> pantograph; ///< nullptr if the scene has none
   SemiDiscreteSystem catenary_only, coupled;
-  const ContactConstraint* contact = nullptr;
+  ContactPointMotion motion;
   SimulationLayout layout_;
+  std::vector<std::string> effects, left_out;
+  std::vector<SparseRow> probe_rows;           ///< rows of w_w at the probe positions
+  mutable dealii::Vector<double> scratch_load; ///< f(t), for the energy
   DynamicState initial;
   mutable double stability_limit = 0.;
   mutable bool warned = false;
 };
 
+/// The scene's lumped-mass pantograph, or nullptr if it has none.
 std::unique_ptr<PantographModel>
-create_pantograph(const PantographParameters& parameters);
+create_pantograph(const SceneParameters& scene, const PantographParameters& parameters);
 } // namespace pantocat

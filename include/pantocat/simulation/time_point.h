@@ -2,6 +2,8 @@
 
 #include <pantocat/time/dynamic_state.h>
 
+#include <deal.II/base/numbers.h>
+
 #include <string>
 #include <vector>
 
@@ -12,8 +14,16 @@ struct SimulationLayout
 {
   std::vector<std::string> constraint_names; ///< in system order: droppers, then contact
   std::vector<std::string> pantograph_coordinates;
-  unsigned int contact_index = 0;
+  /// The pantograph-wire contact; invalid_unsigned_int if the scene has none.
+  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
   std::vector<unsigned int> dropper_indices;
+  std::vector<double> probe_positions; ///< x of TimePoint::probes [m]
+  bool energy = false;                 ///< TimePoint::energy is computed
+
+  bool has_contact() const
+  {
+    return contact_index != dealii::numbers::invalid_unsigned_int;
+  }
 };
 
 /// One reported time point of a dynamic run.
@@ -27,6 +37,8 @@ struct TimePoint
   std::vector<double> pantograph; ///< q_MBS
   double position_residual = 0.;  ///< max |g_i| over active constraints
   double velocity_residual = 0.;  ///< max |dg_i/dt| over active constraints
+  std::vector<double> probes;     ///< w_w at the probe positions [m]
+  double energy = 0.;             ///< if SimulationLayout::energy [J]
 };
 
 /// Receives the time points of a run (time series, statistics, plots, ...).

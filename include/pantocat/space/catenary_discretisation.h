@@ -6,6 +6,7 @@
 #include <pantocat/space/smoothed_delta.h>
 #include <pantocat/system/sparse_row.h>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -16,6 +17,22 @@ enum class Wire
 {
   carrier,
   contact_wire
+};
+
+/**
+ * Coefficients of the terms of the weak form (16)/(17) of one wire (or of
+ * the difference operators (29)/(30)) that add_terms() adds:
+ *   mass rho A, damping beta, tension T, bending E I, and the weight per
+ *   length rho A g of the distributed gravity load.
+ * A zero coefficient adds nothing: the scene's effects each add their own term.
+ */
+struct WireTerms
+{
+  double mass = 0.;
+  double damping = 0.;
+  double tension = 0.;
+  double bending = 0.;
+  double weight = 0.;
 };
 
 /**
@@ -44,10 +61,30 @@ public:
 
   /**
    * Mass, damping, stiffness (tension, and bending for the contact wire) and
-   * the distributed gravity load of @p wire. Point loads of clamps and
-   * droppers are added by the system builder through point_row().
+   * the distributed gravity load of @p wire with all the data of the wire:
+   * initialize_operator() and add_terms() with every term. Point loads of
+   * clamps and droppers are added by the scene through point_row().
    */
-  virtual void assemble(Wire wire, BlockOperator& op) const = 0;
+  void assemble(Wire wire, BlockOperator& op) const;
+
+  /**
+   * The sparsity pattern of @p wire and zero M, D, K, load; wide enough for
+   * the bending term if @p with_bending (the FDM stencil of the fourth
+   * derivative has five points).
+   */
+  virtual void initialize_operator(Wire wire, bool with_bending,
+                                   BlockOperator& op) const = 0;
+
+  /// Adds the terms of (16)/(17) (FEM) or (29)/(30) (FDM) with the given coefficients.
+  virtual void add_terms(Wire wire, const WireTerms& terms, BlockOperator& op) const = 0;
+
+  /**
+   * The unknowns of @p wire that represent the displacement @p w (with slope
+   * @p dw, for the Hermite slope unknowns): nodal interpolation.
+   */
+  virtual void interpolate(Wire wire, const std::function<double(double)>& w,
+                           const std::function<double(double)>& dw,
+                           dealii::Vector<double>& q) const = 0;
 
   /**
    * Row r with r.q = u(x): the displacement of @p wire at @p x (for the carrier

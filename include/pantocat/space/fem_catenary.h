@@ -36,7 +36,12 @@ public:
 
   SpaceMethod method() const override { return SpaceMethod::fem; }
   unsigned int n_dofs(Wire wire) const override;
-  void assemble(Wire wire, BlockOperator& op) const override;
+  void initialize_operator(Wire wire, bool with_bending,
+                           BlockOperator& op) const override;
+  void add_terms(Wire wire, const WireTerms& terms, BlockOperator& op) const override;
+  void interpolate(Wire wire, const std::function<double(double)>& w,
+                   const std::function<double(double)>& dw,
+                   dealii::Vector<double>& q) const override;
   SparseRow point_row(Wire wire, double x) const override;
   void load_row(double x_c, unsigned int k, SparseRow& row) const override;
 

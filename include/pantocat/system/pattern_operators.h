@@ -23,6 +23,9 @@ class PatternOperators
 public:
   explicit PatternOperators(const SemiDiscreteSystem& system);
 
+  /// Uses f(@p t) from now on; nothing to do if the system's load is constant.
+  void set_time(double t) const;
+
   /// Column k of @p out = f + M h + D r.
   void history(const dealii::Vector<double>& h, const dealii::Vector<double>& r,
                InterleavedColumns& out, unsigned int k) const;
@@ -32,7 +35,8 @@ public:
               double* r_q, double* r_v) const;
 
 private:
-  dealii::Vector<double> load;
+  const SemiDiscreteSystem& system;
+  mutable dealii::Vector<double> load; ///< f(t) of the latest set_time()
   std::vector<unsigned int> row_start, column;
   std::vector<double> mass, damping, stiffness;
 };

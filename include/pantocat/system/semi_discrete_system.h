@@ -22,12 +22,25 @@ struct DofBlock
 };
 
 /**
+ * A load that changes with time, added to the constant load f of the system:
+ * e.g. a prescribed force moving along the contact wire.
+ */
+class TimeDependentLoad
+{
+public:
+  virtual ~TimeDependentLoad() = default;
+  /// f += (this load at time @p t).
+  virtual void add_to(double t, dealii::Vector<double>& f) const = 0;
+};
+
+/**
  * The semi-discrete constrained system (35) that every integrator consumes:
  *
  *   M a + D v + K q = f + G(t)^T lambda,   g(t, q) = G(t) q + z(t) >= 0 (or = 0),
  *
- * with constant sparse M, D, K (A_Delta = -K), a constant load f, and a list
- * of scalar constraints. Integrators see only this: no wires, no elements.
+ * with constant sparse M, D, K (A_Delta = -K), a load f(t) (a constant part
+ * plus, only if a scene has them, time-dependent loads), and a list of scalar
+ * constraints. Integrators see only this: no wires, no elements.
  * The unknowns are ordered by blocks (carrier, contact wire, pantograph, ...).
  */
 class SemiDiscreteSystem
@@ -37,6 +50,12 @@ public:
   void set_blocks(const std::vector<const BlockOperator*>& bodies);
 
   void add_constraint(std::unique_ptr<Constraint> constraint);
+  void add_time_dependent_load(std::unique_ptr<TimeDependentLoad> load);
+
+  /// True if f depends on t: integrators then evaluate load_at() once per step.
+  bool has_time_dependent_load() const { return !time_dependent_loads.empty(); }
+  /// f(t) = load + the time-dependent loads at @p t.
+  void load_at(double t, dealii::Vector<double>& f) const;
 
   unsigned int n_dofs() const { return load.size(); }
   unsigned int n_constraints() const { return constraints.size(); }
@@ -53,5 +72,6 @@ public:
   dealii::Vector<double> load;
   bool mass_is_diagonal = true;
   std::vector<std::unique_ptr<Constraint>> constraints;
+  std::vector<std::unique_ptr<TimeDependentLoad>> time_dependent_loads;
 };
 } // namespace pantocat

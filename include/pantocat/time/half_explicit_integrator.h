@@ -63,6 +63,8 @@ private:
   /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2), in one pass over the
   /// rows where (M + dt/2 D) is diagonal but for a few coupled rows.
   void compute_forces();
+  /// f(t_n): the system's constant load, or f(t_n) in load_now if it depends on t.
+  const double* load_at_time_n();
 
   /// K and D/2 stored by diagonals (offsets -b..b, zero-padded): the
   /// semi-discrete operators are banded within each body, and a diagonal
@@ -85,6 +87,7 @@ private:
   double t = 0.;
   unsigned long step_number = 0;
   dealii::Vector<double> q, v, v_prev, a, q_new, v_new;
+  dealii::Vector<double> load_now;   ///< f(t_n), only for a time-dependent load
   MassInverse smoothed_mass_inverse; ///< (M + dt/2 D)^{-1}
   MassInverse mass_inverse;          ///< M^{-1}
   ConstraintEvaluator at_n, at_half, at_next;

@@ -1,0 +1,19 @@
+#pragma once
+
+#include <pantocat/scene/scene_effect.h>
+
+namespace pantocat
+{
+/**
+ * Bending stiffness of the contact wire: E I int v'' w'' dx in the weak form (16),
+ * the operator K_w of (30).
+ */
+class ContactWireBending : public SceneEffect
+{
+public:
+  std::string name() const override;
+  bool enabled(const SceneParameters& scene) const override;
+  void add_terms(SceneAssembly& assembly) const override;
+  std::string describe(const SceneAssembly& assembly) const override;
+};
+} // namespace pantocat

@@ -1,0 +1,53 @@
+#pragma once
+
+#include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/coupling/contact_constraint.h>
+#include <pantocat/pantograph/pantograph_model.h>
+#include <pantocat/scene/scene_parameters.h>
+#include <pantocat/space/block_operator.h>
+#include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/semi_discrete_system.h>
+
+#include <deal.II/base/numbers.h>
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * What the effects of a scene build together, in three phases (SceneEffect):
+ * the bodies' operators, the terms added to them, then the semi-discrete
+ * system (35) with its constraints and time-dependent loads.
+ */
+struct SceneAssembly
+{
+  SceneAssembly(const SceneParameters& scene, const CatenaryParameters& catenary,
+                const CatenaryDiscretisation& space, const PantographModel* pantograph,
+                const ContactPointMotion& motion)
+      : scene(scene), catenary(catenary), space(space), pantograph(pantograph),
+        motion(motion)
+  {
+  }
+
+  const SceneParameters& scene;
+  const CatenaryParameters& catenary;
+  const CatenaryDiscretisation& space;
+  /// The lumped-mass pantograph of the scene, or nullptr.
+  const PantographModel* pantograph;
+  ContactPointMotion motion;
+
+  /// Phase 1 and 2: the operators of the bodies, in the order of the unknowns.
+  std::vector<BlockOperator> bodies;
+  /// The body named @p name ("carrier", "contact wire", "pantograph"), or nullptr.
+  BlockOperator* body(const std::string& name);
+
+  /// Phase 3: the system, its blocks set from the bodies.
+  SemiDiscreteSystem system;
+  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+  std::vector<unsigned int> dropper_indices;
+
+  /// Global row of the displacement of @p wire at @p x (empty if the wire is rigid).
+  SparseRow wire_row(Wire wire, double x) const;
+};
+} // namespace pantocat

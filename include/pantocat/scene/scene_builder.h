@@ -1,0 +1,50 @@
+#pragma once
+
+#include <pantocat/scene/scene_effect.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * Every effect a scene may enable, in the order in which they contribute
+ * (bodies: carrier, contact wire, pantograph; constraints: droppers, then the
+ * contact). A new effect is registered by one line here.
+ */
+std::vector<std::unique_ptr<SceneEffect>> registered_scene_effects();
+
+/// A scene's semi-discrete system (35) and what it is made of.
+struct BuiltScene
+{
+  /// The system of the whole scene.
+  SemiDiscreteSystem system;
+  /// The same without the pantograph's effects (same numbering of the
+  /// catenary's unknowns): the static problem of the initial state.
+  SemiDiscreteSystem catenary_only;
+  /// Index of the pantograph-wire contact, or invalid_unsigned_int.
+  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+  std::vector<unsigned int> dropper_indices;
+  /// One line per active effect (describe()).
+  std::vector<std::string> active_effects;
+  /// Names of the registered effects the scene leaves out.
+  std::vector<std::string> inactive_effects;
+
+  bool has_contact() const
+  {
+    return contact_index != dealii::numbers::invalid_unsigned_int;
+  }
+};
+
+/**
+ * Builds the semi-discrete system of @p scene from its enabled effects only
+ * (SceneEffect's three phases). @p pantograph is the lumped-mass model if the
+ * scene has one (else nullptr). Throws InputError if the grid cannot carry
+ * the droppers.
+ */
+BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
+                       const CatenaryDiscretisation& space,
+                       const PantographModel* pantograph,
+                       const ContactPointMotion& motion);
+} // namespace pantocat

@@ -1,0 +1,30 @@
+#include <pantocat/scene/carrier_body.h>
+
+namespace pantocat
+{
+std::string CarrierBody::name() const
+{
+  return "carrier";
+}
+
+bool CarrierBody::enabled(const SceneParameters& scene) const
+{
+  return scene.carrier == WireModel::elastic;
+}
+
+void CarrierBody::add_bodies(SceneAssembly& a) const
+{
+  BlockOperator op;
+  a.space.initialize_operator(Wire::carrier, false, op);
+  WireTerms mass;
+  mass.mass = a.catenary.carrier.mass_per_length;
+  a.space.add_terms(Wire::carrier, mass, op);
+  a.bodies.push_back(std::move(op));
+}
+
+std::string CarrierBody::describe(const SceneAssembly& a) const
+{
+  return "carrier: elastic string, " + std::to_string(a.space.n_dofs(Wire::carrier)) +
+         " unknowns";
+}
+} // namespace pantocat

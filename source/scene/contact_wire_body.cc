@@ -1,0 +1,30 @@
+#include <pantocat/scene/contact_wire_body.h>
+
+namespace pantocat
+{
+std::string ContactWireBody::name() const
+{
+  return "contact wire";
+}
+
+bool ContactWireBody::enabled(const SceneParameters& scene) const
+{
+  return scene.contact_wire == WireModel::elastic;
+}
+
+void ContactWireBody::add_bodies(SceneAssembly& a) const
+{
+  BlockOperator op;
+  a.space.initialize_operator(Wire::contact_wire, a.scene.contact_wire_bending, op);
+  WireTerms mass;
+  mass.mass = a.catenary.contact_wire.mass_per_length;
+  a.space.add_terms(Wire::contact_wire, mass, op);
+  a.bodies.push_back(std::move(op));
+}
+
+std::string ContactWireBody::describe(const SceneAssembly& a) const
+{
+  return "contact wire: elastic, " + std::to_string(a.space.n_dofs(Wire::contact_wire)) +
+         " unknowns";
+}
+} // namespace pantocat

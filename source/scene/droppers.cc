@@ -1,0 +1,75 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/scene/droppers.h>
+
+namespace pantocat
+{
+namespace
+{
+/// A dropper must sit on a free node, and no two on the same one (FDM, coarse grids).
+void check_dropper_rows(const SceneAssembly& a, const std::vector<SparseRow>& rows)
+{
+  const auto& x = a.catenary.dropper_positions;
+  const std::string parameter = "Discretisation/Number of intervals";
+  const unsigned int n = a.space.n_intervals();
+  for (unsigned int j = 0; j < rows.size(); ++j)
+  {
+    require(rows[j].size() > 0, parameter, n,
+            "grid too coarse: dropper " + std::to_string(j + 1) +
+                " at x = " + number_to_string(x[j]) + " m falls on a boundary node");
+    for (unsigned int i = 0; i < j; ++i)
+      require(rows[i].index != rows[j].index || rows[i].value != rows[j].value, parameter,
+              n,
+              "grid too coarse: droppers " + std::to_string(i + 1) + " and " +
+                  std::to_string(j + 1) + " fall on the same node");
+  }
+}
+} // namespace
+
+std::string Droppers::name() const
+{
+  return "droppers";
+}
+
+bool Droppers::enabled(const SceneParameters& scene) const
+{
+  return scene.has_droppers();
+}
+
+void Droppers::add_constraints(SceneAssembly& a) const
+{
+  const CatenaryParameters& p = a.catenary;
+  // The rows of the elastic wire whose grid holds the dropper (the contact
+  // wire's, unless it is rigid).
+  const Wire checked =
+      a.scene.contact_wire == WireModel::elastic ? Wire::contact_wire : Wire::carrier;
+  std::vector<SparseRow> rows;
+  for (unsigned int j = 0; j < p.n_droppers(); ++j)
+    rows.push_back(a.space.point_row(checked, p.dropper_positions[j]));
+  check_dropper_rows(a, rows);
+
+  const Constraint::Kind kind = a.scene.droppers == DropperModel::bilateral
+                                    ? Constraint::Kind::bilateral
+                                    : Constraint::Kind::unilateral;
+  for (unsigned int j = 0; j < p.n_droppers(); ++j)
+  {
+    // Delta = H_w q_w - H_c q_c + (l_j - l_c), with u_c = w_c - l_c, Eq. (31).
+    const double x = p.dropper_positions[j];
+    SparseRow row = a.wire_row(Wire::contact_wire, x);
+    const SparseRow carrier = a.wire_row(Wire::carrier, x);
+    for (std::size_t k = 0; k < carrier.size(); ++k)
+      row.add(carrier.index[k], -carrier.value[k]);
+    a.dropper_indices.push_back(a.system.n_constraints());
+    a.system.add_constraint(
+        std::make_unique<FixedConstraint>("dropper " + std::to_string(j + 1), kind, row,
+                                          p.dropper_lengths[j] - p.support_height));
+  }
+}
+
+std::string Droppers::describe(const SceneAssembly& a) const
+{
+  return std::to_string(a.catenary.n_droppers()) + " droppers, " +
+         (a.scene.droppers == DropperModel::bilateral ? "bilateral (4)"
+                                                      : "unilateral (Sec. 5.3)");
+}
+} // namespace pantocat

@@ -1,0 +1,84 @@
+#include <pantocat/scene/carrier_body.h>
+#include <pantocat/scene/clamp_and_dropper_masses.h>
+#include <pantocat/scene/contact_wire_bending.h>
+#include <pantocat/scene/contact_wire_body.h>
+#include <pantocat/scene/droppers.h>
+#include <pantocat/scene/gravity.h>
+#include <pantocat/scene/moving_force.h>
+#include <pantocat/scene/pantograph_body.h>
+#include <pantocat/scene/pantograph_contact.h>
+#include <pantocat/scene/scene_builder.h>
+#include <pantocat/scene/viscous_damping.h>
+#include <pantocat/scene/wire_tension.h>
+
+namespace pantocat
+{
+std::vector<std::unique_ptr<SceneEffect>> registered_scene_effects()
+{
+  std::vector<std::unique_ptr<SceneEffect>> e;
+  e.push_back(std::make_unique<CarrierBody>());
+  e.push_back(std::make_unique<ContactWireBody>());
+  e.push_back(std::make_unique<PantographBody>());
+  e.push_back(std::make_unique<WireTension>());
+  e.push_back(std::make_unique<ContactWireBending>());
+  e.push_back(std::make_unique<Gravity>());
+  e.push_back(std::make_unique<ViscousDamping>());
+  e.push_back(std::make_unique<ClampAndDropperMasses>());
+  e.push_back(std::make_unique<Droppers>());
+  e.push_back(std::make_unique<PantographContact>());
+  e.push_back(std::make_unique<MovingForce>());
+  return e;
+}
+
+namespace
+{
+/// Runs the three phases of the effects in @p effects.
+void assemble(SceneAssembly& a, const std::vector<const SceneEffect*>& effects)
+{
+  for (const SceneEffect* e : effects)
+    e->add_bodies(a);
+  for (const SceneEffect* e : effects)
+    e->add_terms(a);
+  std::vector<const BlockOperator*> bodies;
+  for (const BlockOperator& b : a.bodies)
+    bodies.push_back(&b);
+  a.system.set_blocks(bodies);
+  for (const SceneEffect* e : effects)
+    e->add_constraints(a);
+}
+} // namespace
+
+BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
+                       const CatenaryDiscretisation& space,
+                       const PantographModel* pantograph,
+                       const ContactPointMotion& motion)
+{
+  const auto registered = registered_scene_effects();
+  std::vector<const SceneEffect*> all, catenary_part;
+  BuiltScene built;
+  for (const auto& e : registered)
+  {
+    if (!e->enabled(scene))
+    {
+      built.inactive_effects.push_back(e->name());
+      continue;
+    }
+    all.push_back(e.get());
+    if (e->part_of_catenary())
+      catenary_part.push_back(e.get());
+  }
+
+  SceneAssembly whole(scene, catenary, space, pantograph, motion);
+  assemble(whole, all);
+  SceneAssembly static_part(scene, catenary, space, pantograph, motion);
+  assemble(static_part, catenary_part);
+
+  for (const SceneEffect* e : all)
+    built.active_effects.push_back(e->describe(whole));
+  built.system = std::move(whole.system);
+  built.catenary_only = std::move(static_part.system);
+  built.contact_index = whole.contact_index;
+  built.dropper_indices = whole.dropper_indices;
+  return built;
+}
+} // namespace pantocat

@@ -1,0 +1,141 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/scene/scene_parameters.h>
+
+namespace pantocat
+{
+using dealii::Patterns::Bool;
+using dealii::Patterns::Selection;
+
+const char* to_string(const PantographType type)
+{
+  switch (type)
+  {
+  case PantographType::two_mass:
+    return "two-mass";
+  case PantographType::three_mass:
+    return "three-mass";
+  case PantographType::moving_force:
+    return "moving force";
+  case PantographType::absent:
+    break;
+  }
+  return "absent";
+}
+
+void SceneParameters::declare_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Scene");
+  prm.declare_entry("Carrier", "elastic", Selection("elastic|rigid"),
+                    "elastic: the carrier is a string, Eq. (2); rigid: it stays at the "
+                    "support height l_c (no unknowns).");
+  prm.declare_entry("Contact wire", "elastic", Selection("elastic|rigid"),
+                    "elastic: the contact wire is an Euler-Bernoulli beam, Eq. (2); "
+                    "rigid: it stays at height 0 (no unknowns; e.g. a pantograph "
+                    "pressing on a rigid wire).");
+  prm.declare_entry("Carrier tension", "true", Bool(), "Tension T_c of the carrier.");
+  prm.declare_entry("Contact wire tension", "true", Bool(),
+                    "Tension T_w of the contact wire.");
+  prm.declare_entry("Contact wire bending", "true", Bool(),
+                    "Bending stiffness E I of the contact wire (the carrier, a string, "
+                    "has none).");
+  prm.declare_entry("Gravity", "true", Bool(),
+                    "Weight of the wires (and of clamps and droppers if those act).");
+  prm.declare_entry("Damping", "true", Bool(),
+                    "Viscous damping beta of the wires (the pantograph's dampers belong "
+                    "to its model).");
+  prm.declare_entry("Clamp and dropper masses", "true", Bool(),
+                    "Weights of the suspension clamps and half droppers as point loads, "
+                    "Eq. (4) (needs Gravity and droppers).");
+  prm.declare_entry("Droppers", "unilateral", Selection("unilateral|bilateral|absent"),
+                    "unilateral: droppers may slacken (Sec. 5.3, the paper's model); "
+                    "bilateral: always taut, Eq. (4); absent: no droppers.");
+  prm.declare_entry("Pantograph", "two-mass",
+                    Selection("two-mass|three-mass|moving force|absent"),
+                    "two-mass: the lumped-mass model (12); three-mass: a chain of head, "
+                    "upper and lower frame (subsection Pantograph/Three-mass model); "
+                    "moving force: a prescribed constant force (Moving force) moving "
+                    "with v_p; absent: the catenary alone.");
+  prm.declare_entry("Contact", "unilateral", Selection("unilateral|bilateral"),
+                    "Pantograph-wire contact (32): unilateral (contact may be lost) or "
+                    "bilateral (always in contact, a smooth case).");
+  prm.declare_entry("Moving force", "100", dealii::Patterns::Double(),
+                    "Magnitude [N] of the upward force for Pantograph = moving force, "
+                    "distributed by the load shape of subsection Discretisation.");
+  prm.declare_entry("Initial state", "static equilibrium",
+                    Selection("static equilibrium|rest|sine mode"),
+                    "static equilibrium: the catenary at rest under its loads and the "
+                    "initial contact force (or the moving force at x_p(0)); rest: "
+                    "undeformed and at rest; sine mode: contact wire w = A sin(k pi x/L) "
+                    "at rest. rest and sine mode need a scene without constraints.");
+  prm.declare_entry("Initial mode", "1", dealii::Patterns::Integer(1),
+                    "k of the sine mode.");
+  prm.declare_entry("Initial amplitude", "0.01", dealii::Patterns::Double(),
+                    "A of the sine mode [m].");
+  prm.leave_subsection();
+}
+
+void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Scene");
+  carrier = prm.get("Carrier") == "rigid" ? WireModel::rigid : WireModel::elastic;
+  contact_wire =
+      prm.get("Contact wire") == "rigid" ? WireModel::rigid : WireModel::elastic;
+  carrier_tension = prm.get_bool("Carrier tension");
+  contact_wire_tension = prm.get_bool("Contact wire tension");
+  contact_wire_bending = prm.get_bool("Contact wire bending");
+  gravity = prm.get_bool("Gravity");
+  damping = prm.get_bool("Damping");
+  clamp_and_dropper_masses = prm.get_bool("Clamp and dropper masses");
+  const std::string d = prm.get("Droppers");
+  droppers = d == "absent"      ? DropperModel::absent
+             : d == "bilateral" ? DropperModel::bilateral
+                                : DropperModel::unilateral;
+  const std::string p = prm.get("Pantograph");
+  pantograph = p == "three-mass"     ? PantographType::three_mass
+               : p == "moving force" ? PantographType::moving_force
+               : p == "absent"       ? PantographType::absent
+                                     : PantographType::two_mass;
+  contact = prm.get("Contact") == "bilateral" ? Constraint::Kind::bilateral
+                                              : Constraint::Kind::unilateral;
+  moving_force = prm.get_double("Moving force");
+  const std::string s = prm.get("Initial state");
+  initial_shape = s == "rest"        ? InitialShape::rest
+                  : s == "sine mode" ? InitialShape::sine_mode
+                                     : InitialShape::static_equilibrium;
+  initial_mode = prm.get_integer("Initial mode");
+  initial_amplitude = prm.get_double("Initial amplitude");
+  prm.leave_subsection();
+}
+
+void SceneParameters::check() const
+{
+  if (carrier == WireModel::elastic)
+    require(carrier_tension, "Scene/Carrier tension", "false",
+            "an elastic carrier (a string) needs its tension; set Carrier = rigid to "
+            "leave the carrier out");
+  if (contact_wire == WireModel::elastic)
+    require(contact_wire_tension || contact_wire_bending, "Scene/Contact wire tension",
+            "false",
+            "with Contact wire bending = false the elastic contact wire has no "
+            "stiffness; enable one of them or set Contact wire = rigid");
+  require(
+      !(pantograph == PantographType::moving_force && contact_wire == WireModel::rigid),
+      "Scene/Pantograph", "moving force",
+      "a prescribed force on a rigid contact wire does nothing; allowed with Contact "
+      "wire = elastic");
+  require(!(carrier == WireModel::rigid && contact_wire == WireModel::rigid &&
+            droppers != DropperModel::absent),
+          "Scene/Droppers",
+          droppers == DropperModel::bilateral ? "bilateral" : "unilateral",
+          "droppers between a rigid carrier and a rigid contact wire connect nothing; "
+          "allowed: absent");
+  if (initial_shape != InitialShape::static_equilibrium)
+    require(!has_droppers() && !has_pantograph_body(), "Scene/Initial state",
+            initial_shape == InitialShape::rest ? "rest" : "sine mode",
+            "a state that ignores the constraints needs a scene without them: allowed "
+            "only with Droppers = absent and Pantograph = moving force or absent");
+  if (initial_shape == InitialShape::sine_mode)
+    require(contact_wire == WireModel::elastic, "Scene/Initial state", "sine mode",
+            "needs Contact wire = elastic");
+}
+} // namespace pantocat
