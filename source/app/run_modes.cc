@@ -12,6 +12,7 @@
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/event_log.h>
+#include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/system/catenary_system_builder.h>
 
@@ -137,7 +138,7 @@ void write_summary(const std::string& file, const ProgramParameters& p,
                    const DynamicSimulation& simulation,
                    const DynamicSimulation::Result& r, const RunStatistics& stats,
                    const EventLog& events, const ContactForceStatistics* contact,
-                   const EnergyRange& energy)
+                   const EnergyRange& energy, const MovingLoadComparison* series)
 {
   std::ofstream out(file);
   JsonWriter json(out);
@@ -175,6 +176,18 @@ void write_summary(const std::string& file, const ProgramParameters& p,
         .value("final", energy.final)
         .value("max_relative_variation", energy.relative_variation())
         .end_object();
+  if (series != nullptr)
+  {
+    json.begin_array("series_reference");
+    for (const auto& probe : series->probes())
+      json.begin_object()
+          .value("x", probe.x)
+          .value("max_error", probe.max_error)
+          .value("max_reference", probe.max_reference)
+          .value("relative_error", probe.relative())
+          .end_object();
+    json.end_array();
+  }
   json.begin_array("dropper_slack_intervals");
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
@@ -253,6 +266,20 @@ void list_files(std::ostream& out, const std::string& dir)
 }
 } // namespace
 
+MovingLoadSeries moving_load_series(const ProgramParameters& p)
+{
+  WireParameters wire = p.catenary.contact_wire;
+  if (!p.scene.contact_wire_tension)
+    wire.tension = 0.;
+  if (!p.scene.contact_wire_bending)
+    wire.bending_stiffness = 0.;
+  std::optional<SmoothedDelta> delta;
+  if (p.discretisation.load_shape == LoadShape::smoothed_delta)
+    delta.emplace(p.discretisation.load_half_width);
+  return MovingLoadSeries(wire, p.catenary.span, p.scene.moving_force,
+                          {p.pantograph.initial_position, p.pantograph.speed}, delta);
+}
+
 namespace
 {
 /// Which effects the scene assembles, which it leaves out, and the problem size.
@@ -326,6 +353,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   }
   if (p.output.energy)
     observers.push_back(&energy);
+  std::optional<MovingLoadComparison> reference;
+  if (p.scene.is_classical_moving_load() && !p.output.probe_positions.empty())
+    observers.push_back(&reference.emplace(moving_load_series(p)));
   std::optional<VtuTimeSeriesWriter> vtu;
   if (p.output.vtu_interval > 0.)
     observers.push_back(
@@ -358,7 +388,8 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                           : std::numeric_limits<double>::quiet_NaN();
   timer.enter_subsection("output (summary, plots)");
   write_summary(dir + "/summary.json", p, simulation, r, stats, events,
-                contact ? &contact->result() : nullptr, energy);
+                contact ? &contact->result() : nullptr, energy,
+                reference ? &*reference : nullptr);
   if (contact)
     write_contact_force(dir + "/contact_force.csv", *contact);
 
@@ -374,6 +405,12 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
         << " N, min " << stats.contact_force_min() << " N, mean "
         << stats.contact_force_mean() << " N, std " << stats.contact_force_std()
         << " N\n";
+  if (reference)
+    for (const auto& probe : reference->probes())
+      out << std::setprecision(4) << "  series solution at x = " << probe.x
+          << " m: max |w - w_series| = " << probe.max_error << " m, "
+          << 100. * probe.relative() << " % of max |w_series| = " << probe.max_reference
+          << " m\n";
   if (energy.count > 0)
     out << std::setprecision(6) << "  energy: initial " << energy.initial << " J, final "
         << energy.final << " J, max |E - E(0)| / |E(0)| = " << std::setprecision(3)

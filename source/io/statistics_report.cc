@@ -61,12 +61,14 @@ void print_statistics(std::ostream& out, const ContactForceStatistics& s)
       << s.std << " N, mean - 3 sigma " << s.mean_minus_3_sigma << " N, mean + 3 sigma "
       << s.mean_plus_3_sigma << " N\n"
       << "    max " << s.max << " N, min " << s.min << " N, without contact "
-      << s.percent_without_contact << " % of the time\n"
-      << "    max uplift of the contact wire at the droppers:";
-  out << std::setprecision(2);
-  for (std::size_t j = 0; j < s.max_uplift_at_droppers.size(); ++j)
-    out << (j ? "," : "") << " " << 1000. * s.max_uplift_at_droppers[j] << " mm";
-  out << '\n';
+      << s.percent_without_contact << " % of the time\n";
+  if (!s.max_uplift_at_droppers.empty()) // a scene with droppers on an elastic wire
+  {
+    out << "    max uplift of the contact wire at the droppers:" << std::setprecision(2);
+    for (std::size_t j = 0; j < s.max_uplift_at_droppers.size(); ++j)
+      out << (j ? "," : "") << " " << 1000. * s.max_uplift_at_droppers[j] << " mm";
+    out << '\n';
+  }
   out.flags(flags);
   out.precision(precision);
 }

@@ -80,6 +80,8 @@ ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
 void ContactStatistics::start(const SimulationLayout& layout)
 {
   contact_index = layout.contact_index;
+  if (layout.dropper_indices.empty()) // a scene without droppers
+    dropper_rows.clear();
   recorded = {};
   initial_height.clear();
   max_uplift.assign(dropper_rows.size(), -std::numeric_limits<double>::infinity());

@@ -58,10 +58,23 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     if (d_used[o])
       forces.damping_offsets.push_back(o - b);
   }
+  std::vector<bool> coupled(n, false);
   for (unsigned int i = 0; i < n; ++i)
     for (auto d = system.damping.begin(i); d != system.damping.end(i); ++d)
       if (d->column() != i && d->value() != 0.)
-        forces.off_diagonal_damping.push_back({i, d->column(), 0.5 * d->value()});
+      {
+        forces.listed_damping.push_back({i, d->column(), 0.5 * d->value()});
+        coupled[i] = true;
+      }
+  // Is every damped row a coupled one? Then the diagonal goes into the list too.
+  forces.damped_rows_coupled = true;
+  for (unsigned int i = 0; i < n; ++i)
+    if (forces.half_damping[b][i] != 0. && !coupled[i])
+      forces.damped_rows_coupled = false;
+  if (forces.damped_rows_coupled)
+    for (unsigned int i = 0; i < n; ++i)
+      if (forces.half_damping[b][i] != 0.)
+        forces.listed_damping.push_back({i, i, forces.half_damping[b][i]});
 }
 
 namespace
@@ -73,7 +86,7 @@ namespace
  * through the cache), the offsets are compile-time constants (the row loop
  * vectorises), and the diagonal scaling of (M + dt/2 D)^-1 is fused in.
  */
-template <int B>
+template <int B, bool damped>
 void banded_forces(const int n, const double* __restrict f,
                    const std::vector<std::vector<double>>& K, const double* __restrict d0,
                    const double* __restrict scale, const double* __restrict q,
@@ -85,7 +98,9 @@ void banded_forces(const int n, const double* __restrict f,
     k[o] = K[B + o].data();
   auto row = [&](const int i, const bool interior)
   {
-    double s = f[i] - k[0][i] * q[i] - d0[i] * (vp[i] + v[i]);
+    double s = f[i] - k[0][i] * q[i];
+    if constexpr (damped)
+      s -= d0[i] * (vp[i] + v[i]);
     for (int o = 1; o <= B; ++o)
     {
       if (interior || i + o < n)
@@ -122,20 +137,28 @@ void HalfExplicitIntegrator::compute_forces()
   // Damping is diagonal but for a few rows (a lumped pantograph's dampers):
   // the fused sweep with the diagonal, then those entries.
   const dealii::Vector<double>* scaling = smoothed_mass_inverse.row_scaling();
-  if (forces.off_diagonal_damping.size() <= 16 && b >= 1 && b <= 3 &&
+  if (forces.listed_damping.size() <= 16 && b >= 1 && b <= 3 &&
       forces.symmetric_stiffness && scaling)
   {
     const double* d0 = forces.half_damping[b].data();
     const double* f = load_at_time_n();
     const double* scale = scaling->begin();
-    if (b == 1)
-      banded_forces<1>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
-    else if (b == 2)
-      banded_forces<2>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+    const auto sweep = [&](auto damped)
+    {
+      constexpr bool D = decltype(damped)::value;
+      if (b == 1)
+        banded_forces<1, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+      else if (b == 2)
+        banded_forces<2, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+      else
+        banded_forces<3, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+    };
+    if (forces.damped_rows_coupled)
+      sweep(std::false_type{});
     else
-      banded_forces<3>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+      sweep(std::true_type{});
     // The coupled rows (unscaled by row_scaling) get their dampers, then their block.
-    for (const auto& [i, j, d] : forces.off_diagonal_damping)
+    for (const auto& [i, j, d] : forces.listed_damping)
       out[i] -= d * (vp[j] + vv[j]);
     smoothed_mass_inverse.apply_coupled_rows(a);
     return;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/analysis/moving_load_series.h>
 #include <pantocat/app/program_parameters.h>
 
 #include <ostream>
@@ -22,4 +23,8 @@ void run_static_equilibrium(const ProgramParameters& parameters, std::ostream& o
  * short summary.
  */
 void run_dynamics(const ProgramParameters& parameters, std::ostream& out);
+
+/// The series solution of a classical moving-load scene
+/// (SceneParameters::is_classical_moving_load()).
+MovingLoadSeries moving_load_series(const ProgramParameters& parameters);
 } // namespace pantocat

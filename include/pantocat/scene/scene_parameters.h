@@ -68,6 +68,17 @@ struct SceneParameters
            pantograph == PantographType::three_mass;
   }
   bool has_droppers() const { return droppers != DropperModel::absent; }
+  /**
+   * The classical moving-load problem: a moving force on the elastic contact
+   * wire alone (no droppers), no gravity, no damping, from rest. Its series
+   * solution (MovingLoadSeries) is the exact reference.
+   */
+  bool is_classical_moving_load() const
+  {
+    return pantograph == PantographType::moving_force && !has_droppers() && !gravity &&
+           !damping && initial_shape == InitialShape::rest &&
+           contact_wire == WireModel::elastic;
+  }
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);

@@ -79,8 +79,16 @@ private:
       unsigned int row, column;
       double value;
     };
-    std::vector<Entry> off_diagonal_damping; ///< D/2 off the diagonal
-    bool symmetric_stiffness = false;        ///< K(i, j) == K(j, i) exactly
+    /// D/2 off the diagonal, and on it too if damped_rows_coupled.
+    std::vector<Entry> listed_damping;
+    /**
+     * True when only the rows of a coupled block (a lumped pantograph's) are
+     * damped, e.g. a scene without the wires' damping: the sweep then skips
+     * the diagonal of D and its two velocity streams, and the list carries
+     * every damper.
+     */
+    bool damped_rows_coupled = false;
+    bool symmetric_stiffness = false; ///< K(i, j) == K(j, i) exactly
   } forces;
 
   double dt;
