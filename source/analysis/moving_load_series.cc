@@ -49,6 +49,16 @@ MovingLoadSeries::MovingLoadSeries(const WireParameters& wire, const double span
     omega.push_back(std::sqrt(w2));
     amplitude.push_back(2. * force * c / (rho_a * span) / (w2 - Omega * Omega));
   }
+  // delta_eps makes c_n decay like (k_n eps)^-3 beyond k_n eps ~ 1, the modal
+  // amplitudes like n^-5: drop the modes below 1e-9 of the first (their tail
+  // adds below 1e-7 of w); a point load keeps all n_modes (tail O(1/n_modes)).
+  std::size_t last = 0;
+  for (std::size_t n = 0; n < amplitude.size(); ++n)
+    if (std::abs(amplitude[n]) > 1e-9 * std::abs(amplitude[0]))
+      last = n;
+  k.resize(last + 1);
+  omega.resize(last + 1);
+  amplitude.resize(last + 1);
 }
 
 double MovingLoadSeries::displacement(const double x, const double t) const

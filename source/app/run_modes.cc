@@ -9,12 +9,12 @@
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
+#include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/simulation/run_statistics.h>
-#include <pantocat/system/catenary_system_builder.h>
 
 #include <deal.II/base/timer.h>
 
@@ -72,16 +72,27 @@ void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out)
 
 void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
 {
+  require(p.scene.contact_wire == WireModel::elastic, "Scene/Contact wire", "rigid",
+          "Mode = static computes the elastic catenary at rest: allowed elastic");
   const auto d = create_catenary_discretisation(p.catenary, p.discretisation);
-  const SemiDiscreteSystem system =
-      build_catenary_system(*d, Constraint::Kind::unilateral);
+  // The catenary of the scene (its pantograph's effects left out).
+  const auto pantograph = create_pantograph(p.scene, p.pantograph);
+  const BuiltScene scene =
+      build_scene(p.scene, p.catenary, *d, pantograph.get(),
+                  {p.pantograph.initial_position, p.pantograph.speed});
+  const SemiDiscreteSystem& system = scene.catenary_only;
 
-  // The contact load lambda_p(0) F_w(0)^T at x_p(0), (25) and (33).
+  // The contact load lambda_p(0) F_w(0)^T at x_p(0), (25) and (33), or the
+  // scene's moving force there.
+  const double force = p.scene.has_pantograph_body() ? p.pantograph.initial_contact_force
+                       : p.scene.pantograph == PantographType::moving_force
+                           ? p.scene.moving_force
+                           : 0.;
   dealii::Vector<double> contact_load(system.n_dofs());
   SparseRow F;
   d->load_row(p.pantograph.initial_position, 0, F);
   F.shift(system.block("contact wire").first);
-  F.add_transpose_to(contact_load, p.pantograph.initial_contact_force);
+  F.add_transpose_to(contact_load, force);
 
   const StaticEquilibrium s = solve_static_equilibrium(system, contact_load);
 
@@ -93,8 +104,7 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
   out << "Static equilibrium (" << to_string(d->method())
       << ", N+1 = " << d->n_intervals() << ", " << system.n_dofs() << " unknowns, "
       << system.n_constraints() << " dropper constraints)\n"
-      << "  contact load " << p.pantograph.initial_contact_force
-      << " N at x_p = " << p.pantograph.initial_position
+      << "  contact load " << force << " N at x_p = " << p.pantograph.initial_position
       << " m; contact wire there: " << std::setprecision(6) << F.dot(s.q)
       << " m (delta_eps-weighted)\n";
   for (unsigned int j = 0; j < system.n_constraints(); ++j)

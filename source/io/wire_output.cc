@@ -29,7 +29,10 @@ void write_wire_profiles(const CatenaryDiscretisation& d,
                          const std::string& vtu_file, const unsigned int subdivisions,
                          const double time)
 {
-  const dealii::Vector<double> qc = block_values(system, q, "carrier");
+  // A rigid carrier (no block) stays at the support height: u_c = 0.
+  const dealii::Vector<double> qc = system.has_block("carrier")
+                                        ? block_values(system, q, "carrier")
+                                        : dealii::Vector<double>(d.n_dofs(Wire::carrier));
   const dealii::Vector<double> qw = block_values(system, q, "contact wire");
 
   std::ofstream csv(csv_file);
