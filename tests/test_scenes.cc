@@ -274,3 +274,51 @@ TEST(Scene, InconsistentScenesAreRefused)
           .find("Scene/Contact wire tension = false"),
       std::string::npos);
 }
+
+TEST(Scene, ACarrierWithBendingIsAssembledAsTheContactWire)
+{
+  // Given the contact wire's data, a carrier with bending (C1 Hermite for FEM, the
+  // five-point stencil for FDM) must give the contact wire's M, D, K and loads
+  // (the clamp loads act on both wires alike): to the last bit.
+  for (const std::string method : {"fem", "fdm"})
+  {
+    ProgramParameters p = shipped_scene(
+        "benchmark.prm",
+        {"Scene/Pantograph=absent", "Scene/Carrier bending=true",
+         "Discretisation/Carrier element=cubic Hermite",
+         "Discretisation/Method=" + method, "Discretisation/Number of intervals=50",
+         "Catenary/Carrier/Bending stiffness=1"});
+    p.catenary.carrier = p.catenary.contact_wire;
+    const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
+    const BuiltScene s = build_scene(p.scene, p.catenary, *space, nullptr,
+                                     {p.pantograph.initial_position, p.pantograph.speed});
+    const DofBlock &c = s.system.block("carrier"), &w = s.system.block("contact wire");
+    ASSERT_EQ(c.size, w.size) << method;
+    for (unsigned int i = 0; i < c.size; ++i)
+    {
+      EXPECT_EQ(s.system.load(c.first + i), s.system.load(w.first + i)) << method;
+      for (unsigned int j = 0; j < c.size; ++j)
+        for (const auto* m : {&s.system.mass, &s.system.damping, &s.system.stiffness})
+          ASSERT_EQ(m->el(c.first + i, c.first + j), m->el(w.first + i, w.first + j))
+              << method << " (" << i << ", " << j << ")";
+    }
+  }
+}
+
+TEST(Scene, CarrierBendingNeedsAnElementWithSecondDerivatives)
+{
+  try
+  {
+    shipped_scene("benchmark.prm",
+                  {"Scene/Carrier bending=true", "Catenary/Carrier/Bending stiffness=1",
+                   "Discretisation/Method=fem"});
+    FAIL() << "linear Lagrange carrier with bending accepted";
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(
+        std::string(e.what()).find("Discretisation/Carrier element = linear Lagrange"),
+        std::string::npos)
+        << e.what();
+  }
+}

@@ -60,6 +60,16 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   study.parse_parameters(prm);
 
   scene.check();
+  if (scene.carrier_bending && scene.carrier == WireModel::elastic)
+  {
+    require(catenary.carrier.bending_stiffness > 0., "Catenary/Carrier/Bending stiffness",
+            catenary.carrier.bending_stiffness, "must be > 0 with Scene/Carrier bending");
+    require(discretisation.method == SpaceMethod::fdm ||
+                discretisation.carrier_element == CarrierElement::cubic_hermite,
+            "Discretisation/Carrier element", "linear Lagrange",
+            "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
+            "Hermite (or Method = fdm)");
+  }
   if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
     require(scene.has_pantograph_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", to_string(scene.pantograph),

@@ -39,19 +39,20 @@ void declare_wire(dealii::ParameterHandler& prm, const WireParameters& defaults,
                     Double(0.), "rho A [kg/m], > 0.");
   prm.declare_entry("Tension", number_to_string(defaults.tension), Double(0.),
                     "Tensile force T [N], > 0.");
-  if (beam)
-    prm.declare_entry("Bending stiffness", number_to_string(defaults.bending_stiffness),
-                      Double(0.), "E I [N m^2], >= 0 (Euler-Bernoulli beam).");
+  prm.declare_entry("Bending stiffness", number_to_string(defaults.bending_stiffness),
+                    Double(0.),
+                    beam ? "E I [N m^2], >= 0 (Euler-Bernoulli beam)."
+                         : "E I [N m^2], >= 0: used only with Scene/Carrier bending = "
+                           "true (the paper's carrier is a string).");
   prm.declare_entry("Damping", number_to_string(defaults.damping), Double(0.),
                     "Viscous damping beta [N s/m^2], >= 0.");
 }
 
-void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire, const bool beam)
+void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire)
 {
   wire.mass_per_length = prm.get_double("Mass per length");
   wire.tension = prm.get_double("Tension");
-  if (beam)
-    wire.bending_stiffness = prm.get_double("Bending stiffness");
+  wire.bending_stiffness = prm.get_double("Bending stiffness");
   wire.damping = prm.get_double("Damping");
 }
 } // namespace
@@ -92,10 +93,10 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   support_height = prm.get_double("Support height");
   gravity = prm.get_double("Gravity");
   prm.enter_subsection("Carrier");
-  parse_wire(prm, carrier, false);
+  parse_wire(prm, carrier);
   prm.leave_subsection();
   prm.enter_subsection("Contact wire");
-  parse_wire(prm, contact_wire, true);
+  parse_wire(prm, contact_wire);
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
   dropper_positions = dealii::Utilities::string_to_double(

@@ -15,7 +15,7 @@ bool CarrierBody::enabled(const SceneParameters& scene) const
 void CarrierBody::add_bodies(SceneAssembly& a) const
 {
   BlockOperator op;
-  a.space.initialize_operator(Wire::carrier, false, op);
+  a.space.initialize_operator(Wire::carrier, a.scene.carrier_bending, op);
   WireTerms mass;
   mass.mass = a.catenary.carrier.mass_per_length;
   a.space.add_terms(Wire::carrier, mass, op);
@@ -24,7 +24,8 @@ void CarrierBody::add_bodies(SceneAssembly& a) const
 
 std::string CarrierBody::describe(const SceneAssembly& a) const
 {
-  return "carrier: elastic string, " + std::to_string(a.space.n_dofs(Wire::carrier)) +
-         " unknowns";
+  return std::string("carrier: elastic ") +
+         (a.scene.carrier_bending ? "beam, " : "string, ") +
+         std::to_string(a.space.n_dofs(Wire::carrier)) + " unknowns";
 }
 } // namespace pantocat

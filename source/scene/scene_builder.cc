@@ -1,6 +1,5 @@
 #include <pantocat/scene/carrier_body.h>
 #include <pantocat/scene/clamp_and_dropper_masses.h>
-#include <pantocat/scene/contact_wire_bending.h>
 #include <pantocat/scene/contact_wire_body.h>
 #include <pantocat/scene/droppers.h>
 #include <pantocat/scene/gravity.h>
@@ -9,7 +8,10 @@
 #include <pantocat/scene/pantograph_contact.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/scene/viscous_damping.h>
+#include <pantocat/scene/wire_bending.h>
 #include <pantocat/scene/wire_tension.h>
+
+#include <stdexcept>
 
 namespace pantocat
 {
@@ -20,7 +22,7 @@ std::vector<std::unique_ptr<SceneEffect>> registered_scene_effects()
   e.push_back(std::make_unique<ContactWireBody>());
   e.push_back(std::make_unique<PantographBody>());
   e.push_back(std::make_unique<WireTension>());
-  e.push_back(std::make_unique<ContactWireBending>());
+  e.push_back(std::make_unique<WireBending>());
   e.push_back(std::make_unique<Gravity>());
   e.push_back(std::make_unique<ViscousDamping>());
   e.push_back(std::make_unique<ClampAndDropperMasses>());
@@ -53,6 +55,9 @@ BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& c
                        const PantographModel* pantograph,
                        const ContactPointMotion& motion)
 {
+  if (scene.has_pantograph_body() != (pantograph != nullptr))
+    throw std::logic_error("build_scene: the pantograph model must be given exactly when "
+                           "the scene has a lumped-mass pantograph");
   const auto registered = registered_scene_effects();
   std::vector<const SceneEffect*> all, catenary_part;
   BuiltScene built;

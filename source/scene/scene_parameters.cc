@@ -35,9 +35,12 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Carrier tension", "true", Bool(), "Tension T_c of the carrier.");
   prm.declare_entry("Contact wire tension", "true", Bool(),
                     "Tension T_w of the contact wire.");
+  prm.declare_entry("Carrier bending", "false", Bool(),
+                    "Bending stiffness E I_c (Catenary/Carrier/Bending stiffness) of the "
+                    "carrier: the paper's carrier is a string; with FEM this needs "
+                    "Discretisation/Carrier element = cubic Hermite.");
   prm.declare_entry("Contact wire bending", "true", Bool(),
-                    "Bending stiffness E I of the contact wire (the carrier, a string, "
-                    "has none).");
+                    "Bending stiffness E I of the contact wire.");
   prm.declare_entry("Gravity", "true", Bool(),
                     "Weight of the wires (and of clamps and droppers if those act).");
   prm.declare_entry("Damping", "true", Bool(),
@@ -83,6 +86,7 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
   carrier_tension = prm.get_bool("Carrier tension");
   contact_wire_tension = prm.get_bool("Contact wire tension");
   contact_wire_bending = prm.get_bool("Contact wire bending");
+  carrier_bending = prm.get_bool("Carrier bending");
   gravity = prm.get_bool("Gravity");
   damping = prm.get_bool("Damping");
   clamp_and_dropper_masses = prm.get_bool("Clamp and dropper masses");
@@ -110,9 +114,9 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
 void SceneParameters::check() const
 {
   if (carrier == WireModel::elastic)
-    require(carrier_tension, "Scene/Carrier tension", "false",
-            "an elastic carrier (a string) needs its tension; set Carrier = rigid to "
-            "leave the carrier out");
+    require(carrier_tension || carrier_bending, "Scene/Carrier tension", "false",
+            "with Carrier bending = false the elastic carrier has no stiffness; enable "
+            "one of them or set Carrier = rigid");
   if (contact_wire == WireModel::elastic)
     require(contact_wire_tension || contact_wire_bending, "Scene/Contact wire tension",
             "false",

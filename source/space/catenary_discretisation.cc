@@ -19,8 +19,8 @@ const WireParameters& CatenaryDiscretisation::wire_parameters(const Wire wire) c
 void CatenaryDiscretisation::assemble(const Wire wire, BlockOperator& op) const
 {
   const WireParameters& p = wire_parameters(wire);
-  // The carrier is a string, Eq. (2): no bending term.
-  const double bending = wire == Wire::contact_wire ? p.bending_stiffness : 0.;
+  // The paper's carrier is a string, Eq. (2): E I_c = 0 (and no C1 element).
+  const double bending = has_bending_element(wire) ? p.bending_stiffness : 0.;
   initialize_operator(wire, bending > 0., op);
   add_terms(wire,
             {p.mass_per_length, p.damping, p.tension, bending,

@@ -37,7 +37,7 @@ void FdmCatenary::add_terms(const Wire wire, const WireTerms& p, BlockOperator& 
   const double t = p.tension / dx;
   // Bending: EI w'''' -> (EI/dx^3) Q^2, Q = tridiag(1, -2, 1) with the
   // boundary values q''_0 = q''_{N+1} = 0 of (3).
-  const bool beam = wire == Wire::contact_wire && p.bending != 0.;
+  const bool beam = p.bending != 0.;
   const double b = beam ? p.bending / (dx * dx * dx) : 0.;
   const auto add = [&](const unsigned int i, const unsigned int j, const double value)
   {

@@ -30,9 +30,10 @@ FemCatenary::FemCatenary(const CatenaryParameters& catenary,
   for (auto* s : {&carrier_space, &wire_space})
   {
     s->dofs.reinit(triangulation);
-    s->dofs.distribute_dofs(s == &carrier_space
-                                ? static_cast<const dealii::FiniteElement<1>&>(carrier_fe)
-                                : static_cast<const dealii::FiniteElement<1>&>(wire_fe));
+    const bool hermite = s == &wire_space || has_bending_element(Wire::carrier);
+    s->dofs.distribute_dofs(
+        hermite ? static_cast<const dealii::FiniteElement<1>&>(wire_fe)
+                : static_cast<const dealii::FiniteElement<1>&>(carrier_fe));
     // Eliminate the value dof (component 0 of the vertex) at both ends, Eq. (3).
     std::vector<bool> eliminated(s->dofs.n_dofs(), false);
     for (const auto& cell : s->dofs.active_cell_iterators())
@@ -101,8 +102,8 @@ void FemCatenary::add_terms(const Wire wire, const WireTerms& t, BlockOperator& 
   const dealii::FiniteElement<1>& fe = s.dofs.get_fe();
   const unsigned int n_local = fe.n_dofs_per_cell();
   std::vector<dealii::types::global_dof_index> dofs(n_local);
-  // Linear Lagrange (the carrier) has no second derivatives inside a cell.
-  const bool beam = wire == Wire::contact_wire && t.bending != 0.;
+  // Linear Lagrange (the paper's carrier) has no second derivatives inside a cell.
+  const bool beam = has_bending_element(wire) && t.bending != 0.;
   const dealii::QGauss<1> quadrature(4);
   dealii::FEValues<1> fe_values(
       fe, quadrature,
@@ -190,7 +191,7 @@ double FemCatenary::shape(const Wire wire, const unsigned int c, const unsigned 
   const double x0 = cells[c]->vertex(0)[0];
   const double h = cells[c]->vertex(1)[0] - x0;
   const double xi = (x - x0) / h;
-  if (wire == Wire::contact_wire)
+  if (has_bending_element(wire)) // C1 Hermite
     return wire_fe.shape_derivative_on_cell(i, k, xi, h);
   // Linear Lagrange: value or slope; higher derivatives vanish inside a cell.
   if (k == 0)

@@ -27,10 +27,10 @@ struct TwoMassPantographParameters
  */
 struct ThreeMassPantographParameters
 {
-  std::array<double, 3> masses = {9.0, 8.0, 9.0};            ///< m_1..m_3 [kg]
-  std::array<double, 3> stiffnesses = {7000.0, 20000.0, 0.}; ///< c_1..c_3 [N/m]
-  std::array<double, 3> dampings = {30.0, 10.0, 130.0};      ///< d_1..d_3 [N s/m]
-  double uplift_force = 70.0;                                ///< F_0 on body 3 [N]
+  std::array<double, 3> masses = {{9.0, 8.0, 9.0}};            ///< m_1..m_3 [kg]
+  std::array<double, 3> stiffnesses = {{7000.0, 20000.0, 0.}}; ///< c_1..c_3 [N/m]
+  std::array<double, 3> dampings = {{30.0, 10.0, 130.0}};      ///< d_1..d_3 [N s/m]
+  double uplift_force = 70.0;                                  ///< F_0 on body 3 [N]
 };
 
 /**

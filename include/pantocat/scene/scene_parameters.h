@@ -50,6 +50,7 @@ struct SceneParameters
   bool carrier_tension = true;
   bool contact_wire_tension = true;
   bool contact_wire_bending = true;
+  bool carrier_bending = false; ///< the paper's carrier is a string
   bool gravity = true;
   bool damping = true;
   bool clamp_and_dropper_masses = true;

@@ -56,6 +56,13 @@ public:
 
   virtual SpaceMethod method() const = 0;
 
+  /**
+   * True if @p wire's discretisation carries a bending term: always for FDM
+   * (the five-point stencil) and for the FEM contact wire (C1 Hermite); the
+   * FEM carrier only with Carrier element = cubic Hermite.
+   */
+  virtual bool has_bending_element(Wire wire) const = 0;
+
   /// Number of free unknowns of @p wire.
   virtual unsigned int n_dofs(Wire wire) const = 0;
 

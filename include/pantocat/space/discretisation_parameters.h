@@ -21,9 +21,17 @@ enum class LoadShape
 const char* to_string(SpaceMethod method);
 SpaceMethod space_method_from_string(const std::string& name);
 
+/// FEM element of the carrier: the paper's string (C0) or a beam (C1).
+enum class CarrierElement
+{
+  linear_lagrange, ///< Sec. 4.2: the carrier is a string
+  cubic_hermite    ///< as the contact wire: for a carrier with bending stiffness
+};
+
 struct DiscretisationParameters
 {
   SpaceMethod method = SpaceMethod::fem;
+  CarrierElement carrier_element = CarrierElement::linear_lagrange;
   unsigned int n_intervals = 500; ///< N + 1: cells of the equidistant grid
   LoadShape load_shape = LoadShape::smoothed_delta;
   double load_half_width = 0.2; ///< epsilon [m]

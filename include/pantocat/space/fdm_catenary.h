@@ -22,6 +22,7 @@ public:
               const DiscretisationParameters& discretisation);
 
   SpaceMethod method() const override { return SpaceMethod::fdm; }
+  bool has_bending_element(Wire) const override { return true; }
   unsigned int n_dofs(Wire) const override { return n_intervals() - 1; }
   void initialize_operator(Wire wire, bool with_bending,
                            BlockOperator& op) const override;

@@ -35,6 +35,11 @@ public:
               const DiscretisationParameters& discretisation);
 
   SpaceMethod method() const override { return SpaceMethod::fem; }
+  bool has_bending_element(Wire wire) const override
+  {
+    return wire == Wire::contact_wire ||
+           discretisation.carrier_element == CarrierElement::cubic_hermite;
+  }
   unsigned int n_dofs(Wire wire) const override;
   void initialize_operator(Wire wire, bool with_bending,
                            BlockOperator& op) const override;
