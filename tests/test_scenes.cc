@@ -322,3 +322,19 @@ TEST(Scene, CarrierBendingNeedsAnElementWithSecondDerivatives)
         << e.what();
   }
 }
+
+TEST(Scene, EveryIntegratorEvaluatesTheTimeDependentLoad)
+{
+  // f(t) of the moving force: half-explicit at t_n, BDF-2 and generalized-alpha at
+  // t_{n+1}, IDA in its residual (a scene without constraints: no roots). All four
+  // match the series within the space error of N+1 = 100 (0.032-0.035 % measured
+  // to x_p = 10 m).
+  for (const std::string integrator :
+       {"half-explicit", "bdf2", "generalized-alpha", "ida"})
+  {
+    const ProgramParameters p = shipped_scene(
+        "moving-force-beam.prm",
+        {"Time integration/Integrator=" + integrator, "Pantograph/Final position=10"});
+    EXPECT_LT(relative_series_error(p, 1), 1e-3) << integrator;
+  }
+}

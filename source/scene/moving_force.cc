@@ -49,6 +49,6 @@ void MovingForce::add_constraints(SceneAssembly& a) const
 std::string MovingForce::describe(const SceneAssembly& a) const
 {
   return "moving force: " + number_to_string(a.scene.moving_force) +
-         " N at v_p = " + number_to_string(a.motion.speed) + " m/s";
+         " N at v_p = " + number_to_string(a.motion.speed) + " m/s, " + a.load_shape();
 }
 } // namespace pantocat

@@ -37,6 +37,7 @@ std::string PantographContact::describe(const SceneAssembly& a) const
 {
   return std::string("contact: ") +
          (a.scene.contact == Constraint::Kind::bilateral ? "bilateral" : "unilateral") +
-         (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire" : " (32)");
+         (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
+                                                   : " (32), " + a.load_shape());
 }
 } // namespace pantocat

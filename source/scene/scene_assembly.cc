@@ -1,3 +1,4 @@
+#include <pantocat/base/number_format.h>
 #include <pantocat/scene/scene_assembly.h>
 
 namespace pantocat
@@ -8,6 +9,14 @@ BlockOperator* SceneAssembly::body(const std::string& name)
     if (b.name == name)
       return &b;
   return nullptr;
+}
+
+std::string SceneAssembly::load_shape() const
+{
+  if (space.discretisation_parameters().load_shape == LoadShape::point)
+    return "point load (15)/(16)";
+  return "smoothed delta_eps (25), eps = " +
+         number_to_string(space.smoothed_delta().epsilon()) + " m";
 }
 
 SparseRow SceneAssembly::wire_row(const Wire wire, const double x) const

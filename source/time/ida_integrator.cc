@@ -427,7 +427,8 @@ void IdaIntegrator::initialize(const DynamicState& initial)
             IDARootInit(mem, m, Sundials::roots) == IDA_SUCCESS &&
             IDASetMaxNumSteps(mem, 100000) == IDA_SUCCESS;
   std::vector<int> direction(m, -1); // gaps and forces falling through zero
-  ok = ok && IDASetRootDirection(mem, direction.data()) == IDA_SUCCESS;
+  // (A scene without constraints has no roots: IDA refuses directions then.)
+  ok = ok && (m == 0 || IDASetRootDirection(mem, direction.data()) == IDA_SUCCESS);
   if (!ok)
     throw SimulationError("IDA: the solver could not be set up");
   current = initial;

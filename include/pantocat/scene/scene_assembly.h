@@ -47,6 +47,9 @@ struct SceneAssembly
   unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
   std::vector<unsigned int> dropper_indices;
 
+  /// "smoothed delta_eps, eps = 0.2 m" or "point load": how F_w of (33) spreads a force.
+  std::string load_shape() const;
+
   /// Global row of the displacement of @p wire at @p x (empty if the wire is rigid).
   SparseRow wire_row(Wire wire, double x) const;
 };
