@@ -14,12 +14,7 @@ bool CarrierBody::enabled(const SceneParameters& scene) const
 
 void CarrierBody::add_bodies(SceneAssembly& a) const
 {
-  BlockOperator op;
-  a.space.initialize_operator(Wire::carrier, a.scene.carrier_bending, op);
-  WireTerms mass;
-  mass.mass = a.catenary.carrier.mass_per_length;
-  a.space.add_terms(Wire::carrier, mass, op);
-  a.bodies.push_back(std::move(op));
+  a.add_wire_body(Wire::carrier, a.scene.carrier_bending);
 }
 
 std::string CarrierBody::describe(const SceneAssembly& a) const

@@ -14,12 +14,7 @@ bool ContactWireBody::enabled(const SceneParameters& scene) const
 
 void ContactWireBody::add_bodies(SceneAssembly& a) const
 {
-  BlockOperator op;
-  a.space.initialize_operator(Wire::contact_wire, a.scene.contact_wire_bending, op);
-  WireTerms mass;
-  mass.mass = a.catenary.contact_wire.mass_per_length;
-  a.space.add_terms(Wire::contact_wire, mass, op);
-  a.bodies.push_back(std::move(op));
+  a.add_wire_body(Wire::contact_wire, a.scene.contact_wire_bending);
 }
 
 std::string ContactWireBody::describe(const SceneAssembly& a) const

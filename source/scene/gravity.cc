@@ -16,16 +16,11 @@ bool Gravity::enabled(const SceneParameters& scene) const
 
 void Gravity::add_terms(SceneAssembly& a) const
 {
-  WireTerms t;
   for (const Wire wire : {Wire::carrier, Wire::contact_wire})
   {
-    BlockOperator* body = a.body(wire == Wire::carrier ? "carrier" : "contact wire");
-    if (body == nullptr)
-      continue;
-    const WireParameters& p =
-        wire == Wire::carrier ? a.catenary.carrier : a.catenary.contact_wire;
-    t.weight = p.mass_per_length * a.catenary.gravity;
-    a.space.add_terms(wire, t, *body);
+    WireTerms t;
+    t.weight = a.wire_parameters(wire).mass_per_length * a.catenary.gravity;
+    a.add_wire_terms(wire, t);
   }
 }
 

@@ -11,6 +11,32 @@ BlockOperator* SceneAssembly::body(const std::string& name)
   return nullptr;
 }
 
+const char* SceneAssembly::body_name(const Wire wire)
+{
+  return wire == Wire::carrier ? "carrier" : "contact wire";
+}
+
+const WireParameters& SceneAssembly::wire_parameters(const Wire wire) const
+{
+  return wire == Wire::carrier ? catenary.carrier : catenary.contact_wire;
+}
+
+void SceneAssembly::add_wire_body(const Wire wire, const bool with_bending)
+{
+  BlockOperator op;
+  space.initialize_operator(wire, with_bending, op);
+  WireTerms mass;
+  mass.mass = wire_parameters(wire).mass_per_length;
+  space.add_terms(wire, mass, op);
+  bodies.push_back(std::move(op));
+}
+
+void SceneAssembly::add_wire_terms(const Wire wire, const WireTerms& terms)
+{
+  if (BlockOperator* b = body(body_name(wire)))
+    space.add_terms(wire, terms, *b);
+}
+
 std::string SceneAssembly::load_shape() const
 {
   if (space.discretisation_parameters().load_shape == LoadShape::point)
@@ -21,7 +47,7 @@ std::string SceneAssembly::load_shape() const
 
 SparseRow SceneAssembly::wire_row(const Wire wire, const double x) const
 {
-  const std::string name = wire == Wire::carrier ? "carrier" : "contact wire";
+  const std::string name = body_name(wire);
   if (!system.has_block(name))
     return {};
   SparseRow row = space.point_row(wire, x);

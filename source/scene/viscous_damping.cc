@@ -16,15 +16,11 @@ bool ViscousDamping::enabled(const SceneParameters& scene) const
 
 void ViscousDamping::add_terms(SceneAssembly& a) const
 {
-  WireTerms t;
   for (const Wire wire : {Wire::carrier, Wire::contact_wire})
   {
-    BlockOperator* body = a.body(wire == Wire::carrier ? "carrier" : "contact wire");
-    if (body == nullptr)
-      continue;
-    t.damping =
-        (wire == Wire::carrier ? a.catenary.carrier : a.catenary.contact_wire).damping;
-    a.space.add_terms(wire, t, *body);
+    WireTerms t;
+    t.damping = a.wire_parameters(wire).damping;
+    a.add_wire_terms(wire, t);
   }
 }
 

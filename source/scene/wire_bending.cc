@@ -27,17 +27,13 @@ bool WireBending::enabled(const SceneParameters& scene) const
 
 void WireBending::add_terms(SceneAssembly& a) const
 {
-  WireTerms t;
-  if (carrier_bending(a.scene))
-  {
-    t.bending = a.catenary.carrier.bending_stiffness;
-    a.space.add_terms(Wire::carrier, t, *a.body("carrier"));
-  }
-  if (wire_bending(a.scene))
-  {
-    t.bending = a.catenary.contact_wire.bending_stiffness;
-    a.space.add_terms(Wire::contact_wire, t, *a.body("contact wire"));
-  }
+  for (const Wire wire : {Wire::carrier, Wire::contact_wire})
+    if (wire == Wire::carrier ? carrier_bending(a.scene) : wire_bending(a.scene))
+    {
+      WireTerms t;
+      t.bending = a.wire_parameters(wire).bending_stiffness;
+      a.add_wire_terms(wire, t);
+    }
 }
 
 std::string WireBending::describe(const SceneAssembly& a) const

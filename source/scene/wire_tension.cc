@@ -26,17 +26,13 @@ bool WireTension::enabled(const SceneParameters& scene) const
 
 void WireTension::add_terms(SceneAssembly& a) const
 {
-  WireTerms t;
-  if (carrier_tension(a.scene))
-  {
-    t.tension = a.catenary.carrier.tension;
-    a.space.add_terms(Wire::carrier, t, *a.body("carrier"));
-  }
-  if (wire_tension(a.scene))
-  {
-    t.tension = a.catenary.contact_wire.tension;
-    a.space.add_terms(Wire::contact_wire, t, *a.body("contact wire"));
-  }
+  for (const Wire wire : {Wire::carrier, Wire::contact_wire})
+    if (wire == Wire::carrier ? carrier_tension(a.scene) : wire_tension(a.scene))
+    {
+      WireTerms t;
+      t.tension = a.wire_parameters(wire).tension;
+      a.add_wire_terms(wire, t);
+    }
 }
 
 std::string WireTension::describe(const SceneAssembly& a) const

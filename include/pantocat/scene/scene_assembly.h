@@ -47,6 +47,15 @@ struct SceneAssembly
   unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
   std::vector<unsigned int> dropper_indices;
 
+  /// Name of @p wire's body: "carrier" or "contact wire".
+  static const char* body_name(Wire wire);
+  /// The data of @p wire (CatenaryParameters).
+  const WireParameters& wire_parameters(Wire wire) const;
+  /// Phase 1: @p wire as a body (its unknowns and mass), wide enough for bending.
+  void add_wire_body(Wire wire, bool with_bending);
+  /// Phase 2: adds @p terms to @p wire's operator; nothing if the wire is rigid.
+  void add_wire_terms(Wire wire, const WireTerms& terms);
+
   /// "smoothed delta_eps, eps = 0.2 m" or "point load": how F_w of (33) spreads a force.
   std::string load_shape() const;
 
