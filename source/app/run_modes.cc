@@ -2,6 +2,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
@@ -9,6 +10,7 @@
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
+#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/event_log.h>
@@ -183,6 +185,15 @@ void write_summary(const std::string& file, const ProgramParameters& p,
       .value("position", stats.max_position_residual())
       .value("velocity", stats.max_velocity_residual())
       .end_object();
+  const GuardExtremes& g = r.guards;
+  json.begin_object("guards")
+      .value("max_drift", g.max_drift)
+      .value("max_multiplier", g.max_multiplier)
+      .value("reference_force", g.reference_force)
+      .value("max_energy_increase", g.max_energy_increase)
+      .value("min_energy_increase", g.min_energy_increase)
+      .value("reference_energy", g.reference_energy)
+      .end_object();
   json.value("stability_limit_explicit", r.stability_limit)
       .value("time_loop_seconds", r.time_loop_seconds)
       .end_object();
@@ -223,8 +234,17 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   timer.enter_subsection("setup (assembly, initial state)");
   DynamicSimulation simulation(p);
   simulation.check_step_size(); // before any output is written
-  timer.leave_subsection();
   const std::string& dir = p.output.directory;
+  // A checkpoint to continue from is checked (its parameters) before any
+  // output is touched; a fresh run removes a checkpoint of an earlier one.
+  const std::string checkpoint_file = dir + "/checkpoint.bin";
+  std::optional<CheckpointReader> resume_from;
+  if (p.checkpoint.resume)
+    resume_from.emplace(checkpoint_file, p.fingerprint);
+  else
+    std::filesystem::remove(checkpoint_file);
+  const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
+  timer.leave_subsection();
   out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
       << to_string(p.time_integration.integrator)
@@ -235,6 +255,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
       << simulation.system().n_constraints()
       << (p.pantograph.bilateral_constraints ? " bilateral" : " unilateral")
       << " constraints\n";
+  if (resume_from)
+    out << "  resuming from " << checkpoint_file << " after step " << resume_from->step()
+        << '\n';
 
   TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
   RunStatistics stats;
@@ -245,6 +268,11 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     {
       if (!seen)
         t = point.t, lambda_p = point.lambda.back(), seen = true;
+    }
+    void save(CheckpointOut& archive) const override { archive << seen << t << lambda_p; }
+    void resume(const SimulationLayout&, CheckpointIn& archive) override
+    {
+      archive >> seen >> t >> lambda_p;
     }
     bool seen = false;
     double t = 0., lambda_p = 0.;
@@ -266,7 +294,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   try
   {
     const dealii::TimerOutput::Scope scope(timer, "time loop (includes the VTU frames)");
-    r = simulation.run(observers);
+    r = simulation.run(observers, {&checkpoint_writer, p.checkpoint.interval,
+                                   resume_from ? &*resume_from : nullptr,
+                                   p.checkpoint.stop_after_steps});
   }
   catch (const SimulationError& e)
   {

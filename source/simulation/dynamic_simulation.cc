@@ -3,6 +3,7 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/coupling/coupled_system_builder.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
+#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/initial_state.h>
 
@@ -134,7 +135,8 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
 } // namespace
 
 DynamicSimulation::Result
-DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
+DynamicSimulation::run(const std::vector<SimulationObserver*>& observers,
+                       const CheckpointPlan& checkpoints)
 {
   check_step_size();
   const auto& ti = parameters.time_integration;
@@ -144,12 +146,20 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   const auto n_steps =
       static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
 
-  for (auto* o : observers)
-    o->start(layout_);
+  // The guards watch each time point after the outputs have it: a run
+  // stopped by them keeps its time series up to the failure.
+  double reference_force = parameters.pantograph.two_mass.uplift_force;
+  for (const double l : initial.lambda)
+    reference_force = std::max(reference_force, std::abs(l));
+  const auto& c = parameters.catenary;
+  RunGuard guard(parameters.guards, coupled, reference_force,
+                 0.5 * (c.carrier.tension + c.contact_wire.tension) * c.span, initial);
+  std::vector<SimulationObserver*> all = observers;
+  all.push_back(&guard);
   const auto notify = [&](const DynamicState& s)
   {
     const TimePoint p = time_point(s);
-    for (auto* o : observers)
+    for (auto* o : all)
     {
       o->observe(p);
       o->observe_state(p, s);
@@ -159,13 +169,33 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   const auto start = std::chrono::steady_clock::now();
   integrator->initialize(initial);
   const bool lags = integrator->multipliers_lag_one_step();
-  if (!lags)
-    notify(initial);
-  for (unsigned long n = 1; n <= n_steps; ++n)
+  unsigned long first_step = 1;
+  if (checkpoints.resume_from)
+  {
+    checkpoints.resume_from->restore(*integrator, layout_, all);
+    first_step = checkpoints.resume_from->step() + 1;
+  }
+  else
+  {
+    for (auto* o : all)
+      o->start(layout_);
+    if (!lags)
+      notify(initial);
+  }
+  for (unsigned long n = first_step; n <= n_steps; ++n)
   {
     integrator->advance();
     check_bounded(integrator->latest(), n, parameters.catenary.span);
     notify(integrator->latest());
+    if (n == n_steps)
+      break;
+    if (checkpoints.writer && checkpoints.interval > 0 && n % checkpoints.interval == 0)
+      checkpoints.writer->write(n, *integrator, all);
+    if (n == checkpoints.stop_after_steps)
+      throw SimulationError("stopped after step " + std::to_string(n) + " of " +
+                            std::to_string(n_steps) +
+                            " at t = " + number_to_string(integrator->time()) +
+                            " s as asked (Checkpoint/Stop after steps)");
   }
   integrator->finish();
   if (lags)
@@ -174,6 +204,7 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.integrator = integrator->statistics();
   result.final_state = integrator->latest();
+  result.guards = guard.extremes();
   for (auto* o : observers)
     o->finish();
   return result;

@@ -1,3 +1,4 @@
+#include <pantocat/base/serialization.h>
 #include <pantocat/simulation/run_statistics.h>
 
 #include <algorithm>
@@ -69,5 +70,18 @@ std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() cons
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
   return intervals[layout.contact_index];
+}
+
+void RunStatistics::save(CheckpointOut& archive) const
+{
+  archive << max_force << min_force << mean << m2 << count << max_pos << max_vel << last_t
+          << intervals << open_since;
+}
+
+void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
+{
+  layout = l;
+  archive >> max_force >> min_force >> mean >> m2 >> count >> max_pos >> max_vel >>
+      last_t >> intervals >> open_since;
 }
 } // namespace pantocat

@@ -3,6 +3,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/pantograph/pantograph_model.h>
+#include <pantocat/simulation/run_guard.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
@@ -13,6 +14,19 @@
 
 namespace pantocat
 {
+class CheckpointWriter;
+class CheckpointReader;
+
+/// Checkpoints of a run (issue 6): where to write them, how often, and where to resume.
+struct CheckpointPlan
+{
+  const CheckpointWriter* writer = nullptr;
+  unsigned int interval = 0; ///< steps between checkpoints; 0: none
+  /// Continue from this checkpoint (its fingerprint already checked) instead of t_0.
+  CheckpointReader* resume_from = nullptr;
+  unsigned long stop_after_steps = 0; ///< stop as if killed (tests); 0: never
+};
+
 /**
  * One coupled pantograph-catenary run (Sec. 6): builds the space
  * discretisation, the pantograph, the semi-discrete system with droppers and
@@ -33,10 +47,17 @@ public:
     double end_time = 0.;
     double stability_limit = 0.; ///< 2/omega_max [s]
     DynamicState final_state;    ///< the state at the end time
+    GuardExtremes guards;        ///< drift, forces and energy seen by the guards
   };
 
-  /// Integrates; throws SimulationError if the run becomes unstable.
-  Result run(const std::vector<SimulationObserver*>& observers);
+  /**
+   * Integrates; throws SimulationError if the run becomes unstable. With a
+   * @p checkpoints plan, writes checkpoints every K steps (after the
+   * observers have seen the step) and/or starts from one: the observers then
+   * get resume() instead of start().
+   */
+  Result run(const std::vector<SimulationObserver*>& observers,
+             const CheckpointPlan& checkpoints = {});
 
   const SemiDiscreteSystem& system() const { return coupled; }
   const SimulationLayout& layout() const { return layout_; }

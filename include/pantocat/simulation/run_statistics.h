@@ -24,6 +24,8 @@ public:
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;
   void finish() override;
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   double contact_force_max() const { return max_force; }
   double contact_force_min() const { return min_force; }
