@@ -146,6 +146,8 @@ void write_summary(const std::string& file, const ProgramParameters& p,
     json.intervals("", list);
   json.end_array();
   json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  json.value("max_droppers_slack_at_once",
+             static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
   // Events: located in time by the integrator (IDA's root finding), or at
   // step resolution from the reported time points.
   const auto& layout = simulation.layout();

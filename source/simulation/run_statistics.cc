@@ -25,6 +25,10 @@ void RunStatistics::observe(const TimePoint& p)
   m2 += delta * (f - mean);
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
+  unsigned int slack = 0;
+  for (const unsigned int i : layout.dropper_indices)
+    slack += p.active[i] ? 0 : 1;
+  max_slack = std::max(max_slack, slack);
   for (unsigned int i = 0; i < p.active.size(); ++i)
   {
     const bool open = !std::isnan(open_since[i]);
@@ -75,13 +79,13 @@ std::vector<Interval> RunStatistics::contact_loss_intervals() const
 void RunStatistics::save(CheckpointOut& archive) const
 {
   archive << max_force << min_force << mean << m2 << count << max_pos << max_vel << last_t
-          << intervals << open_since;
+          << intervals << open_since << max_slack;
 }
 
 void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
 {
   layout = l;
   archive >> max_force >> min_force >> mean >> m2 >> count >> max_pos >> max_vel >>
-      last_t >> intervals >> open_since;
+      last_t >> intervals >> open_since >> max_slack;
 }
 } // namespace pantocat
