@@ -245,6 +245,16 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     resume_from.emplace(checkpoint_file, p.fingerprint);
   else
     std::filesystem::remove(checkpoint_file);
+  // The results of an earlier run in this directory go before this one
+  // starts: a run that fails or is killed must not leave them looking like
+  // its own. (A resumed run keeps the stopped run's summary.json, "failed",
+  // until it completes.)
+  for (const char* name :
+       {"contact_force.csv", "contact_force.png", "dropper_forces.png", "pantograph.png",
+        "contact_force_statistics.png", "time_series.gp", "contact_force_statistics.gp"})
+    std::filesystem::remove(dir + "/" + name);
+  if (!resume_from)
+    std::filesystem::remove(dir + "/summary.json");
   const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
   timer.leave_subsection();
   out << "Pantograph-catenary run: " << to_string(p.discretisation.method)
