@@ -236,6 +236,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   timer.enter_subsection("setup (assembly, initial state)");
   DynamicSimulation simulation(p);
   simulation.check_step_size(); // before any output is written
+  simulation.check_load_resolution();
   const std::string& dir = p.output.directory;
   // A checkpoint to continue from is checked (its parameters) before any
   // output is touched; a fresh run removes a checkpoint of an earlier one.

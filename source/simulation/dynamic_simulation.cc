@@ -80,6 +80,24 @@ void DynamicSimulation::check_step_size() const
   warned = true;
 }
 
+void DynamicSimulation::check_load_resolution() const
+{
+  const auto& d = parameters.discretisation;
+  if (d.load_shape != LoadShape::smoothed_delta)
+    return;
+  const double h = parameters.catenary.span / d.n_intervals;
+  if (h < d.load_half_width)
+    return;
+  std::ostringstream m;
+  m << "Discretisation/Number of intervals = " << d.n_intervals
+    << ": the grid spacing h = " << h
+    << " m is not below Load half-width = " << d.load_half_width
+    << " m, so the smoothed load of the contact is not resolved; choose Number of "
+       "intervals > "
+    << parameters.catenary.span / d.load_half_width << " or a wider Load half-width";
+  throw InputError(m.str());
+}
+
 TimePoint DynamicSimulation::time_point(const DynamicState& s) const
 {
   TimePoint p;

@@ -72,6 +72,13 @@ public:
    * run() calls it first; call it earlier to check before writing outputs.
    */
   void check_step_size() const;
+  /**
+   * Refuses (InputError) a grid whose spacing h = L/(N+1) is not below the
+   * half-width eps of the smoothed load delta_eps (Sec. 4.1): the contact
+   * then jumps between nodes, and the contact force comes out wrong (about
+   * half the mean force at N+1 = 100) or blows up (N+1 = 50); doc/stability.md.
+   */
+  void check_load_resolution() const;
   /// Builds the time point of a state (gaps and residuals evaluated here).
   TimePoint time_point(const DynamicState& state) const;
 
