@@ -7,7 +7,8 @@
 cmake_minimum_required(VERSION 3.13) # quoted if() arguments are not variables (CMP0054)
 set(names wrong_type out_of_range_span negative_dropper_length dropper_outside_span
           epsilon_wider_than_span speed_not_positive grid_too_coarse unknown_subsection
-          misspelled_entry rho_infinity_above_one tolerance_not_positive truncated_file)
+          misspelled_entry rho_infinity_above_one tolerance_not_positive
+          guard_bound_not_positive truncated_file)
 set(wrong_type "subsection Discretisation\n  set Number of intervals = abc\nend\n")
 set(wrong_type_expect "abc for the entry named Number of intervals does not match")
 set(out_of_range_span "subsection Catenary\n  set Span = -3\nend\n")
@@ -37,6 +38,8 @@ set(rho_infinity_above_one "subsection Time integration\n  set Spectral radius a
 set(rho_infinity_above_one_expect "2 for the entry named Spectral radius at infinity does not match")
 set(tolerance_not_positive "subsection Time integration\n  set IDA relative tolerance = 0\nend\n")
 set(tolerance_not_positive_expect "IDA relative tolerance = 0: must be > 0")
+set(guard_bound_not_positive "subsection Guards\n  set Multiplier bound = 0\nend\n")
+set(guard_bound_not_positive_expect "Guards/Multiplier bound = 0: must be > 0")
 set(truncated_file_expect "unequal numbers of 'subsection' and 'end'")
 
 file(GLOB cases ${PRM_DIR}/*.prm)
