@@ -150,6 +150,21 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
     return;
   throw SimulationError(m.str());
 }
+
+/**
+ * The guards of a run (RunGuard) with F_ref = max(F_0, |lambda_i(0)|), the
+ * uplift force and the initial constraint forces, and E_ref = (T_c + T_w) L / 2.
+ */
+RunGuard make_guard(const ProgramParameters& p, const SemiDiscreteSystem& system,
+                    const DynamicState& initial)
+{
+  double reference_force = p.pantograph.two_mass.uplift_force;
+  for (const double l : initial.lambda)
+    reference_force = std::max(reference_force, std::abs(l));
+  const auto& c = p.catenary;
+  return RunGuard(p.guards, system, reference_force,
+                  0.5 * (c.carrier.tension + c.contact_wire.tension) * c.span, initial);
+}
 } // namespace
 
 DynamicSimulation::Result
@@ -166,12 +181,7 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers,
 
   // The guards watch each time point after the outputs have it: a run
   // stopped by them keeps its time series up to the failure.
-  double reference_force = parameters.pantograph.two_mass.uplift_force;
-  for (const double l : initial.lambda)
-    reference_force = std::max(reference_force, std::abs(l));
-  const auto& c = parameters.catenary;
-  RunGuard guard(parameters.guards, coupled, reference_force,
-                 0.5 * (c.carrier.tension + c.contact_wire.tension) * c.span, initial);
+  RunGuard guard = make_guard(parameters, coupled, initial);
   std::vector<SimulationObserver*> all = observers;
   all.push_back(&guard);
   const auto notify = [&](const DynamicState& s)
