@@ -1,5 +1,6 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/simulation/checkpoint.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -32,6 +33,8 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
   OutputParameters::declare_parameters(prm);
   StatisticsParameters::declare_parameters(prm);
   StudyParameters::declare_parameters(prm);
+  CheckpointParameters::declare_parameters(prm);
+  GuardParameters::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -58,6 +61,9 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   output.parse_parameters(prm);
   statistics.parse_parameters(prm);
   study.parse_parameters(prm);
+  checkpoint.parse_parameters(prm);
+  guards.parse_parameters(prm);
+  fingerprint = critical_parameters(prm);
 
   scene.check();
   if (scene.carrier_bending && scene.carrier == WireModel::elastic)
@@ -79,6 +85,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
                                       ? discretisation.load_half_width
                                       : 0.);
+  checkpoint.check(time_integration.integrator);
   statistics.check(time_integration.time_step, pantograph.initial_position,
                    pantograph.final_position);
 }

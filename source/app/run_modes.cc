@@ -2,6 +2,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
@@ -10,6 +11,7 @@
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
 #include <pantocat/scene/scene_builder.h>
+#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/event_log.h>
@@ -135,6 +137,14 @@ struct EnergyRange : SimulationObserver
     max = std::max(max, point.energy);
     final = point.energy;
   }
+  void save(CheckpointOut& archive) const override
+  {
+    archive << count << initial << min << max << final;
+  }
+  void resume(const SimulationLayout&, CheckpointIn& archive) override
+  {
+    archive >> count >> initial >> min >> max >> final;
+  }
   /// max |E(t) - E(0)| / |E(0)|.
   double relative_variation() const
   {
@@ -204,6 +214,8 @@ void write_summary(const std::string& file, const ProgramParameters& p,
   json.end_array();
   if (simulation.layout().has_contact())
     json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  json.value("max_droppers_slack_at_once",
+             static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
   // Events: located in time by the integrator (IDA's root finding), or at
   // step resolution from the reported time points.
   const auto& layout = simulation.layout();
@@ -242,6 +254,15 @@ void write_summary(const std::string& file, const ProgramParameters& p,
   json.begin_object("max_constraint_residual")
       .value("position", stats.max_position_residual())
       .value("velocity", stats.max_velocity_residual())
+      .end_object();
+  const GuardExtremes& g = r.guards;
+  json.begin_object("guards")
+      .value("max_drift", g.max_drift)
+      .value("max_multiplier", g.max_multiplier)
+      .value("reference_force", g.reference_force)
+      .value("max_energy_increase", g.max_energy_increase)
+      .value("min_energy_increase", g.min_energy_increase)
+      .value("reference_energy", g.reference_energy)
       .end_object();
   json.value("stability_limit_explicit", r.stability_limit)
       .value("time_loop_seconds", r.time_loop_seconds)
@@ -323,8 +344,28 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   timer.enter_subsection("setup (assembly, initial state)");
   DynamicSimulation simulation(p);
   simulation.check_step_size(); // before any output is written
-  timer.leave_subsection();
+  simulation.check_load_resolution();
   const std::string& dir = p.output.directory;
+  // A checkpoint to continue from is checked (its parameters) before any
+  // output is touched; a fresh run removes a checkpoint of an earlier one.
+  const std::string checkpoint_file = dir + "/checkpoint.bin";
+  std::optional<CheckpointReader> resume_from;
+  if (p.checkpoint.resume)
+    resume_from.emplace(checkpoint_file, p.fingerprint);
+  else
+    std::filesystem::remove(checkpoint_file);
+  // The results of an earlier run in this directory go before this one
+  // starts: a run that fails or is killed must not leave them looking like
+  // its own. (A resumed run keeps the stopped run's summary.json, "failed",
+  // until it completes.)
+  for (const char* name :
+       {"contact_force.csv", "contact_force.png", "dropper_forces.png", "pantograph.png",
+        "contact_force_statistics.png", "time_series.gp", "contact_force_statistics.gp"})
+    std::filesystem::remove(dir + "/" + name);
+  if (!resume_from)
+    std::filesystem::remove(dir + "/summary.json");
+  const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
+  timer.leave_subsection();
   out << "Dynamic run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
       << to_string(p.time_integration.integrator)
@@ -332,6 +373,10 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
       << " m/s, x_p from " << p.pantograph.initial_position << " to "
       << p.pantograph.final_position << " m\n";
   print_scene(out, simulation);
+  if (resume_from)
+    out << "  resuming from " << checkpoint_file << " after step " << resume_from->step()
+        << '\n';
+
   TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
   RunStatistics stats;
   EventLog events;
@@ -346,6 +391,12 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     {
       if (!seen)
         t = point.t, lambda_p = point.lambda[contact], seen = true;
+    }
+    void save(CheckpointOut& archive) const override { archive << seen << t << lambda_p; }
+    void resume(const SimulationLayout& layout, CheckpointIn& archive) override
+    {
+      contact = layout.contact_index;
+      archive >> seen >> t >> lambda_p;
     }
     unsigned int contact = 0;
     bool seen = false;
@@ -379,7 +430,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   try
   {
     const dealii::TimerOutput::Scope scope(timer, "time loop (includes the VTU frames)");
-    r = simulation.run(observers);
+    r = simulation.run(observers, {&checkpoint_writer, p.checkpoint.interval,
+                                   resume_from ? &*resume_from : nullptr,
+                                   p.checkpoint.stop_after_steps});
   }
   catch (const SimulationError& e)
   {

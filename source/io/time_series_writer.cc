@@ -1,19 +1,23 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/io/time_series_writer.h>
+
+#include <filesystem>
 
 namespace pantocat
 {
 TimeSeriesWriter::TimeSeriesWriter(const std::string& file, const unsigned int every_n)
-    : file_name(file), out(file), every(std::max(1u, every_n))
+    : file_name(file), every(std::max(1u, every_n))
 {
-  if (!out)
-    throw SimulationError("cannot write " + file);
-  out.precision(10);
 }
 
 void TimeSeriesWriter::start(const SimulationLayout& l)
 {
   layout = l;
+  out.open(file_name);
+  if (!out)
+    throw SimulationError("cannot write " + file_name);
+  out.precision(10);
   const bool contact = l.has_contact();
   out << "t,x_p" << (contact ? ",lambda_p" : "");
   for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
@@ -67,5 +71,29 @@ void TimeSeriesWriter::finish()
   out.flush();
   if (!out)
     throw SimulationError("writing " + file_name + " failed");
+}
+
+void TimeSeriesWriter::save(CheckpointOut& archive) const
+{
+  out.flush();
+  const auto length = static_cast<unsigned long>(out.tellp());
+  archive << seen << length;
+}
+
+void TimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archive)
+{
+  layout = l;
+  unsigned long length = 0;
+  archive >> seen >> length;
+  std::error_code error;
+  if (std::filesystem::file_size(file_name, error) < length || error)
+    throw SimulationError("cannot resume: " + file_name +
+                          " is shorter than at the checkpoint (" +
+                          std::to_string(length) + " bytes)");
+  std::filesystem::resize_file(file_name, length, error);
+  out.open(file_name, std::ios::app);
+  if (error || !out)
+    throw SimulationError("cannot resume writing " + file_name);
+  out.precision(10);
 }
 } // namespace pantocat

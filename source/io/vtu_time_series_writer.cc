@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 
 #include <deal.II/base/data_out_base.h>
@@ -184,5 +185,16 @@ void VtuTimeSeriesWriter::write_pvd() const
   pvd << "  </Collection>\n</VTKFile>\n";
   if (!pvd)
     throw SimulationError("cannot write " + directory + "/solution.pvd");
+}
+
+void VtuTimeSeriesWriter::save(CheckpointOut& archive) const
+{
+  archive << next_frame << written;
+}
+
+void VtuTimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archive)
+{
+  layout = l;
+  archive >> next_frame >> written;
 }
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/analysis/butterworth_low_pass.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/simulation/contact_statistics.h>
 
 #include <algorithm>
@@ -107,5 +108,19 @@ void ContactStatistics::finish()
 {
   statistics = evaluate_contact_force(recorded, parameters, &filtered);
   statistics.max_uplift_at_droppers = max_uplift;
+}
+
+void ContactStatistics::save(CheckpointOut& archive) const
+{
+  // The whole series: the zero-phase low pass runs over all of it at the end.
+  archive << recorded.t << recorded.x_p << recorded.lambda_p << recorded.in_contact
+          << initial_height << max_uplift;
+}
+
+void ContactStatistics::resume(const SimulationLayout& layout, CheckpointIn& archive)
+{
+  contact_index = layout.contact_index;
+  archive >> recorded.t >> recorded.x_p >> recorded.lambda_p >> recorded.in_contact >>
+      initial_height >> max_uplift;
 }
 } // namespace pantocat

@@ -4,6 +4,7 @@
 #include <pantocat/pantograph/three_mass_pantograph.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
 #include <pantocat/scene/scene_builder.h>
+#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/initial_state.h>
 
@@ -92,6 +93,27 @@ void DynamicSimulation::check_step_size() const
   warned = true;
 }
 
+void DynamicSimulation::check_load_resolution() const
+{
+  const auto& d = parameters.discretisation;
+  // It matters for the contact constraint, whose row moves with x_p; a
+  // prescribed moving force on a coarse grid is merely less accurate.
+  if (d.load_shape != LoadShape::smoothed_delta || !layout_.has_contact() ||
+      !coupled.has_block("contact wire"))
+    return;
+  const double h = parameters.catenary.span / d.n_intervals;
+  if (h < d.load_half_width)
+    return;
+  std::ostringstream m;
+  m << "Discretisation/Number of intervals = " << d.n_intervals
+    << ": the grid spacing h = " << h
+    << " m is not below Load half-width = " << d.load_half_width
+    << " m, so the smoothed load of the contact is not resolved; choose Number of "
+       "intervals > "
+    << parameters.catenary.span / d.load_half_width << " or a wider Load half-width";
+  throw InputError(m.str());
+}
+
 TimePoint DynamicSimulation::time_point(const DynamicState& s) const
 {
   TimePoint p;
@@ -156,10 +178,26 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
     return;
   throw SimulationError(m.str());
 }
+
+/**
+ * The guards of a run (RunGuard) with F_ref = max(F_0, |lambda_i(0)|), the
+ * uplift force and the initial constraint forces, and E_ref = (T_c + T_w) L / 2.
+ */
+RunGuard make_guard(const ProgramParameters& p, const SemiDiscreteSystem& system,
+                    const DynamicState& initial)
+{
+  double reference_force = p.pantograph.two_mass.uplift_force;
+  for (const double l : initial.lambda)
+    reference_force = std::max(reference_force, std::abs(l));
+  const auto& c = p.catenary;
+  return RunGuard(p.guards, system, reference_force,
+                  0.5 * (c.carrier.tension + c.contact_wire.tension) * c.span, initial);
+}
 } // namespace
 
 DynamicSimulation::Result
-DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
+DynamicSimulation::run(const std::vector<SimulationObserver*>& observers,
+                       const CheckpointPlan& checkpoints)
 {
   check_step_size();
   const auto& ti = parameters.time_integration;
@@ -169,12 +207,15 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   const auto n_steps =
       static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
 
-  for (auto* o : observers)
-    o->start(layout_);
+  // The guards watch each time point after the outputs have it: a run
+  // stopped by them keeps its time series up to the failure.
+  RunGuard guard = make_guard(parameters, coupled, initial);
+  std::vector<SimulationObserver*> all = observers;
+  all.push_back(&guard);
   const auto notify = [&](const DynamicState& s)
   {
     const TimePoint p = time_point(s);
-    for (auto* o : observers)
+    for (auto* o : all)
     {
       o->observe(p);
       o->observe_state(p, s);
@@ -184,13 +225,33 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
   const auto start = std::chrono::steady_clock::now();
   integrator->initialize(initial);
   const bool lags = integrator->multipliers_lag_one_step();
-  if (!lags)
-    notify(initial);
-  for (unsigned long n = 1; n <= n_steps; ++n)
+  unsigned long first_step = 1;
+  if (checkpoints.resume_from)
+  {
+    checkpoints.resume_from->restore(*integrator, layout_, all);
+    first_step = checkpoints.resume_from->step() + 1;
+  }
+  else
+  {
+    for (auto* o : all)
+      o->start(layout_);
+    if (!lags)
+      notify(initial);
+  }
+  for (unsigned long n = first_step; n <= n_steps; ++n)
   {
     integrator->advance();
     check_bounded(integrator->latest(), n, parameters.catenary.span);
     notify(integrator->latest());
+    if (n == n_steps)
+      break;
+    if (checkpoints.writer && checkpoints.interval > 0 && n % checkpoints.interval == 0)
+      checkpoints.writer->write(n, *integrator, all);
+    if (n == checkpoints.stop_after_steps)
+      throw SimulationError("stopped after step " + std::to_string(n) + " of " +
+                            std::to_string(n_steps) +
+                            " at t = " + number_to_string(integrator->time()) +
+                            " s as asked (Checkpoint/Stop after steps)");
   }
   integrator->finish();
   if (lags)
@@ -199,6 +260,7 @@ DynamicSimulation::run(const std::vector<SimulationObserver*>& observers)
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.integrator = integrator->statistics();
   result.final_state = integrator->latest();
+  result.guards = guard.extremes();
   for (auto* o : observers)
     o->finish();
   return result;

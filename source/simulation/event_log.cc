@@ -1,3 +1,4 @@
+#include <pantocat/base/serialization.h>
 #include <pantocat/simulation/event_log.h>
 
 namespace pantocat
@@ -21,5 +22,22 @@ void EventLog::observe(const TimePoint& p)
         list.push_back({p.t, layout.constraint_names[i], kind});
       }
   previous = p.active;
+}
+
+void EventLog::save(CheckpointOut& archive) const
+{
+  archive << previous << static_cast<unsigned long>(list.size());
+  for (const ConstraintEvent& e : list)
+    archive << e.t << e.constraint << e.kind;
+}
+
+void EventLog::resume(const SimulationLayout& l, CheckpointIn& archive)
+{
+  layout = l;
+  unsigned long size = 0;
+  archive >> previous >> size;
+  list.resize(size);
+  for (ConstraintEvent& e : list)
+    archive >> e.t >> e.constraint >> e.kind;
 }
 } // namespace pantocat

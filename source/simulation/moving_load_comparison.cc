@@ -1,3 +1,4 @@
+#include <pantocat/base/serialization.h>
 #include <pantocat/simulation/moving_load_comparison.h>
 
 #include <algorithm>
@@ -15,6 +16,19 @@ void MovingLoadComparison::start(const SimulationLayout& layout)
   result.clear();
   for (const double x : layout.probe_positions)
     result.push_back({x, 0., 0.});
+}
+
+void MovingLoadComparison::save(CheckpointOut& archive) const
+{
+  for (const Probe& probe : result)
+    archive << probe.max_error << probe.max_reference;
+}
+
+void MovingLoadComparison::resume(const SimulationLayout& layout, CheckpointIn& archive)
+{
+  start(layout);
+  for (Probe& probe : result)
+    archive >> probe.max_error >> probe.max_reference;
 }
 
 void MovingLoadComparison::observe(const TimePoint& point)

@@ -1,3 +1,4 @@
+#include <pantocat/base/serialization.h>
 #include <pantocat/simulation/run_statistics.h>
 
 #include <algorithm>
@@ -27,6 +28,10 @@ void RunStatistics::observe(const TimePoint& p)
   }
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
+  unsigned int slack = 0;
+  for (const unsigned int i : layout.dropper_indices)
+    slack += p.active[i] ? 0 : 1;
+  max_slack = std::max(max_slack, slack);
   for (unsigned int i = 0; i < p.active.size(); ++i)
   {
     const bool open = !std::isnan(open_since[i]);
@@ -72,5 +77,18 @@ std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() cons
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
   return layout.has_contact() ? intervals[layout.contact_index] : std::vector<Interval>{};
+}
+
+void RunStatistics::save(CheckpointOut& archive) const
+{
+  archive << max_force << min_force << mean << m2 << count << max_pos << max_vel << last_t
+          << intervals << open_since << max_slack;
+}
+
+void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
+{
+  layout = l;
+  archive >> max_force >> min_force >> mean >> m2 >> count >> max_pos >> max_vel >>
+      last_t >> intervals >> open_since >> max_slack;
 }
 } // namespace pantocat

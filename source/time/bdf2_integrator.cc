@@ -1,3 +1,4 @@
+#include <pantocat/base/serialization.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -348,5 +349,17 @@ void Bdf2Integrator::advance()
   }
   ++step_number;
   ++stats.steps;
+}
+
+void Bdf2Integrator::save(CheckpointOut& archive) const
+{
+  archive << step_number << previous << current;
+  save_statistics(archive);
+}
+
+void Bdf2Integrator::load(CheckpointIn& archive)
+{
+  archive >> step_number >> previous >> current;
+  load_statistics(archive);
 }
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -174,5 +175,17 @@ void GeneralizedAlphaIntegrator::advance()
   current = std::move(x);
   ++step_number;
   ++stats.steps;
+}
+
+void GeneralizedAlphaIntegrator::save(CheckpointOut& archive) const
+{
+  archive << step_number << current << pseudo_acceleration;
+  save_statistics(archive);
+}
+
+void GeneralizedAlphaIntegrator::load(CheckpointIn& archive)
+{
+  archive >> step_number >> current >> pseudo_acceleration;
+  load_statistics(archive);
 }
 } // namespace pantocat

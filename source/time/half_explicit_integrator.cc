@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -401,5 +402,18 @@ void HalfExplicitIntegrator::finish()
   reported.a = a;
   reported.lambda = lambda;
   reported.active = active_now;
+}
+
+void HalfExplicitIntegrator::save(CheckpointOut& archive) const
+{
+  // a_n and lambda_n are recomputed from these in the next step (39).
+  archive << t << step_number << q << v << v_prev << active_now << reported;
+  save_statistics(archive);
+}
+
+void HalfExplicitIntegrator::load(CheckpointIn& archive)
+{
+  archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported;
+  load_statistics(archive);
 }
 } // namespace pantocat

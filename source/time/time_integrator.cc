@@ -1,3 +1,5 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/serialization.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
@@ -24,5 +26,25 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
         p.linear_solver);
   return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
                                                   p.max_active_set_iterations);
+}
+
+void TimeIntegrator::save(CheckpointOut&) const
+{
+  throw SimulationError("the " + name() + " integrator cannot write checkpoints");
+}
+
+void TimeIntegrator::load(CheckpointIn&)
+{
+  throw SimulationError("the " + name() + " integrator cannot resume from checkpoints");
+}
+
+void TimeIntegrator::save_statistics(CheckpointOut& archive) const
+{
+  archive << stats.steps << stats.active_set_iterations << stats.active_set_changes;
+}
+
+void TimeIntegrator::load_statistics(CheckpointIn& archive)
+{
+  archive >> stats.steps >> stats.active_set_iterations >> stats.active_set_changes;
 }
 } // namespace pantocat

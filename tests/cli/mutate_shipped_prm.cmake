@@ -8,7 +8,7 @@ cmake_minimum_required(VERSION 3.13) # quoted if() arguments are not variables (
 set(names wrong_type out_of_range_span negative_dropper_length dropper_outside_span
           epsilon_wider_than_span speed_not_positive grid_too_coarse unknown_subsection
           misspelled_entry rho_infinity_above_one tolerance_not_positive inconsistent_scene
-          truncated_file)
+          guard_bound_not_positive truncated_file)
 set(wrong_type "subsection Discretisation\n  set Number of intervals = abc\nend\n")
 set(wrong_type_expect "abc for the entry named Number of intervals does not match")
 set(out_of_range_span "subsection Catenary\n  set Span = -3\nend\n")
@@ -41,6 +41,8 @@ set(tolerance_not_positive_expect "IDA relative tolerance = 0: must be > 0")
 set(inconsistent_scene
     "subsection Scene\n  set Contact wire = rigid\n  set Pantograph = moving force\nend\n")
 set(inconsistent_scene_expect "Scene/Pantograph = moving force: a prescribed force on a rigid")
+set(guard_bound_not_positive "subsection Guards\n  set Multiplier bound = 0\nend\n")
+set(guard_bound_not_positive_expect "Guards/Multiplier bound = 0: must be > 0")
 set(truncated_file_expect "unequal numbers of 'subsection' and 'end'")
 
 file(GLOB cases ${PRM_DIR}/*.prm ${PRM_DIR}/scenes/*.prm)

@@ -4,6 +4,8 @@
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
+#include <pantocat/simulation/checkpoint_parameters.h>
+#include <pantocat/simulation/guard_parameters.h>
 #include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/studies/study_parameters.h>
@@ -39,6 +41,10 @@ struct ProgramParameters
   OutputParameters output;
   StatisticsParameters statistics;
   StudyParameters study;
+  CheckpointParameters checkpoint;
+  GuardParameters guards;
+  /// The parameters a checkpoint of this run must agree with (critical_parameters()).
+  ParameterFingerprint fingerprint;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   /// Reads every subsection and cross-checks them; throws InputError.

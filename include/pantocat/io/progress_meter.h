@@ -24,6 +24,8 @@ public:
   void start(const SimulationLayout&) override;
   void observe(const TimePoint& point) override;
   void finish() override;
+  /// Not in checkpoints (a resumed run shows its own progress; a terminal may not be).
+  bool checkpointed() const override { return false; }
 
   /// True once a progress line has been printed (and not yet cleared).
   bool shown() const { return line_shown; }

@@ -12,7 +12,8 @@ namespace pantocat
  * lambda_p, lambda_d1..n, the pantograph coordinates, the gaps of contact and
  * droppers, the active flags and the constraint residuals on position and
  * velocity level. Each row is flushed: a killed run keeps its data up to the
- * last output step.
+ * last output step. The file is opened (and an earlier one replaced) by
+ * start().
  */
 class TimeSeriesWriter : public SimulationObserver
 {
@@ -21,10 +22,15 @@ public:
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;
   void finish() override;
+  /// The number of points seen and the length of the file.
+  void save(CheckpointOut& archive) const override;
+  /// Cuts the file to its length at the checkpoint (rows written after it by
+  /// the stopped run go) and appends from there.
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
 private:
   std::string file_name;
-  std::ofstream out;
+  mutable std::ofstream out; ///< opened by start() or resume()
   SimulationLayout layout;
   unsigned int every;
   unsigned long seen = 0;

@@ -44,6 +44,10 @@ public:
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint&) override {}
   void observe_state(const TimePoint& point, const DynamicState& state) override;
+  /// The frames written; resume() keeps them (frames after the checkpoint are
+  /// written again under the same names).
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   /// (time, wires file relative to the directory) of each frame written.
   const std::vector<std::pair<double, std::string>>& frames() const { return written; }

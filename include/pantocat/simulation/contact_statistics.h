@@ -64,6 +64,8 @@ public:
   void observe(const TimePoint&) override {}
   void observe_state(const TimePoint& point, const DynamicState& state) override;
   void finish() override;
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   const ContactForceStatistics& result() const { return statistics; }
   const ContactForceSeries& series() const { return recorded; }

@@ -3,6 +3,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/pantograph/pantograph_model.h>
+#include <pantocat/simulation/run_guard.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
@@ -13,6 +14,19 @@
 
 namespace pantocat
 {
+class CheckpointWriter;
+class CheckpointReader;
+
+/// Checkpoints of a run (issue 6): where to write them, how often, and where to resume.
+struct CheckpointPlan
+{
+  const CheckpointWriter* writer = nullptr;
+  unsigned int interval = 0; ///< steps between checkpoints; 0: none
+  /// Continue from this checkpoint (its fingerprint already checked) instead of t_0.
+  CheckpointReader* resume_from = nullptr;
+  unsigned long stop_after_steps = 0; ///< stop as if killed (tests); 0: never
+};
+
 /**
  * One dynamic run of a scene (Sec. 6 for the paper's): builds the space
  * discretisation, the pantograph, the semi-discrete system of the scene's
@@ -33,10 +47,17 @@ public:
     double end_time = 0.;
     double stability_limit = 0.; ///< 2/omega_max [s]
     DynamicState final_state;    ///< the state at the end time
+    GuardExtremes guards;        ///< drift, forces and energy seen by the guards
   };
 
-  /// Integrates; throws SimulationError if the run becomes unstable.
-  Result run(const std::vector<SimulationObserver*>& observers);
+  /**
+   * Integrates; throws SimulationError if the run becomes unstable. With a
+   * @p checkpoints plan, writes checkpoints every K steps (after the
+   * observers have seen the step) and/or starts from one: the observers then
+   * get resume() instead of start().
+   */
+  Result run(const std::vector<SimulationObserver*>& observers,
+             const CheckpointPlan& checkpoints = {});
 
   const SemiDiscreteSystem& system() const { return coupled; }
   const SimulationLayout& layout() const { return layout_; }
@@ -51,6 +72,13 @@ public:
    * run() calls it first; call it earlier to check before writing outputs.
    */
   void check_step_size() const;
+  /**
+   * Refuses (InputError) a grid whose spacing h = L/(N+1) is not below the
+   * half-width eps of the smoothed load delta_eps (Sec. 4.1): the contact
+   * then jumps between nodes, and the contact force comes out wrong (about
+   * half the mean force at N+1 = 100) or blows up (N+1 = 50); doc/stability.md.
+   */
+  void check_load_resolution() const;
   /// Builds the time point of a state (gaps and residuals evaluated here).
   TimePoint time_point(const DynamicState& state) const;
   /// One line per effect of the scene (what is assembled), and the effects left out.

@@ -28,6 +28,8 @@ class EventLog : public SimulationObserver
 public:
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   const std::vector<ConstraintEvent>& events() const { return list; }
 

@@ -21,6 +21,8 @@ public:
 
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   struct Probe
   {

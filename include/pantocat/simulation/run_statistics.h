@@ -24,6 +24,8 @@ public:
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;
   void finish() override;
+  void save(CheckpointOut& archive) const override;
+  void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   double contact_force_max() const { return max_force; }
   double contact_force_min() const { return min_force; }
@@ -33,6 +35,8 @@ public:
   unsigned long n_points() const { return count; }
   double max_position_residual() const { return max_pos; }
   double max_velocity_residual() const { return max_vel; }
+  /// The largest number of droppers slack at the same time point.
+  unsigned int max_droppers_slack_at_once() const { return max_slack; }
   /// Slack intervals of each dropper, in dropper order.
   std::vector<std::vector<Interval>> dropper_slack_intervals() const;
   std::vector<Interval> contact_loss_intervals() const;
@@ -50,6 +54,7 @@ private:
   unsigned long count = 0;
   double max_pos = 0., max_vel = 0.;
   double last_t = 0.;
+  unsigned int max_slack = 0;
   std::vector<std::vector<Interval>> intervals;
   std::vector<double> open_since; ///< start of the open interval, or NaN
 };

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/base/checkpoint_archive.h>
 #include <pantocat/time/dynamic_state.h>
 
 #include <deal.II/base/numbers.h>
@@ -56,5 +57,18 @@ public:
    */
   virtual void observe_state(const TimePoint& /*point*/, const DynamicState& /*state*/) {}
   virtual void finish() {}
+  /**
+   * Checkpoints (issue 6): save() writes what the observer needs to continue
+   * the run from the last time point it saw (accumulators, the length of its
+   * files); resume() replaces start() when a run continues from a
+   * checkpoint and reads the same, so that the outputs come out as those of
+   * the uninterrupted run. The defaults refuse with a SimulationError: an
+   * observer that keeps state must say how it continues.
+   */
+  virtual void save(CheckpointOut& archive) const;
+  virtual void resume(const SimulationLayout& layout, CheckpointIn& archive);
+  /// False for an observer without state that a checkpoint skips (resume() calls
+  /// start()).
+  virtual bool checkpointed() const { return true; }
 };
 } // namespace pantocat

@@ -59,6 +59,10 @@ public:
   void advance() override;
   const DynamicState& latest() const override { return current; }
   double time() const override { return current.t; }
+  /// x_n, x_{n-1} (with J_n), the step number (the Richardson start is step 0) and
+  /// the counters.
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
 
 private:
   struct Stage; ///< factorisation and constant columns for one value of c

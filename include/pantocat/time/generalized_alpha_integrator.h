@@ -57,6 +57,9 @@ public:
   void advance() override;
   const DynamicState& latest() const override { return current; }
   double time() const override { return current.t; }
+  /// x_n (with a_c,n and J_n), the pseudo-acceleration a_n and the counters.
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
 
   /// The method's coefficients for rho_inf (Chung and Hulbert 1993).
   struct Coefficients

@@ -42,6 +42,9 @@ public:
   const DynamicState& latest() const override { return reported; }
   bool multipliers_lag_one_step() const override { return true; }
   double time() const override { return t; }
+  /// t_n, q_n, v_n, v_{n-1}, J_n, the last reported point and the counters.
+  void save(CheckpointOut& archive) const override;
+  void load(CheckpointIn& archive) override;
 
   /// Replaces v_{n-1} (e.g. to step backwards from (v_{n+1}, q_{n+1}, v_n)).
   void set_previous_velocity(const dealii::Vector<double>& v_previous);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/base/checkpoint_archive.h>
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/time/dynamic_state.h>
 #include <pantocat/time/time_integration_parameters.h>
@@ -61,7 +62,21 @@ public:
 
   const IntegratorStatistics& statistics() const { return stats; }
 
+  /**
+   * Checkpoints (issue 6): save() writes the method's whole internal state
+   * after a step (history, auxiliary variables, active set, counters), so that
+   * load() into an integrator made for the same system and parameters, after
+   * initialize(), continues bit for bit as if never stopped. The default
+   * refuses with a SimulationError (IDA: its history lives in SUNDIALS).
+   */
+  virtual void save(CheckpointOut& archive) const;
+  virtual void load(CheckpointIn& archive);
+
 protected:
+  /// The counters of stats, for save() and load() of the derived methods.
+  void save_statistics(CheckpointOut& archive) const;
+  void load_statistics(CheckpointIn& archive);
+
   const SemiDiscreteSystem& system;
   IntegratorStatistics stats;
 };
