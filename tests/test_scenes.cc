@@ -209,8 +209,8 @@ TEST(Scene, ThreeMassPantographAtRestOnARigidWireStaysAtRest)
 
 TEST(Scene, PointLoadOscillatesAtTheGridCrossingFrequency)
 {
-  // FEM N+1 = 100 (h = 0.2 m) at 32 m/s: x_p crosses a grid point every
-  // h / v = 6.25 ms. With the point load (15)/(16), d^2 F_w/dt^2 jumps at each
+  // FEM N+1 = 125 (h = 0.16 m) at 32 m/s: x_p crosses a grid point every
+  // h / v = 5 ms. With the point load (15)/(16), d^2 F_w/dt^2 jumps at each
   // crossing (the Hermite functions' second derivatives jump at the nodes).
   const ProgramParameters point = shipped_scene("point-load.prm");
   const ProgramParameters smooth =
@@ -224,11 +224,11 @@ TEST(Scene, PointLoadOscillatesAtTheGridCrossingFrequency)
                                s[i - 1].lambda.back()));
     return d;
   };
-  // Measured 1.18 N against 0.052 N.
+  // Measured 1.19 N against 0.053 N.
   EXPECT_GT(second_difference(a), 10. * second_difference(b));
 
   // Fourier amplitude of lambda_p at the crossing frequency v/h and its first
-  // two harmonics: measured 1.97 + 0.77 + 0.94 N (point) against 0.43 + 0.09 + 0.03 N.
+  // two harmonics: measured 1.28 + 0.87 + 0.23 N (point) against 0.25 + 0.08 + 0.04 N.
   const auto amplitude = [](const std::vector<TimePoint>& s, const double f)
   {
     double mean = 0.;
