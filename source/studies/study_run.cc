@@ -1,8 +1,8 @@
 #include <pantocat/analysis/eigenfrequency_analysis.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/studies/study_run.h>
-#include <pantocat/system/catenary_system_builder.h>
 
 #include <set>
 
@@ -143,8 +143,11 @@ void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameter
       continue;
     try
     {
+      // The run's own scene: its droppers must find their nodes on this grid.
       const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
-      build_catenary_system(*space, Constraint::Kind::unilateral);
+      const auto pantograph = create_pantograph(p.scene, p.pantograph);
+      build_scene(p.scene, p.catenary, *space, pantograph.get(),
+                  {p.pantograph.initial_position, p.pantograph.speed});
     }
     catch (const InputError& e)
     {
