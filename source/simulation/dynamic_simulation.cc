@@ -181,12 +181,18 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
 
 /**
  * The guards of a run (RunGuard) with F_ref = max(F_0, |lambda_i(0)|), the
- * uplift force and the initial constraint forces, and E_ref = (T_c + T_w) L / 2.
+ * scene's static force (the pantograph's uplift force or the moving force)
+ * and the initial constraint forces, and E_ref = (T_c + T_w) L / 2.
  */
 RunGuard make_guard(const ProgramParameters& p, const SemiDiscreteSystem& system,
                     const DynamicState& initial)
 {
-  double reference_force = p.pantograph.two_mass.uplift_force;
+  const SceneParameters& scene = p.scene;
+  double reference_force = scene.pantograph == PantographType::three_mass
+                               ? p.pantograph.three_mass.uplift_force
+                           : scene.pantograph == PantographType::moving_force
+                               ? std::abs(scene.moving_force)
+                               : p.pantograph.two_mass.uplift_force;
   for (const double l : initial.lambda)
     reference_force = std::max(reference_force, std::abs(l));
   const auto& c = p.catenary;
