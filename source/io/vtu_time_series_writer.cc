@@ -1,6 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/io/vtu_time_series_writer.h>
+#include <pantocat/system/catenary_system_builder.h>
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/grid/grid_generator.h>
@@ -17,17 +18,6 @@ namespace pantocat
 {
 namespace
 {
-SparseRow global_row(const CatenaryDiscretisation& d, const SemiDiscreteSystem& system,
-                     const Wire wire, const double x)
-{
-  const std::string name = wire == Wire::carrier ? "carrier" : "contact wire";
-  if (!system.has_block(name)) // a rigid wire of the scene: displacement 0
-    return {};
-  SparseRow row = d.point_row(wire, x);
-  row.shift(system.block(name).first);
-  return row;
-}
-
 std::string frame_name(const char* stem, const unsigned long frame)
 {
   char name[64];
@@ -68,11 +58,11 @@ VtuTimeSeriesWriter::VtuTimeSeriesWriter(const std::string& directory,
     {
       const double x = cell->vertex(v)[0];
       const auto i = cell->vertex_dof_index(v, 0);
-      carrier_rows[i] = global_row(d, system, Wire::carrier, x);
-      wire_rows[i] = global_row(d, system, Wire::contact_wire, x);
+      carrier_rows[i] = wire_point_row(d, system, Wire::carrier, x);
+      wire_rows[i] = wire_point_row(d, system, Wire::contact_wire, x);
     }
   for (const double x : dropper_x)
-    dropper_rows.push_back(global_row(d, system, Wire::contact_wire, x));
+    dropper_rows.push_back(wire_point_row(d, system, Wire::contact_wire, x));
 }
 
 void VtuTimeSeriesWriter::start(const SimulationLayout& l)

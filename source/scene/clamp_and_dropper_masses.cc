@@ -17,8 +17,7 @@ void ClampAndDropperMasses::add_terms(SceneAssembly& a) const
   const CatenaryParameters& p = a.catenary;
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
     for (const Wire wire : {Wire::carrier, Wire::contact_wire})
-      if (BlockOperator* body =
-              a.body(wire == Wire::carrier ? "carrier" : "contact wire"))
+      if (BlockOperator* body = a.body(block_name(wire)))
         a.space.point_row(wire, p.dropper_positions[j])
             .add_transpose_to(body->load, -p.clamp_load(j));
 }

@@ -1,5 +1,6 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/scene/scene_assembly.h>
+#include <pantocat/system/catenary_system_builder.h>
 
 namespace pantocat
 {
@@ -9,11 +10,6 @@ BlockOperator* SceneAssembly::body(const std::string& name)
     if (b.name == name)
       return &b;
   return nullptr;
-}
-
-const char* SceneAssembly::body_name(const Wire wire)
-{
-  return wire == Wire::carrier ? "carrier" : "contact wire";
 }
 
 const WireParameters& SceneAssembly::wire_parameters(const Wire wire) const
@@ -33,7 +29,7 @@ void SceneAssembly::add_wire_body(const Wire wire, const bool with_bending)
 
 void SceneAssembly::add_wire_terms(const Wire wire, const WireTerms& terms)
 {
-  if (BlockOperator* b = body(body_name(wire)))
+  if (BlockOperator* b = body(block_name(wire)))
     space.add_terms(wire, terms, *b);
 }
 
@@ -47,11 +43,6 @@ std::string SceneAssembly::load_shape() const
 
 SparseRow SceneAssembly::wire_row(const Wire wire, const double x) const
 {
-  const std::string name = body_name(wire);
-  if (!system.has_block(name))
-    return {};
-  SparseRow row = space.point_row(wire, x);
-  row.shift(system.block(name).first);
-  return row;
+  return wire_point_row(space, system, wire, x);
 }
 } // namespace pantocat

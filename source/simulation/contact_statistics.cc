@@ -1,6 +1,7 @@
 #include <pantocat/analysis/butterworth_low_pass.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/simulation/contact_statistics.h>
+#include <pantocat/system/catenary_system_builder.h>
 
 #include <algorithm>
 #include <cmath>
@@ -70,12 +71,8 @@ ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
 {
   if (!system.has_block("contact wire")) // a rigid wire: no uplift to measure
     return;
-  const unsigned int offset = system.block("contact wire").first;
   for (const double x : d.catenary_parameters().dropper_positions)
-  {
-    dropper_rows.push_back(d.point_row(Wire::contact_wire, x));
-    dropper_rows.back().shift(offset);
-  }
+    dropper_rows.push_back(wire_point_row(d, system, Wire::contact_wire, x));
 }
 
 void ContactStatistics::start(const SimulationLayout& layout)

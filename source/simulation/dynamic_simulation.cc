@@ -7,6 +7,7 @@
 #include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/dynamic_simulation.h>
 #include <pantocat/simulation/initial_state.h>
+#include <pantocat/system/catenary_system_builder.h>
 
 #include <chrono>
 #include <cmath>
@@ -50,8 +51,7 @@ DynamicSimulation::DynamicSimulation(const ProgramParameters& p)
             "probes measure the contact wire, which this scene holds rigid");
     require(x > 0. && x < p.catenary.span, "Output/Probe positions", x,
             "must lie inside (0, Span)");
-    probe_rows.push_back(space->point_row(Wire::contact_wire, x));
-    probe_rows.back().shift(coupled.block("contact wire").first);
+    probe_rows.push_back(wire_point_row(*space, coupled, Wire::contact_wire, x));
   }
 
   initial = p.scene.initial_shape == InitialShape::static_equilibrium
@@ -144,12 +144,7 @@ TimePoint DynamicSimulation::time_point(const DynamicState& s) const
   for (const SparseRow& row : probe_rows)
     p.probes.push_back(row.dot(s.q));
   if (layout_.energy)
-  {
-    // v^T M v / 2 + q^T K q / 2 - f(t)^T q
-    coupled.load_at(s.t, scratch_load);
-    p.energy = 0.5 * coupled.mass.matrix_norm_square(s.v) +
-               0.5 * coupled.stiffness.matrix_norm_square(s.q) - scratch_load * s.q;
-  }
+    p.energy = coupled.energy(s.q, s.v, s.t);
   return p;
 }
 

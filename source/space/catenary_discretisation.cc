@@ -4,6 +4,11 @@
 
 namespace pantocat
 {
+const char* block_name(const Wire wire)
+{
+  return wire == Wire::carrier ? "carrier" : "contact wire";
+}
+
 CatenaryDiscretisation::CatenaryDiscretisation(
     const CatenaryParameters& catenary, const DiscretisationParameters& discretisation)
     : catenary(catenary), discretisation(discretisation),

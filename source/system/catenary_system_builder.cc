@@ -12,4 +12,15 @@ SemiDiscreteSystem build_catenary_system(const CatenaryDiscretisation& d,
                                                                : DropperModel::unilateral;
   return std::move(build_scene(scene, d.catenary_parameters(), d, nullptr, {}).system);
 }
+
+SparseRow wire_point_row(const CatenaryDiscretisation& d,
+                         const SemiDiscreteSystem& system, const Wire wire,
+                         const double x)
+{
+  if (!system.has_block(block_name(wire)))
+    return {};
+  SparseRow row = d.point_row(wire, x);
+  row.shift(system.block(block_name(wire)).first);
+  return row;
+}
 } // namespace pantocat

@@ -76,9 +76,15 @@ const DofBlock& SemiDiscreteSystem::block(const std::string& name) const
 }
 
 double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
-                                  const dealii::Vector<double>& v) const
+                                  const dealii::Vector<double>& v, const double t) const
 {
-  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) -
-         (load * q);
+  double work = load * q;
+  if (has_time_dependent_load())
+  {
+    dealii::Vector<double> f;
+    load_at(t, f);
+    work = f * q;
+  }
+  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) - work;
 }
 } // namespace pantocat

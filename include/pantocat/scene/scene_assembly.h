@@ -47,8 +47,6 @@ struct SceneAssembly
   unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
   std::vector<unsigned int> dropper_indices;
 
-  /// Name of @p wire's body: "carrier" or "contact wire".
-  static const char* body_name(Wire wire);
   /// The data of @p wire (CatenaryParameters).
   const WireParameters& wire_parameters(Wire wire) const;
   /// Phase 1: @p wire as a body (its unknowns and mass), wide enough for bending.

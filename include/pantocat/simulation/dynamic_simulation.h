@@ -93,8 +93,7 @@ private:
   ContactPointMotion motion;
   SimulationLayout layout_;
   std::vector<std::string> effects, left_out;
-  std::vector<SparseRow> probe_rows;           ///< rows of w_w at the probe positions
-  mutable dealii::Vector<double> scratch_load; ///< f(t), for the energy
+  std::vector<SparseRow> probe_rows; ///< rows of w_w at the probe positions
   DynamicState initial;
   mutable double stability_limit = 0.;
   mutable bool warned = false;

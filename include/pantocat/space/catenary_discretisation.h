@@ -19,6 +19,9 @@ enum class Wire
   contact_wire
 };
 
+/// Name of @p wire's body and block: "carrier" or "contact wire".
+const char* block_name(Wire wire);
+
 /**
  * Coefficients of the terms of the weak form (16)/(17) of one wire (or of
  * the difference operators (29)/(30)) that add_terms() adds:

@@ -62,8 +62,9 @@ public:
   const DofBlock& block(const std::string& name) const;
   bool has_block(const std::string& name) const;
 
-  /// Kinetic energy v^T M v / 2 plus strain energy q^T K q / 2 minus f^T q.
-  double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v) const;
+  /// Kinetic energy v^T M v / 2 plus strain energy q^T K q / 2 minus f(t)^T q.
+  double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v,
+                double t = 0.) const;
 
   std::vector<DofBlock> blocks;
   /// On the heap, so that the matrices that point to it survive moves of the system.
