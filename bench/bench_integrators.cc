@@ -11,7 +11,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
 #include <pantocat/space/smoothed_delta.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -35,7 +35,7 @@ double seconds_since(Clock::time_point t0)
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-ProgramParameters benchmark(unsigned int n, SpaceMethod method, IntegratorType integrator,
+ProgramParameters benchmark(unsigned int n, SpaceMethod method, std::string integrator,
                             double dt)
 {
   ProgramParameters p;
@@ -53,7 +53,7 @@ constexpr unsigned int batches = 5;
 /// Microseconds per step of the library's integrator (no observers).
 double library_step(const ProgramParameters& p, unsigned int steps)
 {
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   auto integrator = create_time_integrator(simulation.system(), p.time_integration);
   integrator->initialize(simulation.initial_state());
   integrator->advance(); // start-up (factorisations, Richardson start) not timed
@@ -325,8 +325,8 @@ void compare_linear_solvers(const std::vector<unsigned int>& grids, unsigned int
   for (const unsigned int n : grids)
   {
     const double scale = 500. / n, dt = 5e-5 * scale * scale, c = 1.5 / dt;
-    ProgramParameters p = benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt);
-    DynamicSimulation simulation(p);
+    ProgramParameters p = benchmark(n, SpaceMethod::fem, "bdf2", dt);
+    CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
     const SemiDiscreteSystem& sys = simulation.system();
     dealii::SparseMatrix<double> S(*sys.sparsity);
     S.copy_from(sys.stiffness);
@@ -380,18 +380,18 @@ int main(int argc, char** argv)
     // dt = c dx^2 as in Sec. 5.2, scaled from the paper's 5e-5 s at N+1 = 500.
     const double scale = 500. / n, dt = 5e-5 * scale * scale;
     const double he = library_step(
-        benchmark(n, SpaceMethod::fdm, IntegratorType::half_explicit, dt), steps);
+        benchmark(n, SpaceMethod::fdm, "half-explicit", dt), steps);
     double loop = 1e300;
     for (unsigned int b = 0; b < batches; ++b)
       loop = std::min(loop,
                       baseline_fdm_half_explicit(n, dt, std::max(1u, steps / batches)));
     const unsigned int bdf_steps = std::max(20u, steps / (n / 250));
     const double bdf =
-        library_step(benchmark(n, SpaceMethod::fem, IntegratorType::bdf2, dt), bdf_steps);
+        library_step(benchmark(n, SpaceMethod::fem, "bdf2", dt), bdf_steps);
     const double banded =
         baseline_banded_solve(3 * n + 1, 500); // FEM system size: N + (2N+2) + 2
     const double fdm_bdf =
-        library_step(benchmark(n, SpaceMethod::fdm, IntegratorType::bdf2, dt), bdf_steps);
+        library_step(benchmark(n, SpaceMethod::fdm, "bdf2", dt), bdf_steps);
     std::cout << std::setprecision(3) << "| " << n << " | " << he << " | " << loop
               << " | " << he / loop << " | " << bdf << " | " << banded << " | "
               << bdf / banded << " | " << fdm_bdf << " |" << std::endl;

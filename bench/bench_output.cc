@@ -4,10 +4,11 @@
 // statistics with the dropper uplift), and with ParaView frames added.
 // Every figure is the fastest of 5 runs; ratios to the loop without observers.
 // Usage: bench_output; prints a table (Markdown).
+#include <pantocat/app/program_parameters.h>
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/simulation/contact_statistics.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/run_statistics.h>
 
 #include <deal.II/base/mpi.h>
@@ -31,12 +32,12 @@ enum class Observers
   vtu_5ms         ///< + VTU frames every 5 ms (101 frames)
 };
 
-/// Seconds of the time loop (DynamicSimulation::run) with the given observers.
+/// Seconds of the time loop (CaseRunner::run) with the given observers.
 double time_loop(const ProgramParameters& p, const Observers which)
 {
   const std::string dir = "bench_output_files";
   std::filesystem::create_directories(dir);
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   TimeSeriesWriter series(dir + "/time_series.csv", 1);
   RunStatistics stats;
   ContactStatistics contact(p.statistics, simulation.discretisation(),

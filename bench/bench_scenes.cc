@@ -2,7 +2,8 @@
 // against the paper's full scene, measured in one run (fastest of 5 each,
 // no observers), for FDM + half-explicit and FEM + BDF-2.
 // Usage: bench_scenes [N+1 = 1000]; prints a Markdown table.
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/simulation/case_runner.h>
 
 #include <deal.II/base/multithread_info.h>
 
@@ -14,13 +15,13 @@ using namespace pantocat;
 
 namespace
 {
-struct Case
+struct ReducedScene
 {
   const char* name;
   void (*reduce)(SceneParameters&);
 };
 
-const Case cases[] = {
+const ReducedScene cases[] = {
     {"full scene (the paper's benchmark)", [](SceneParameters&) {}},
     {"without the wires' damping", [](SceneParameters& s) { s.damping = false; }},
     {"rigid carrier (droppers hang from fixed points)",
@@ -36,14 +37,14 @@ const Case cases[] = {
      {
        s.carrier = WireModel::rigid;
        s.droppers = DropperModel::absent;
-       s.pantograph = PantographType::moving_force;
+       s.pantographs[0].model = "moving force";
      }},
     {"moving force on a string (no bending, gravity, damping)",
      [](SceneParameters& s)
      {
        s.carrier = WireModel::rigid;
        s.droppers = DropperModel::absent;
-       s.pantograph = PantographType::moving_force;
+       s.pantographs[0].model = "moving force";
        s.contact_wire_bending = false;
        s.gravity = false;
        s.damping = false;
@@ -57,7 +58,7 @@ double seconds_per_step(const ProgramParameters& p, unsigned int& unknowns,
   double best = 1e300;
   for (unsigned int run = 0; run < 5; ++run)
   {
-    DynamicSimulation simulation(p);
+    CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
     unknowns = simulation.system().n_dofs();
     constraints = simulation.system().n_constraints();
     const auto r = simulation.run({});
@@ -76,10 +77,10 @@ int main(int argc, char** argv)
     ProgramParameters p;
     p.discretisation.method = method;
     p.discretisation.n_intervals = n;
-    p.pantograph.final_position = 4.;
+    p.pantograph().final_position = 4.;
     const bool fdm = method == SpaceMethod::fdm;
     p.time_integration.integrator =
-        fdm ? IntegratorType::half_explicit : IntegratorType::bdf2;
+        fdm ? "half-explicit" : "bdf2";
     // Below 2/omega_max of the full scene (FDM): the same step for every scene.
     p.time_integration.time_step = fdm ? 2e-6 * (1000. / n) * (1000. / n) : 5e-5;
     std::cout << "\n"
@@ -88,7 +89,7 @@ int main(int argc, char** argv)
               << "| scene | unknowns | constraints | us per step | ratio to full |\n"
               << "|---|---|---|---|---|\n";
     double full = 0.;
-    for (const Case& c : cases)
+    for (const ReducedScene& c : cases)
     {
       ProgramParameters reduced = p;
       c.reduce(reduced.scene);

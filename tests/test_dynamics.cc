@@ -1,14 +1,15 @@
 // Coupled pantograph-catenary dynamics (Secs. 5, 6): the paper's 32 and
 // 48 m/s runs, agreement of discretisations and integrators, reversibility
 // and energy of the half-explicit method, constraint residuals, step-size guard.
+#include <pantocat/app/program_parameters.h>
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/coupling/coupled_system_builder.h>
+#include "support/coupled_system_builder.h"
 #include <pantocat/pantograph/two_mass_pantograph.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include "support/catenary_system_builder.h"
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
@@ -28,12 +29,12 @@ struct Recorder : SimulationObserver
   std::vector<TimePoint> points;
 };
 
-ProgramParameters benchmark(double speed, SpaceMethod method, IntegratorType integrator)
+ProgramParameters benchmark(double speed, SpaceMethod method, std::string integrator)
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
-  p.pantograph.speed = speed;
-  p.pantograph.initial_offset = speed > 40. ? 0.002 : 0.;
+  p.pantograph().speed = speed;
+  p.pantograph().initial_offset = speed > 40. ? 0.002 : 0.;
   p.discretisation.method = method;
   p.time_integration.integrator = integrator;
   return p;
@@ -41,15 +42,15 @@ ProgramParameters benchmark(double speed, SpaceMethod method, IntegratorType int
 
 struct BenchmarkRun
 {
-  explicit BenchmarkRun(const ProgramParameters& p) : simulation(p)
+  explicit BenchmarkRun(const ProgramParameters& p) : simulation(p.make_case())
   {
     result = simulation.run({&stats, &record, &events});
   }
-  DynamicSimulation simulation;
+  CaseRunner simulation;
   RunStatistics stats;
   EventLog events;
   Recorder record;
-  DynamicSimulation::Result result;
+  CaseRunner::Result result;
 };
 
 /// Time of the minimum of constraint i's force in [t0, t1].
@@ -66,9 +67,9 @@ double time_of_minimum(const Recorder& r, unsigned int i, double t0, double t1)
 TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
 {
   const BenchmarkRun fdm_he(
-      benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit));
-  const BenchmarkRun fdm_bdf(benchmark(32., SpaceMethod::fdm, IntegratorType::bdf2));
-  const BenchmarkRun fem_bdf(benchmark(32., SpaceMethod::fem, IntegratorType::bdf2));
+      benchmark(32., SpaceMethod::fdm, "half-explicit"));
+  const BenchmarkRun fdm_bdf(benchmark(32., SpaceMethod::fdm, "bdf2"));
+  const BenchmarkRun fem_bdf(benchmark(32., SpaceMethod::fem, "bdf2"));
 
   // Sec. 2.2: the state is consistent on acceleration level, so the first
   // multipliers of the half-explicit method reproduce lambda_p(0) = 8.75 N.
@@ -85,7 +86,7 @@ TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
     // Unilateral constraints that stay active are kept to round-off.
     EXPECT_LT(run->stats.max_position_residual(), 1e-12);
     EXPECT_LT(run->stats.max_velocity_residual(), 1e-10);
-    EXPECT_NEAR(run->record.points.back().x_p, 18., 32. * 5e-5);
+    EXPECT_NEAR(run->record.points.back().x_p[0], 18., 32. * 5e-5);
   }
   // Half-explicit vs BDF-2 on the same grid: both second order with dt = 5e-5 s;
   // the force statistics agree to 0.5 % (max, mean) and 0.3 N (min ~ 5.5 N).
@@ -109,7 +110,7 @@ TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
 
 TEST(Benchmark48, SecondDropperSlackensWhenThePantographPassesAndRetensions)
 {
-  const BenchmarkRun run(benchmark(48., SpaceMethod::fdm, IntegratorType::half_explicit));
+  const BenchmarkRun run(benchmark(48., SpaceMethod::fdm, "half-explicit"));
   // Sec. 6: lambda_d1 has a distinct minimum when the pantograph passes
   // dropper 1 at t = 0.0729 s (FDM dropper node at 5.52 m: 0.0733 s); 2 ms.
   EXPECT_NEAR(time_of_minimum(run.record, 0, 0., 0.15), 0.0729, 0.002);
@@ -162,7 +163,7 @@ struct UndampedBilateral
     pp.uplift_force = 0.;
     pantograph = std::make_unique<TwoMassPantograph>(pp);
     built =
-        build_coupled_system(*space, *pantograph, ContactPointMotion{2., 32.},
+        build_coupled_system(*space, pp, ContactPointMotion{2., 32.},
                              Constraint::Kind::bilateral, Constraint::Kind::bilateral);
   }
 
@@ -342,9 +343,9 @@ TEST(HalfExplicit, BilateralResidualsStayAtRoundOff)
 
 TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
 {
-  ProgramParameters p = benchmark(32., SpaceMethod::fdm, IntegratorType::half_explicit);
+  ProgramParameters p = benchmark(32., SpaceMethod::fdm, "half-explicit");
   p.time_integration.time_step = 1e-4;
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   EXPECT_NEAR(simulation.explicit_stability_limit(), 6.62e-5,
               0.01e-5); // Sec. 6: 6.6e-5 s
   try
@@ -380,9 +381,9 @@ TEST(Benchmark48, CoarseGridRetensionTouchesInsteadOfCycling)
   // cycled there (t = 0.26065 s). With the touching state the run completes:
   // dropper 2 slackens once, around the passage of the pantograph
   // (t = 0.2604 s, within 10 ms), and the contact is kept.
-  ProgramParameters p = benchmark(48., SpaceMethod::fdm, IntegratorType::half_explicit);
+  ProgramParameters p = benchmark(48., SpaceMethod::fdm, "half-explicit");
   p.discretisation.n_intervals = 250;
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   RunStatistics stats;
   simulation.run({&stats});
   const auto slack = stats.dropper_slack_intervals();
@@ -406,12 +407,12 @@ TEST(Guards, ARunThatBlowsUpStopsWithTimeStepAndQuantity)
   // step, long before values overflow, and within 2 ms of each other.
   for (const bool guards : {true, false})
   {
-    ProgramParameters p = benchmark(32., SpaceMethod::fem, IntegratorType::half_explicit);
+    ProgramParameters p = benchmark(32., SpaceMethod::fem, "half-explicit");
     p.discretisation.n_intervals = 250;
     p.time_integration.time_step = 2e-5;
     if (!guards)
       p.guards.multiplier_bound = p.guards.energy_bound = 1e300;
-    DynamicSimulation simulation(p);
+    CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
     Recorder record;
     try
     {
@@ -496,9 +497,9 @@ TEST(Bdf2, BlockEliminationSolvesTheFullStepSystem)
   // dense solve (measured: 1e-14 relative in q, 2e-12 in v, whose equations
   // carry the factor c = 3/(2 dt) = 3e4). FEM, N+1 = 20, 48 m/s, after the
   // Richardson start.
-  ProgramParameters p = benchmark(48., SpaceMethod::fem, IntegratorType::bdf2);
+  ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
   p.discretisation.n_intervals = 20;
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   const SemiDiscreteSystem& sys = simulation.system();
   const double dt = 5e-5;
   Bdf2Integrator bdf(sys, dt, 20);

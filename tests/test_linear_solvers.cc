@@ -1,9 +1,10 @@
 // The sparse direct solvers behind the implicit integrators (issue 4):
 // banded Cholesky, deal.II's UMFPACK and Trilinos Amesos KLU must give the
 // same solutions and the same BDF-2 steps.
+#include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/bdf2_integrator.h>
 
 #include <gtest/gtest.h>
@@ -18,11 +19,11 @@ ProgramParameters fem_bdf2(unsigned int n_intervals)
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
-  p.pantograph.speed = 48.;
-  p.pantograph.initial_offset = 0.002;
+  p.pantograph().speed = 48.;
+  p.pantograph().initial_offset = 0.002;
   p.discretisation.method = SpaceMethod::fem;
   p.discretisation.n_intervals = n_intervals;
-  p.time_integration.integrator = IntegratorType::bdf2;
+  p.time_integration.integrator = "bdf2";
   return p;
 }
 
@@ -41,7 +42,7 @@ TEST(LinearSolvers, AllBackendsSolveTheBdfIterationMatrix)
   // about 1e5): the three solvers agree to 1e-12 relative (round-off times
   // the condition number); the interleaved four-column solve of each equals
   // its single solves to round-off as well.
-  DynamicSimulation simulation(fem_bdf2(100));
+  CaseRunner simulation(fem_bdf2(100).make_case());
   const SemiDiscreteSystem& sys = simulation.system();
   const double c = 1.5 / 5e-5;
   dealii::SparseMatrix<double> S(*sys.sparsity);
@@ -88,7 +89,7 @@ TEST(LinearSolvers, BdfStepsDoNotDependOnTheSolver)
   // dropper forces with UMFPACK and with KLU equal those of the banded
   // Cholesky to 1e-9 relative (forces ~ 10-100 N; the elimination order
   // differs, so results agree to round-off, not bit for bit).
-  DynamicSimulation simulation(fem_bdf2(100));
+  CaseRunner simulation(fem_bdf2(100).make_case());
   std::vector<std::unique_ptr<Bdf2Integrator>> runs;
   for (const auto type : {LinearSolverType::banded, LinearSolverType::umfpack,
                           LinearSolverType::trilinos_klu})

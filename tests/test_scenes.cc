@@ -3,13 +3,14 @@
 // energy and the period of free vibration, the closed-form response of a
 // pantograph on a rigid wire, the grid-crossing oscillations of a point load),
 // and effects a scene leaves out are not assembled.
+#include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/analysis/moving_load_series.h>
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/scene/scene_builder.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
 
 #include <deal.II/lac/full_matrix.h>
 
@@ -44,7 +45,7 @@ struct Recorder : SimulationObserver
 
 std::vector<TimePoint> run(const ProgramParameters& p)
 {
-  DynamicSimulation simulation(p);
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   Recorder recorder;
   simulation.run({&recorder});
   return recorder.points;
@@ -53,7 +54,7 @@ std::vector<TimePoint> run(const ProgramParameters& p)
 /// max_t |w(x_j, t) - w_series(x_j, t)| / max_t |w_series| at probe j.
 double relative_series_error(const ProgramParameters& p, const unsigned int j)
 {
-  const MovingLoadSeries series = moving_load_series(p);
+  const MovingLoadSeries series = moving_load_series(p.make_case());
   double error = 0., reference = 0.;
   for (const TimePoint& point : run(p))
   {
@@ -69,9 +70,7 @@ TEST(Scene, DefaultSceneIsThePapersBenchmarkWithNothingLeftOut)
 {
   const ProgramParameters p = shipped_scene("benchmark.prm");
   const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
-  const auto pantograph = create_pantograph(p.scene, p.pantograph);
-  const BuiltScene s = build_scene(p.scene, p.catenary, *space, pantograph.get(),
-                                   {p.pantograph.initial_position, p.pantograph.speed});
+  const BuiltScene s = build_scene(p.scene, p.catenary, *space);
   // Sec. 6, N+1 = 500 FDM: 499 + 499 wire unknowns, 2 pantograph bodies; 2 droppers
   // and the contact. Only the moving force (an alternative pantograph) is left out.
   EXPECT_EQ(s.system.n_dofs(), 1000u);
@@ -87,9 +86,7 @@ TEST(Scene, LeftOutEffectsAreNotAssembled)
   p.scene.damping = false;
   p.scene.contact_wire_bending = false;
   const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
-  const auto pantograph = create_pantograph(p.scene, p.pantograph);
-  const BuiltScene s = build_scene(p.scene, p.catenary, *space, pantograph.get(),
-                                   {p.pantograph.initial_position, p.pantograph.speed});
+  const BuiltScene s = build_scene(p.scene, p.catenary, *space);
   // No carrier unknowns, a zero damping matrix in the wire (the pantograph keeps its
   // own dampers), a tridiagonal wire block (no bending stencil).
   EXPECT_FALSE(s.system.has_block("carrier"));
@@ -170,13 +167,13 @@ TEST(Scene, PantographOnARigidWireFollowsTheClosedForm)
   const auto points = run(p);
   // Head fixed at the wire: the frame obeys m_2 y'' + (d_1 + d_2) y' + (c_1 + c_2) y = 0,
   // y = w_p2 - F_0 / (c_1 + c_2), and lambda_p = c_1 w_p2 + d_1 w_p2'.
-  const auto& m = p.pantograph.two_mass;
+  const auto& m = p.pantograph().two_mass;
   const double c = m.head_stiffness + m.frame_stiffness;
   const double sigma = (m.head_damping + m.frame_damping) / (2. * m.frame_mass);
   const double omega_d = std::sqrt(c / m.frame_mass - sigma * sigma);
-  const double y0 = -p.pantograph.initial_offset - m.uplift_force / c; // w_p1(0) = 0
-  const double v0 = (p.pantograph.initial_contact_force +
-                     m.head_stiffness * p.pantograph.initial_offset) /
+  const double y0 = -p.pantograph().initial_offset - m.uplift_force / c; // w_p1(0) = 0
+  const double v0 = (p.pantograph().initial_contact_force +
+                     m.head_stiffness * p.pantograph().initial_offset) /
                     m.head_damping;
   const double B = (v0 + sigma * y0) / omega_d;
   double error = 0.;
@@ -242,7 +239,7 @@ TEST(Scene, PointLoadOscillatesAtTheGridCrossingFrequency)
     return 2. * std::abs(sum) / s.size();
   };
   const double f =
-      point.pantograph.speed * point.discretisation.n_intervals / point.catenary.span;
+      point.pantograph().speed * point.discretisation.n_intervals / point.catenary.span;
   double spurious_point = 0., spurious_smooth = 0.;
   for (const double harmonic : {1., 2., 3.})
   {
@@ -292,8 +289,7 @@ TEST(Scene, ACarrierWithBendingIsAssembledAsTheContactWire)
          "Catenary/Carrier/Bending stiffness=1"});
     p.catenary.carrier = p.catenary.contact_wire;
     const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
-    const BuiltScene s = build_scene(p.scene, p.catenary, *space, nullptr,
-                                     {p.pantograph.initial_position, p.pantograph.speed});
+    const BuiltScene s = build_scene(p.scene, p.catenary, *space);
     const DofBlock &c = s.system.block("carrier"), &w = s.system.block("contact wire");
     ASSERT_EQ(c.size, w.size) << method;
     for (unsigned int i = 0; i < c.size; ++i)
@@ -383,8 +379,8 @@ TEST(Scene, ThreeMassPantographOnARigidWireFollowsTheExactTwoBodyResponse)
       shipped_scene("pantograph-rigid-wire.prm",
                     {"Scene/Pantograph=three-mass",
                      "Pantograph/Initial offset=" + std::to_string(offset)});
-  const auto& m = p.pantograph.three_mass;
-  p.pantograph.initial_contact_force = -m.stiffnesses[0] * offset; // then w_2'(0) = 0
+  const auto& m = p.pantograph().three_mass;
+  p.pantograph().initial_contact_force = -m.stiffnesses[0] * offset; // then w_2'(0) = 0
   const auto points = run(p);
 
   const double m2 = m.masses[1], m3 = m.masses[2];

@@ -2,7 +2,7 @@
 // against closed forms; the paper's initial catenary (Fig. 5) with droppers.
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include "support/catenary_system_builder.h"
 
 #include <gtest/gtest.h>
 

@@ -84,11 +84,10 @@ int run(const CommandLine& cl, int argc, char** argv)
     return 0;
   }
   dealii::ParameterHandler prm;
-  ProgramParameters::declare_parameters(prm);
   std::vector<std::string> overrides = cl.overrides;
   if (cl.output_directory)
     overrides.push_back("Output/Output directory=" + *cl.output_directory);
-  read_parameter_file(prm, cl.parameter_file, overrides);
+  read_program_parameters(prm, cl.parameter_file, overrides);
 
   ProgramParameters parameters;
   parameters.parse_parameters(prm);
@@ -98,7 +97,7 @@ int run(const CommandLine& cl, int argc, char** argv)
   std::optional<dealii::Utilities::MPI::MPI_InitFinalize> mpi;
   const auto& ti = parameters.time_integration;
   if (launched_by_mpi() || ti.linear_solver == LinearSolverType::trilinos_klu ||
-      (ti.integrator == IntegratorType::ida && ti.ida_linear_solver == "trilinos-klu"))
+      (ti.integrator == "ida" && ti.ida_linear_solver == "trilinos-klu"))
     mpi.emplace(argc, argv, 1);
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.
@@ -122,10 +121,10 @@ int run(const CommandLine& cl, int argc, char** argv)
       run_dynamics(parameters, out);
       break;
     case RunMode::convergence_study:
-      run_convergence_study(parameters, std::cout);
+      run_convergence_study(parameters.make_study_case(), std::cout);
       break;
     case RunMode::work_precision:
-      run_work_precision_study(parameters, std::cout);
+      run_work_precision_study(parameters.make_study_case(), std::cout);
       break;
     }
   }

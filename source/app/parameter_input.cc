@@ -34,7 +34,8 @@ std::string one_line_message(const std::exception& e)
   return collapse_whitespace(e.what());
 }
 
-void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting)
+void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting,
+                              const bool skip_undefined)
 {
   const auto eq = setting.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -51,7 +52,7 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
     text += "end\n";
   try
   {
-    prm.parse_input_from_string(text);
+    prm.parse_input_from_string(text, "", skip_undefined);
   }
   catch (const std::exception& e)
   {
@@ -65,7 +66,8 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
 }
 
 void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
-                         const std::vector<std::string>& overrides)
+                         const std::vector<std::string>& overrides,
+                         const bool skip_undefined)
 {
   std::ifstream in(file);
   if (!in)
@@ -74,13 +76,13 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
                      file);
   try
   {
-    prm.parse_input(in, file);
+    prm.parse_input(in, file, "", skip_undefined);
   }
   catch (const std::exception& e)
   {
     throw InputError(one_line_message(e));
   }
   for (const auto& setting : overrides)
-    apply_parameter_override(prm, setting);
+    apply_parameter_override(prm, setting, skip_undefined);
 }
 } // namespace pantocat

@@ -1,3 +1,4 @@
+#include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/checkpoint.h>
@@ -6,7 +7,9 @@
 
 namespace pantocat
 {
-void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
+void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
+                                           const unsigned int n_pantographs,
+                                           const PantographCase& first_pantograph)
 {
   prm.enter_subsection("Run");
   prm.declare_entry(
@@ -25,9 +28,8 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
                     dealii::Patterns::List(dealii::Patterns::Selection("fem|fdm"), 1),
                     "Space discretisations compared in eigenfrequency mode.");
   prm.leave_subsection();
-  SceneParameters::declare_parameters(prm);
+  SceneParameters::declare_parameters(prm, n_pantographs, first_pantograph);
   CatenaryParameters::declare_parameters(prm);
-  PantographParameters::declare_parameters(prm);
   DiscretisationParameters::declare_parameters(prm);
   TimeIntegrationParameters::declare_parameters(prm);
   OutputParameters::declare_parameters(prm);
@@ -55,7 +57,6 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
   scene.parse_parameters(prm);
   catenary.parse_parameters(prm);
-  pantograph.parse_parameters(prm);
   discretisation.parse_parameters(prm);
   time_integration.parse_parameters(prm);
   output.parse_parameters(prm);
@@ -65,28 +66,47 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   guards.parse_parameters(prm);
   fingerprint = critical_parameters(prm);
 
-  scene.check();
-  if (scene.carrier_bending && scene.carrier == WireModel::elastic)
-  {
-    require(catenary.carrier.bending_stiffness > 0., "Catenary/Carrier/Bending stiffness",
-            catenary.carrier.bending_stiffness, "must be > 0 with Scene/Carrier bending");
-    require(discretisation.method == SpaceMethod::fdm ||
-                discretisation.carrier_element == CarrierElement::cubic_hermite,
-            "Discretisation/Carrier element", "linear Lagrange",
-            "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
-            "Hermite (or Method = fdm)");
-  }
+  make_case().check();
   if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
-    require(scene.has_pantograph_body() && scene.contact_wire == WireModel::elastic,
-            "Scene/Pantograph", to_string(scene.pantograph),
+    require(scene.pantographs[0].has_body() && scene.contact_wire == WireModel::elastic,
+            "Scene/Pantograph", scene.pantographs[0].model,
             "studies measure the contact force lambda_p on the elastic wire: allowed "
             "two-mass | three-mass with Contact wire = elastic");
-  discretisation.check(catenary.span);
-  pantograph.check(catenary.span, discretisation.load_shape == LoadShape::smoothed_delta
-                                      ? discretisation.load_half_width
-                                      : 0.);
   checkpoint.check(time_integration.integrator);
-  statistics.check(time_integration.time_step, pantograph.initial_position,
-                   pantograph.final_position);
+  statistics.check(time_integration.time_step, pantograph().initial_position,
+                   pantograph().final_position);
+}
+
+Case ProgramParameters::make_case() const
+{
+  return {scene, catenary, discretisation, time_integration, guards};
+}
+
+StudyCase ProgramParameters::make_study_case() const
+{
+  StudyCase s;
+  static_cast<Case&>(s) = make_case();
+  s.study = study;
+  s.output.directory = output.directory;
+  s.output.plots = output.plots;
+  return s;
+}
+
+void read_program_parameters(dealii::ParameterHandler& prm, const std::string& file,
+                             const std::vector<std::string>& overrides)
+{
+  // Pass 1: how many pantographs, and pantograph 1's values (entries of
+  // further pantographs are not declared yet and are skipped).
+  dealii::ParameterHandler first_pass;
+  ProgramParameters::declare_parameters(first_pass);
+  read_parameter_file(first_pass, file, overrides, true);
+  const unsigned int n = SceneParameters::number_of_pantographs(first_pass);
+  first_pass.enter_subsection("Scene");
+  first_pass.set("Number of pantographs", "1");
+  first_pass.leave_subsection();
+  SceneParameters scene;
+  scene.parse_parameters(first_pass);
+  ProgramParameters::declare_parameters(prm, n, scene.pantographs[0]);
+  read_parameter_file(prm, file, overrides);
 }
 } // namespace pantocat

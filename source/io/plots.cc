@@ -60,10 +60,40 @@ bool plot_contact_force_statistics(const std::string& dir,
   return run_gnuplot(dir, script);
 }
 
-bool plot_time_series(const std::string& dir, const unsigned int n_droppers,
+namespace
+{
+/// 1-based column of @p name in @p columns, or 0.
+std::size_t column_of(const std::vector<std::string>& columns, const std::string& name)
+{
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  return it == columns.end() ? 0 : it - columns.begin() + 1;
+}
+
+/// "plot 'time_series.csv' using 1:c title 'name', ..." for the @p names that exist.
+void plot_columns(std::ostream& gp, const std::vector<std::string>& columns,
+                  const std::vector<std::string>& names)
+{
+  gp << "plot ";
+  bool first = true;
+  for (const std::string& name : names)
+    if (const std::size_t c = column_of(columns, name))
+    {
+      gp << (first ? "" : ", ") << "'time_series.csv' using 1:" << c
+         << " with lines title '" << name << "'";
+      first = false;
+    }
+  gp << '\n';
+}
+} // namespace
+
+bool plot_time_series(const std::string& dir, const std::vector<std::string>& columns,
+                      const std::vector<std::string>& contact_forces,
+                      const std::vector<std::string>& dropper_forces,
                       const std::vector<std::string>& coordinates,
                       const std::string& title)
 {
+  if (contact_forces.empty() || dropper_forces.empty() || coordinates.empty())
+    return false; // nothing to draw in one of the three plots
   const std::string script = dir + "/time_series.gp";
   {
     std::ofstream gp(script);
@@ -72,20 +102,14 @@ bool plot_time_series(const std::string& dir, const unsigned int n_droppers,
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set grid\nset xlabel 't [s]'\nset key outside right\n"
        << "set output 'contact_force.png'\n"
-       << "set title '" << title << ": contact force'\nset ylabel 'lambda_p [N]'\n"
-       << "plot 'time_series.csv' using 1:3 with lines title 'lambda_p'\n"
-       << "set output 'dropper_forces.png'\n"
-       << "set title '" << title << ": dropper forces'\nset ylabel 'lambda_d [N]'\n"
-       << "plot ";
-    for (unsigned int j = 0; j < n_droppers; ++j)
-      gp << (j ? ", " : "") << "'time_series.csv' using 1:" << 4 + j
-         << " with lines title 'lambda_d" << j + 1 << "'";
-    gp << "\nset output 'pantograph.png'\n"
-       << "set title '" << title << ": pantograph'\nset ylabel 'w [m]'\nplot ";
-    for (unsigned int k = 0; k < coordinates.size(); ++k)
-      gp << (k ? ", " : "") << "'time_series.csv' using 1:" << 4 + n_droppers + k
-         << " with lines title '" << coordinates[k] << "'";
-    gp << '\n';
+       << "set title '" << title << ": contact force'\nset ylabel 'lambda_p [N]'\n";
+    plot_columns(gp, columns, contact_forces);
+    gp << "set output 'dropper_forces.png'\n"
+       << "set title '" << title << ": dropper forces'\nset ylabel 'lambda_d [N]'\n";
+    plot_columns(gp, columns, dropper_forces);
+    gp << "set output 'pantograph.png'\n"
+       << "set title '" << title << ": pantograph'\nset ylabel 'w [m]'\n";
+    plot_columns(gp, columns, coordinates);
   }
   return run_gnuplot(dir, "time_series.gp");
 }

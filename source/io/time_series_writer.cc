@@ -3,12 +3,51 @@
 #include <pantocat/io/time_series_writer.h>
 
 #include <filesystem>
+#include <sstream>
 
 namespace pantocat
 {
 TimeSeriesWriter::TimeSeriesWriter(const std::string& file, const unsigned int every_n)
     : file_name(file), every(std::max(1u, every_n))
 {
+}
+
+std::vector<std::string> TimeSeriesWriter::column_names(const SimulationLayout& l)
+{
+  std::vector<std::string> names{"t"};
+  const auto contacts = l.contacts();
+  const auto each_contact = [&](const std::string& column)
+  {
+    for (const PantographLayout* p : contacts)
+      names.push_back(column + p->column_suffix);
+  };
+  const auto each_dropper = [&](const std::string& column)
+  {
+    for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
+      names.push_back(column + std::to_string(j + 1));
+  };
+  for (const PantographLayout& p : l.pantographs)
+    names.push_back("x_p" + p.column_suffix);
+  each_contact("lambda_p");
+  each_dropper("lambda_d");
+  for (const PantographLayout& p : l.pantographs)
+    for (const auto& name : p.coordinates)
+      names.push_back(name + p.column_suffix);
+  each_contact("gap_p");
+  each_dropper("gap_d");
+  each_contact("active_p");
+  each_dropper("active_d");
+  names.push_back("residual_position");
+  names.push_back("residual_velocity");
+  for (const double x : l.probe_positions)
+  {
+    std::ostringstream name;
+    name << "w_w(" << x << ')';
+    names.push_back(name.str());
+  }
+  if (l.energy)
+    names.push_back("energy");
+  return names;
 }
 
 void TimeSeriesWriter::start(const SimulationLayout& l)
@@ -18,43 +57,32 @@ void TimeSeriesWriter::start(const SimulationLayout& l)
   if (!out)
     throw SimulationError("cannot write " + file_name);
   out.precision(10);
-  const bool contact = l.has_contact();
-  out << "t,x_p" << (contact ? ",lambda_p" : "");
-  for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
-    out << ",lambda_d" << j + 1;
-  for (const auto& name : l.pantograph_coordinates)
-    out << ',' << name;
-  out << (contact ? ",gap_p" : "");
-  for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
-    out << ",gap_d" << j + 1;
-  out << (contact ? ",active_p" : "");
-  for (unsigned int j = 0; j < l.dropper_indices.size(); ++j)
-    out << ",active_d" << j + 1;
-  out << ",residual_position,residual_velocity";
-  for (const double x : l.probe_positions)
-    out << ",w_w(" << x << ')';
-  out << (l.energy ? ",energy" : "") << '\n';
+  const auto names = column_names(l);
+  for (std::size_t i = 0; i < names.size(); ++i)
+    out << (i ? "," : "") << names[i];
+  out << '\n';
 }
 
 void TimeSeriesWriter::observe(const TimePoint& p)
 {
   if (seen++ % every != 0)
     return;
-  const unsigned int c = layout.contact_index;
-  const bool contact = layout.has_contact();
-  out << p.t << ',' << p.x_p;
-  if (contact)
-    out << ',' << p.lambda[c];
+  const auto contacts = layout.contacts();
+  out << p.t;
+  for (const double x : p.x_p)
+    out << ',' << x;
+  for (const PantographLayout* c : contacts)
+    out << ',' << p.lambda[c->contact];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.lambda[i];
   for (const double w : p.pantograph)
     out << ',' << w;
-  if (contact)
-    out << ',' << p.gap[c];
+  for (const PantographLayout* c : contacts)
+    out << ',' << p.gap[c->contact];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.gap[i];
-  if (contact)
-    out << ',' << p.active[c];
+  for (const PantographLayout* c : contacts)
+    out << ',' << p.active[c->contact];
   for (const unsigned int i : layout.dropper_indices)
     out << ',' << p.active[i];
   out << ',' << p.position_residual << ',' << p.velocity_residual;

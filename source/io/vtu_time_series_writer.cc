@@ -1,7 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/io/vtu_time_series_writer.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/space/catenary_discretisation.h>
 
 #include <deal.II/base/data_out_base.h>
 #include <deal.II/grid/grid_generator.h>
@@ -49,7 +49,7 @@ VtuTimeSeriesWriter::VtuTimeSeriesWriter(const std::string& directory,
   // control volume): sample there; FEM shows its shape functions between them.
   const unsigned int per_cell = d.method() == SpaceMethod::fdm ? 1 : subdivisions;
   dealii::GridGenerator::subdivided_hyper_cube(sample_mesh, d.n_intervals() * per_cell,
-                                               0., d.catenary_parameters().span);
+                                               0., d.catenary_parameters().length());
   sample_dofs.distribute_dofs(sample_fe);
   carrier_rows.resize(sample_dofs.n_dofs());
   wire_rows.resize(sample_dofs.n_dofs());
@@ -145,8 +145,14 @@ void VtuTimeSeriesWriter::write_points(const TimePoint& p, const DynamicState& s
     patch.data(2, 0) = id;
     patches.push_back(patch);
   };
-  if (layout.has_contact())
-    add(p.x_p, p.pantograph.at(0), layout.contact_index, 0.);
+  // The heads (their first coordinate, b = w_p1) with id 0, -1, -2, ...
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+  {
+    const PantographLayout& pantograph = layout.pantographs[k];
+    if (pantograph.has_contact())
+      add(p.x_p[k], p.pantograph.at(pantograph.first_coordinate), pantograph.contact,
+          k == 0 ? 0. : -static_cast<double>(k));
+  }
   for (std::size_t j = 0; j < dropper_rows.size(); ++j)
     add(dropper_x[j], dropper_rows[j].dot(s.q), layout.dropper_indices[j], j + 1.);
   std::ofstream out(directory + "/" + file);

@@ -46,7 +46,7 @@ void write_wire_profiles(const CatenaryDiscretisation& d,
   // VTU: sample both wires on a finer linear grid.
   dealii::Triangulation<1> tria;
   dealii::GridGenerator::subdivided_hyper_cube(tria, d.n_intervals() * subdivisions, 0.,
-                                               d.catenary_parameters().span);
+                                               d.catenary_parameters().length());
   dealii::FE_Q<1> fe(1);
   dealii::DoFHandler<1> dofs(tria);
   dofs.distribute_dofs(fe);

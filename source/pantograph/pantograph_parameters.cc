@@ -8,20 +8,26 @@ namespace pantocat
 {
 using dealii::Patterns::Double;
 
-void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
+void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
+                                              const std::string& subsection,
+                                              const PantographParameters& defaults)
 {
-  prm.enter_subsection("Pantograph");
-  prm.declare_entry("Initial position", "2", Double(),
-                    "x_p(0) [m], inside (epsilon, L - epsilon).");
-  prm.declare_entry("Final position", "18", Double(),
-                    "The run stops when x_p reaches this position [m].");
-  prm.declare_entry("Speed", "32", Double(), "Pantograph speed v_p [m/s], > 0.");
-  prm.declare_entry("Initial contact force", "8.75", Double(0.),
+  prm.enter_subsection(subsection);
+  prm.declare_entry("Initial position", number_to_string(defaults.initial_position),
+                    Double(), "x_p(0) [m], inside (epsilon, L - epsilon).");
+  prm.declare_entry("Final position", number_to_string(defaults.final_position),
+                    Double(),
+                    "The run stops when x_p reaches this position [m] (with several "
+                    "pantographs: when the first of them reaches its final position).");
+  prm.declare_entry("Speed", number_to_string(defaults.speed), Double(),
+                    "Pantograph speed v_p [m/s], > 0.");
+  prm.declare_entry("Initial contact force",
+                    number_to_string(defaults.initial_contact_force), Double(0.),
                     "lambda_p(0) [N]: the contact load of the initial static catenary.");
-  prm.declare_entry("Initial offset", "0", Double(),
+  prm.declare_entry("Initial offset", number_to_string(defaults.initial_offset), Double(),
                     "w_p1(0) - w_p2(0) [m]: 0 in (13); 0.002 at 48 m/s (Sec. 6).");
   prm.enter_subsection("Two-mass model");
-  const TwoMassPantographParameters d;
+  const TwoMassPantographParameters& d = defaults.two_mass;
   prm.declare_entry("Head mass", number_to_string(d.head_mass), Double(0.), "m_1 [kg].");
   prm.declare_entry("Frame mass", number_to_string(d.frame_mass), Double(0.),
                     "m_2 [kg].");
@@ -37,7 +43,7 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Static uplift force F_0 on body 2 [N].");
   prm.leave_subsection();
   prm.enter_subsection("Three-mass model");
-  const ThreeMassPantographParameters t;
+  const ThreeMassPantographParameters& t = defaults.three_mass;
   const auto list = [](const std::array<double, 3>& a)
   {
     return number_to_string(a[0]) + ", " + number_to_string(a[1]) + ", " +
@@ -56,9 +62,16 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
 }
 
-void PantographParameters::parse_parameters(dealii::ParameterHandler& prm)
+void PantographParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
-  prm.enter_subsection("Pantograph");
+  declare_parameters(prm, "Pantograph", PantographParameters());
+}
+
+void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
+                                            const std::string& subsection_name)
+{
+  subsection = subsection_name;
+  prm.enter_subsection(subsection);
   initial_position = prm.get_double("Initial position");
   final_position = prm.get_double("Final position");
   speed = prm.get_double("Speed");
@@ -92,21 +105,21 @@ void PantographParameters::check(const double span, const double eps) const
 {
   const std::string range =
       "(" + number_to_string(eps) + ", " + number_to_string(span - eps) + ")";
-  require(speed > 0., "Pantograph/Speed", speed, "must be > 0");
+  require(speed > 0., subsection + "/Speed", speed, "must be > 0");
   require(initial_position > eps && initial_position < span - eps,
-          "Pantograph/Initial position", initial_position,
+          subsection + "/Initial position", initial_position,
           "the contact area must lie inside the span: allowed " + range);
   require(final_position > initial_position && final_position < span - eps,
-          "Pantograph/Final position", final_position,
+          subsection + "/Final position", final_position,
           "must lie in (Initial position, L - epsilon) = (" +
               number_to_string(initial_position) + ", " + number_to_string(span - eps) +
               ")");
-  require(two_mass.head_mass > 0., "Pantograph/Two-mass model/Head mass",
+  require(two_mass.head_mass > 0., subsection + "/Two-mass model/Head mass",
           two_mass.head_mass, "must be > 0");
-  require(two_mass.frame_mass > 0., "Pantograph/Two-mass model/Frame mass",
+  require(two_mass.frame_mass > 0., subsection + "/Two-mass model/Frame mass",
           two_mass.frame_mass, "must be > 0");
   for (unsigned int i = 0; i < 3; ++i)
-    require(three_mass.masses[i] > 0., "Pantograph/Three-mass model/Masses",
+    require(three_mass.masses[i] > 0., subsection + "/Three-mass model/Masses",
             three_mass.masses[i], "every mass must be > 0");
 }
 } // namespace pantocat

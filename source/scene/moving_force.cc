@@ -1,31 +1,29 @@
 #include <pantocat/base/number_format.h>
+#include <pantocat/coupling/wire_point_marker.h>
 #include <pantocat/scene/moving_force.h>
 
 namespace pantocat
 {
 namespace
 {
-/// F F_w(t)^T: the load row r_0 of the load shape at x_p(t), scaled.
+/// F F_w(t)^T: the load row of the load shape at x_p(t) (a WirePointMarker), scaled.
 class MovingLoad : public TimeDependentLoad
 {
 public:
-  MovingLoad(const CatenaryDiscretisation& space, const ContactPointMotion& motion,
-             const double force, const unsigned int offset)
-      : space(space), motion(motion), force(force), offset(offset)
+  MovingLoad(WirePointMarker point, const double force)
+      : point(std::move(point)), force(force)
   {
   }
   void add_to(const double t, dealii::Vector<double>& f) const override
   {
-    space.load_row(motion.position(t), 0, row);
+    point.row(t, row);
     for (std::size_t k = 0; k < row.size(); ++k)
-      f(offset + row.index[k]) += force * row.value[k];
+      f(row.index[k]) += force * row.value[k];
   }
 
 private:
-  const CatenaryDiscretisation& space;
-  ContactPointMotion motion;
+  WirePointMarker point;
   double force;
-  unsigned int offset;
   mutable SparseRow row; ///< scratch: no allocation per step
 };
 } // namespace
@@ -37,18 +35,27 @@ std::string MovingForce::name() const
 
 bool MovingForce::enabled(const SceneParameters& scene) const
 {
-  return scene.pantograph == PantographType::moving_force;
+  return scene.has_moving_force();
 }
 
 void MovingForce::add_constraints(SceneAssembly& a) const
 {
-  a.system.add_time_dependent_load(std::make_unique<MovingLoad>(
-      a.space, a.motion, a.scene.moving_force, a.system.block("contact wire").first));
+  const unsigned int wire = a.system.block("contact wire").first;
+  for (const ScenePantograph& p : a.pantographs)
+    if (p.data->is_moving_force())
+      a.system.add_time_dependent_load(std::make_unique<MovingLoad>(
+          WirePointMarker(a.space, wire, p.motion), p.data->moving_force));
 }
 
 std::string MovingForce::describe(const SceneAssembly& a) const
 {
-  return "moving force: " + number_to_string(a.scene.moving_force) +
-         " N at v_p = " + number_to_string(a.motion.speed) + " m/s, " + a.load_shape();
+  std::string line;
+  for (const ScenePantograph& p : a.pantographs)
+    if (p.data->is_moving_force())
+      line += (line.empty() ? "" : "; ") + std::string("moving force: ") +
+              number_to_string(p.data->moving_force) +
+              " N at v_p = " + number_to_string(p.motion.speed) + " m/s, " +
+              a.load_shape();
+  return line;
 }
 } // namespace pantocat

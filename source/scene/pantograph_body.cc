@@ -14,14 +14,23 @@ bool PantographBody::enabled(const SceneParameters& scene) const
 
 void PantographBody::add_bodies(SceneAssembly& a) const
 {
-  BlockOperator op;
-  a.pantograph->assemble(op);
-  a.bodies.push_back(std::move(op));
+  for (const ScenePantograph& p : a.pantographs)
+    if (p.model)
+    {
+      BlockOperator op;
+      p.model->assemble(op);
+      op.name = p.block;
+      a.bodies.push_back(std::move(op));
+    }
 }
 
 std::string PantographBody::describe(const SceneAssembly& a) const
 {
-  return "pantograph: " + a.pantograph->name() + " model, " +
-         std::to_string(a.pantograph->n_dofs()) + " unknowns";
+  std::string line;
+  for (const ScenePantograph& p : a.pantographs)
+    if (p.model)
+      line += (line.empty() ? "" : "; ") + p.block + ": " + p.model->name() +
+              " model, " + std::to_string(p.model->n_dofs()) + " unknowns";
+  return line;
 }
 } // namespace pantocat

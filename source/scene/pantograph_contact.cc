@@ -1,3 +1,4 @@
+#include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/scene/pantograph_contact.h>
 
 namespace pantocat
@@ -15,29 +16,38 @@ bool PantographContact::enabled(const SceneParameters& scene) const
 void PantographContact::add_constraints(SceneAssembly& a) const
 {
   SemiDiscreteSystem& s = a.system;
-  const unsigned int pantograph = s.block("pantograph").first;
-  a.contact_index = s.n_constraints();
-  if (s.has_block("contact wire"))
+  for (ScenePantograph& p : a.pantographs)
   {
-    s.add_constraint(std::make_unique<ContactConstraint>(
-        a.space, *a.pantograph, s.block("contact wire").first, pantograph, a.motion,
-        a.scene.contact));
-    return;
+    if (!p.model)
+      continue;
+    SparseRow head = p.model->head_row();
+    head.shift(s.block(p.block).first);
+    p.contact_index = s.n_constraints();
+    const Constraint::Kind kind = p.data->contact;
+    if (s.has_block("contact wire"))
+    {
+      s.add_constraint(std::make_unique<ContactConstraint>(
+          p.contact, WirePointMarker(a.space, s.block("contact wire").first, p.motion),
+          head, kind));
+      continue;
+    }
+    // A rigid wire at height 0: Delta_p = 0 - b(q_MBS) = -B q_MBS.
+    for (double& b : head.value)
+      b = -b;
+    s.add_constraint(std::make_unique<FixedConstraint>(p.contact, kind, head, 0.));
   }
-  // A rigid wire at height 0: Delta_p = 0 - b(q_MBS) = -B q_MBS.
-  SparseRow row = a.pantograph->head_row();
-  row.shift(pantograph);
-  for (double& b : row.value)
-    b = -b;
-  s.add_constraint(
-      std::make_unique<FixedConstraint>("contact", a.scene.contact, row, 0.));
 }
 
 std::string PantographContact::describe(const SceneAssembly& a) const
 {
-  return std::string("contact: ") +
-         (a.scene.contact == Constraint::Kind::bilateral ? "bilateral" : "unilateral") +
-         (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
-                                                   : " (32), " + a.load_shape());
+  std::string line;
+  for (const ScenePantograph& p : a.pantographs)
+    if (p.model)
+      line += (line.empty() ? "" : "; ") + p.contact + ": " +
+              (p.data->contact == Constraint::Kind::bilateral ? "bilateral"
+                                                              : "unilateral") +
+              (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
+                                                        : " (32), " + a.load_shape());
+  return line;
 }
 } // namespace pantocat

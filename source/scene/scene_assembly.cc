@@ -1,9 +1,31 @@
 #include <pantocat/base/number_format.h>
+#include <pantocat/pantograph/pantograph_registry.h>
 #include <pantocat/scene/scene_assembly.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/space/catenary_discretisation.h>
 
 namespace pantocat
 {
+std::vector<ScenePantograph> make_scene_pantographs(const SceneParameters& scene)
+{
+  std::vector<ScenePantograph> list;
+  const std::size_t n = scene.pantographs.size();
+  for (std::size_t k = 0; k < n; ++k)
+  {
+    const PantographCase& data = scene.pantographs[k];
+    ScenePantograph p;
+    p.data = &data;
+    if (const PantographModelEntry* entry = find_pantograph_model(data.model))
+      p.model = entry->create(data.parameters);
+    p.motion = {data.parameters.initial_position, data.parameters.speed};
+    const std::string number = n == 1 ? "" : " " + std::to_string(k + 1);
+    p.block = "pantograph" + number;
+    p.contact = "contact" + number;
+    p.column_suffix = n == 1 ? "" : "[" + std::to_string(k + 1) + "]";
+    list.push_back(std::move(p));
+  }
+  return list;
+}
+
 BlockOperator* SceneAssembly::body(const std::string& name)
 {
   for (BlockOperator& b : bodies)

@@ -50,14 +50,17 @@ void assemble(SceneAssembly& a, const std::vector<const SceneEffect*>& effects)
 }
 } // namespace
 
-BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
-                       const CatenaryDiscretisation& space,
-                       const PantographModel* pantograph,
-                       const ContactPointMotion& motion)
+bool BuiltScene::has_contact() const
 {
-  if (scene.has_pantograph_body() != (pantograph != nullptr))
-    throw std::logic_error("build_scene: the pantograph model must be given exactly when "
-                           "the scene has a lumped-mass pantograph");
+  for (const ScenePantograph& p : pantographs)
+    if (p.has_contact())
+      return true;
+  return false;
+}
+
+BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
+                       const CatenaryDiscretisation& space)
+{
   const auto registered = registered_scene_effects();
   std::vector<const SceneEffect*> all, catenary_part;
   BuiltScene built;
@@ -73,16 +76,17 @@ BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& c
       catenary_part.push_back(e.get());
   }
 
-  SceneAssembly whole(scene, catenary, space, pantograph, motion);
+  const std::vector<ScenePantograph> pantographs = make_scene_pantographs(scene);
+  SceneAssembly whole(scene, catenary, space, pantographs);
   assemble(whole, all);
-  SceneAssembly static_part(scene, catenary, space, pantograph, motion);
+  SceneAssembly static_part(scene, catenary, space, pantographs);
   assemble(static_part, catenary_part);
 
   for (const SceneEffect* e : all)
     built.active_effects.push_back(e->describe(whole));
   built.system = std::move(whole.system);
   built.catenary_only = std::move(static_part.system);
-  built.contact_index = whole.contact_index;
+  built.pantographs = std::move(whole.pantographs);
   built.dropper_indices = whole.dropper_indices;
   return built;
 }

@@ -1,4 +1,6 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/pantograph/pantograph_registry.h>
 #include <pantocat/scene/scene_parameters.h>
 
 namespace pantocat
@@ -6,23 +8,59 @@ namespace pantocat
 using dealii::Patterns::Bool;
 using dealii::Patterns::Selection;
 
-const char* to_string(const PantographType type)
+namespace
 {
-  switch (type)
-  {
-  case PantographType::two_mass:
-    return "two-mass";
-  case PantographType::three_mass:
-    return "three-mass";
-  case PantographType::moving_force:
-    return "moving force";
-  case PantographType::absent:
-    break;
-  }
-  return "absent";
+const char* contact_name(const Constraint::Kind kind)
+{
+  return kind == Constraint::Kind::bilateral ? "bilateral" : "unilateral";
 }
 
-void SceneParameters::declare_parameters(dealii::ParameterHandler& prm)
+Constraint::Kind contact_kind(const std::string& name)
+{
+  return name == "bilateral" ? Constraint::Kind::bilateral : Constraint::Kind::unilateral;
+}
+
+std::string pantograph_selection()
+{
+  return pantograph_model_selection() + "|moving force|absent";
+}
+
+std::string pantograph_subsection(const unsigned int k)
+{
+  return k == 1 ? "Pantograph" : "Pantograph " + std::to_string(k);
+}
+} // namespace
+
+bool PantographCase::has_body() const
+{
+  return find_pantograph_model(model) != nullptr;
+}
+
+std::string PantographCase::model_parameter() const
+{
+  return parameters.subsection == "Pantograph" ? "Scene/Pantograph"
+                                               : parameters.subsection + "/Model";
+}
+
+bool SceneParameters::has_pantograph_body() const
+{
+  for (const PantographCase& p : pantographs)
+    if (p.has_body())
+      return true;
+  return false;
+}
+
+bool SceneParameters::has_moving_force() const
+{
+  for (const PantographCase& p : pantographs)
+    if (p.is_moving_force())
+      return true;
+  return false;
+}
+
+void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
+                                         const unsigned int n_pantographs,
+                                         const PantographCase& first)
 {
   prm.enter_subsection("Scene");
   prm.declare_entry("Carrier", "elastic", Selection("elastic|rigid"),
@@ -52,12 +90,17 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Droppers", "unilateral", Selection("unilateral|bilateral|absent"),
                     "unilateral: droppers may slacken (Sec. 5.3, the paper's model); "
                     "bilateral: always taut, Eq. (4); absent: no droppers.");
-  prm.declare_entry("Pantograph", "two-mass",
-                    Selection("two-mass|three-mass|moving force|absent"),
-                    "two-mass: the lumped-mass model (12); three-mass: a chain of head, "
-                    "upper and lower frame (subsection Pantograph/Three-mass model); "
-                    "moving force: a prescribed constant force (Moving force) moving "
-                    "with v_p; absent: the catenary alone.");
+  prm.declare_entry("Number of pantographs", "1", dealii::Patterns::Integer(1, 1000),
+                    "Pantographs running on the catenary: pantograph 1 is Pantograph, "
+                    "Contact and Moving force here with subsection Pantograph; "
+                    "pantograph k >= 2 is subsection Pantograph k (entries Model, "
+                    "Contact, Moving force and those of subsection Pantograph), "
+                    "whose entries not given take pantograph 1's values.");
+  prm.declare_entry("Pantograph", "two-mass", Selection(pantograph_selection()),
+                    "Model of pantograph 1. two-mass: the lumped-mass model (12); "
+                    "three-mass: a chain of head, upper and lower frame (subsection "
+                    "Pantograph/Three-mass model); moving force: a prescribed constant "
+                    "force (Moving force) moving with v_p; absent: no pantograph.");
   prm.declare_entry("Contact", "unilateral", Selection("unilateral|bilateral"),
                     "Pantograph-wire contact (32): unilateral (contact may be lost) or "
                     "bilateral (always in contact, a smooth case).");
@@ -75,6 +118,33 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Initial amplitude", "0.01", dealii::Patterns::Double(),
                     "A of the sine mode [m].");
   prm.leave_subsection();
+  PantographParameters::declare_parameters(prm);
+  for (unsigned int k = 2; k <= n_pantographs; ++k)
+    declare_further_pantograph(prm, pantograph_subsection(k), first);
+}
+
+void SceneParameters::declare_further_pantograph(dealii::ParameterHandler& prm,
+                                                 const std::string& subsection,
+                                                 const PantographCase& first)
+{
+  PantographParameters::declare_parameters(prm, subsection, first.parameters);
+  prm.enter_subsection(subsection);
+  prm.declare_entry("Model", first.model, Selection(pantograph_selection()),
+                    "As Scene/Pantograph, for this pantograph.");
+  prm.declare_entry("Contact", contact_name(first.contact),
+                    Selection("unilateral|bilateral"),
+                    "As Scene/Contact, for this pantograph.");
+  prm.declare_entry("Moving force", number_to_string(first.moving_force),
+                    dealii::Patterns::Double(), "As Scene/Moving force, for this pantograph.");
+  prm.leave_subsection();
+}
+
+unsigned int SceneParameters::number_of_pantographs(dealii::ParameterHandler& prm)
+{
+  prm.enter_subsection("Scene");
+  const unsigned int n = prm.get_integer("Number of pantographs");
+  prm.leave_subsection();
+  return n;
 }
 
 void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -94,14 +164,10 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
   droppers = d == "absent"      ? DropperModel::absent
              : d == "bilateral" ? DropperModel::bilateral
                                 : DropperModel::unilateral;
-  const std::string p = prm.get("Pantograph");
-  pantograph = p == "three-mass"     ? PantographType::three_mass
-               : p == "moving force" ? PantographType::moving_force
-               : p == "absent"       ? PantographType::absent
-                                     : PantographType::two_mass;
-  contact = prm.get("Contact") == "bilateral" ? Constraint::Kind::bilateral
-                                              : Constraint::Kind::unilateral;
-  moving_force = prm.get_double("Moving force");
+  pantographs.assign(prm.get_integer("Number of pantographs"), PantographCase{});
+  pantographs[0].model = prm.get("Pantograph");
+  pantographs[0].contact = contact_kind(prm.get("Contact"));
+  pantographs[0].moving_force = prm.get_double("Moving force");
   const std::string s = prm.get("Initial state");
   initial_shape = s == "rest"        ? InitialShape::rest
                   : s == "sine mode" ? InitialShape::sine_mode
@@ -109,6 +175,18 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
   initial_mode = prm.get_integer("Initial mode");
   initial_amplitude = prm.get_double("Initial amplitude");
   prm.leave_subsection();
+  pantographs[0].parameters.parse_parameters(prm);
+  for (unsigned int k = 2; k <= pantographs.size(); ++k)
+  {
+    PantographCase& p = pantographs[k - 1];
+    const std::string subsection = pantograph_subsection(k);
+    p.parameters.parse_parameters(prm, subsection);
+    prm.enter_subsection(subsection);
+    p.model = prm.get("Model");
+    p.contact = contact_kind(prm.get("Contact"));
+    p.moving_force = prm.get_double("Moving force");
+    prm.leave_subsection();
+  }
 }
 
 void SceneParameters::check() const
@@ -122,11 +200,11 @@ void SceneParameters::check() const
             "false",
             "with Contact wire bending = false the elastic contact wire has no "
             "stiffness; enable one of them or set Contact wire = rigid");
-  require(
-      !(pantograph == PantographType::moving_force && contact_wire == WireModel::rigid),
-      "Scene/Pantograph", "moving force",
-      "a prescribed force on a rigid contact wire does nothing; allowed with Contact "
-      "wire = elastic");
+  for (const PantographCase& p : pantographs)
+    require(!(p.is_moving_force() && contact_wire == WireModel::rigid),
+            p.model_parameter(), "moving force",
+            "a prescribed force on a rigid contact wire does nothing; allowed with "
+            "Contact wire = elastic");
   require(!(carrier == WireModel::rigid && contact_wire == WireModel::rigid &&
             droppers != DropperModel::absent),
           "Scene/Droppers",

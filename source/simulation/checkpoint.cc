@@ -1,5 +1,5 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/base/serialization.h>
+#include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/simulation/checkpoint.h>
 
 #include <boost/archive/archive_exception.hpp>

@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/checkpoint_parameters.h>
+#include <pantocat/time/integrator_registry.h>
 
 namespace pantocat
 {
@@ -31,14 +32,14 @@ void CheckpointParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
 }
 
-void CheckpointParameters::check(const IntegratorType integrator) const
+void CheckpointParameters::check(const std::string& integrator) const
 {
-  if (integrator != IntegratorType::ida)
+  if (integrator_entry(integrator).writes_checkpoints)
     return;
   require(interval == 0, "Checkpoint/Interval", interval,
-          "must be 0 with Integrator = ida (IDA's history lives inside SUNDIALS and "
-          "cannot be saved)");
+          "must be 0 with Integrator = " + integrator + " (its history lives inside " +
+              "the solver and cannot be saved)");
   require(!resume, "Checkpoint/Resume from checkpoint", "true",
-          "not possible with Integrator = ida (IDA writes no checkpoints)");
+          "not possible with Integrator = " + integrator + " (it writes no checkpoints)");
 }
 } // namespace pantocat

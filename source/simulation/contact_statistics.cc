@@ -1,7 +1,7 @@
 #include <pantocat/analysis/butterworth_low_pass.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/simulation/contact_statistics.h>
-#include <pantocat/system/catenary_system_builder.h>
+#include <pantocat/space/catenary_discretisation.h>
 
 #include <algorithm>
 #include <cmath>
@@ -66,8 +66,9 @@ ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
 
 ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
                                      const CatenaryDiscretisation& d,
-                                     const SemiDiscreteSystem& system)
-    : parameters(parameters)
+                                     const SemiDiscreteSystem& system,
+                                     const unsigned int pantograph)
+    : parameters(parameters), pantograph(pantograph)
 {
   if (!system.has_block("contact wire")) // a rigid wire: no uplift to measure
     return;
@@ -77,7 +78,7 @@ ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
 
 void ContactStatistics::start(const SimulationLayout& layout)
 {
-  contact_index = layout.contact_index;
+  contact_index = layout.pantographs.at(pantograph).contact;
   if (layout.dropper_indices.empty()) // a scene without droppers
     dropper_rows.clear();
   recorded = {};
@@ -88,7 +89,7 @@ void ContactStatistics::start(const SimulationLayout& layout)
 void ContactStatistics::observe_state(const TimePoint& point, const DynamicState& state)
 {
   recorded.t.push_back(point.t);
-  recorded.x_p.push_back(point.x_p);
+  recorded.x_p.push_back(point.x_p[pantograph]);
   recorded.lambda_p.push_back(point.lambda[contact_index]);
   recorded.in_contact.push_back(point.active[contact_index]);
   const bool first = initial_height.empty();
@@ -116,7 +117,7 @@ void ContactStatistics::save(CheckpointOut& archive) const
 
 void ContactStatistics::resume(const SimulationLayout& layout, CheckpointIn& archive)
 {
-  contact_index = layout.contact_index;
+  contact_index = layout.pantographs.at(pantograph).contact;
   archive >> recorded.t >> recorded.x_p >> recorded.lambda_p >> recorded.in_contact >>
       initial_height >> max_uplift;
 }

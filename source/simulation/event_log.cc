@@ -16,7 +16,7 @@ void EventLog::observe(const TimePoint& p)
     for (unsigned int i = 0; i < p.active.size(); ++i)
       if (p.active[i] != previous[i])
       {
-        const bool contact = i == layout.contact_index;
+        const bool contact = layout.contact_owner(i) != nullptr;
         const char* kind = contact ? (p.active[i] ? "contact_return" : "contact_loss")
                                    : (p.active[i] ? "dropper_taut" : "dropper_slack");
         list.push_back({p.t, layout.constraint_names[i], kind});

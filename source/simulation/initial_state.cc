@@ -46,32 +46,38 @@ DynamicState zero_state(const SemiDiscreteSystem& system)
 }
 } // namespace
 
-DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
-                                      const SemiDiscreteSystem& coupled,
-                                      const PantographModel* pantograph,
-                                      const unsigned int contact_index,
-                                      const double contact_force, const double offset)
+StaticEquilibrium static_catenary(const SemiDiscreteSystem& catenary_only,
+                                   const SemiDiscreteSystem& coupled,
+                                   const std::vector<InitialContact>& contacts)
 {
   const unsigned int n_catenary = catenary_only.n_dofs();
-  const bool has_contact = contact_index != dealii::numbers::invalid_unsigned_int;
+  // The time-dependent loads at t = 0 and every lambda_p(0) F_w(0)^T: the
+  // wire part of each contact's G.
+  dealii::Vector<double> f0(coupled.n_dofs()), extra(n_catenary);
+  coupled.load_at(0., f0);
+  for (unsigned int i = 0; i < n_catenary; ++i)
+    extra(i) = f0(i) - coupled.load(i);
   ConstraintState rows;
-  if (has_contact)
-    coupled.constraints[contact_index]->evaluate(0., rows);
+  for (const InitialContact& c : contacts)
+  {
+    coupled.constraints[c.constraint]->evaluate(0., rows, 0);
+    for (std::size_t k = 0; k < rows.G.size(); ++k)
+      if (rows.G.index[k] < n_catenary)
+        extra(rows.G.index[k]) += c.force * rows.G.value[k];
+  }
+  return solve_static_equilibrium(catenary_only, extra);
+}
 
-  // 1. The catenary at rest under its time-dependent loads at t = 0 and
-  //    lambda_p(0): the wire part of G is F_w(0).
+DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
+                                      const SemiDiscreteSystem& coupled,
+                                      const std::vector<InitialContact>& contacts)
+{
+  const unsigned int n_catenary = catenary_only.n_dofs();
+  // 1. The catenary at rest under its loads at t = 0 and every lambda_p(0).
   DynamicState s = zero_state(coupled);
   if (n_catenary > 0)
   {
-    dealii::Vector<double> f0(coupled.n_dofs()), extra(n_catenary);
-    coupled.load_at(0., f0);
-    for (unsigned int i = 0; i < n_catenary; ++i)
-      extra(i) = f0(i) - coupled.load(i);
-    if (has_contact)
-      for (std::size_t k = 0; k < rows.G.size(); ++k)
-        if (rows.G.index[k] < n_catenary)
-          extra(rows.G.index[k]) += contact_force * rows.G.value[k];
-    const StaticEquilibrium rest = solve_static_equilibrium(catenary_only, extra);
+    const StaticEquilibrium rest = static_catenary(catenary_only, coupled, contacts);
     for (unsigned int i = 0; i < n_catenary; ++i)
       s.q(i) = rest.q(i);
     for (unsigned int i = 0; i < rest.multipliers.size(); ++i)
@@ -81,25 +87,27 @@ DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
     }
   }
 
-  if (pantograph != nullptr && has_contact)
+  ConstraintState rows;
+  for (const InitialContact& c : contacts)
   {
     // 2. Head position, velocity and acceleration from g = 0, dg/dt = 0,
     //    d2g/dt2 = 0 with the catenary at rest: B x_MBS = (wire part of the rows) q + z.
+    coupled.constraints[c.constraint]->evaluate(0., rows);
     const double head_position = rows.G.dot(s.q) + rows.z; // pantograph entries still 0
     const double head_velocity = rows.G_t.dot(s.q) + rows.z_t;
     const double head_acceleration = rows.G_tt.dot(s.q) + rows.z_tt;
 
     // 3. The pantograph's own equations complete its state.
     dealii::Vector<double> q_mbs, v_mbs;
-    pantograph->consistent_state(head_position, head_velocity, head_acceleration,
-                                 contact_force, offset, q_mbs, v_mbs);
-    const DofBlock& block = coupled.block("pantograph");
+    c.model->consistent_state(head_position, head_velocity, head_acceleration, c.force,
+                              c.offset, q_mbs, v_mbs);
+    const DofBlock& block = coupled.block(c.block);
     for (unsigned int i = 0; i < block.size; ++i)
     {
       s.q(block.first + i) = q_mbs(i);
       s.v(block.first + i) = v_mbs(i);
     }
-    s.lambda[contact_index] = contact_force;
+    s.lambda[c.constraint] = c.force;
   }
 
   // 4. Accelerations of the whole system.
@@ -114,7 +122,7 @@ DynamicState shaped_initial_state(const SemiDiscreteSystem& system,
   DynamicState s = zero_state(system);
   if (scene.initial_shape == InitialShape::sine_mode)
   {
-    const double k = scene.initial_mode * M_PI / space.catenary_parameters().span;
+    const double k = scene.initial_mode * M_PI / space.catenary_parameters().length();
     const double A = scene.initial_amplitude;
     dealii::Vector<double> q_w;
     space.interpolate(

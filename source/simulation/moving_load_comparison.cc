@@ -1,6 +1,8 @@
 #include <pantocat/base/serialization.h>
 #include <pantocat/simulation/moving_load_comparison.h>
 
+#include <optional>
+
 #include <algorithm>
 #include <cmath>
 
@@ -40,5 +42,21 @@ void MovingLoadComparison::observe(const TimePoint& point)
         std::max(result[j].max_error, std::abs(point.probes[j] - reference));
     result[j].max_reference = std::max(result[j].max_reference, std::abs(reference));
   }
+}
+
+MovingLoadSeries moving_load_series(const Case& c)
+{
+  WireParameters wire = c.catenary.contact_wire;
+  if (!c.scene.contact_wire_tension)
+    wire.tension = 0.;
+  if (!c.scene.contact_wire_bending)
+    wire.bending_stiffness = 0.;
+  std::optional<SmoothedDelta> delta;
+  if (c.discretisation.load_shape == LoadShape::smoothed_delta)
+    delta.emplace(c.discretisation.load_half_width);
+  const PantographCase& load = c.scene.pantographs.front();
+  return MovingLoadSeries(wire, c.catenary.length(), load.moving_force,
+                          {load.parameters.initial_position, load.parameters.speed},
+                          delta);
 }
 } // namespace pantocat

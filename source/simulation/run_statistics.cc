@@ -6,26 +6,44 @@
 
 namespace pantocat
 {
+void RunStatistics::ForceStatistics::add(const double f)
+{
+  max = std::max(max, f);
+  min = std::min(min, f);
+  // Welford's update: no cancellation in the variance.
+  ++count;
+  const double delta = f - mean;
+  mean += delta / count;
+  m2 += delta * (f - mean);
+}
+
+double RunStatistics::ForceStatistics::std() const
+{
+  return count > 1 ? std::sqrt(m2 / count) : 0.;
+}
+
+const RunStatistics::ForceStatistics& RunStatistics::first_contact() const
+{
+  static const ForceStatistics none;
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+      return forces[k];
+  return none;
+}
+
 void RunStatistics::start(const SimulationLayout& l)
 {
   layout = l;
+  forces.assign(l.pantographs.size(), {});
   intervals.assign(l.constraint_names.size(), {});
   open_since.assign(l.constraint_names.size(), std::nan(""));
 }
 
 void RunStatistics::observe(const TimePoint& p)
 {
-  if (layout.has_contact())
-  {
-    const double f = p.lambda[layout.contact_index];
-    max_force = std::max(max_force, f);
-    min_force = std::min(min_force, f);
-    // Welford's update: no cancellation in the variance.
-    ++count;
-    const double delta = f - mean;
-    mean += delta / count;
-    m2 += delta * (f - mean);
-  }
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+      forces[k].add(p.lambda[layout.pantographs[k].contact]);
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
   unsigned int slack = 0;
@@ -56,16 +74,6 @@ void RunStatistics::finish()
     }
 }
 
-double RunStatistics::contact_force_mean() const
-{
-  return mean;
-}
-
-double RunStatistics::contact_force_std() const
-{
-  return count > 1 ? std::sqrt(m2 / count) : 0.;
-}
-
 std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() const
 {
   std::vector<std::vector<Interval>> result;
@@ -76,19 +84,29 @@ std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() cons
 
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
-  return layout.has_contact() ? intervals[layout.contact_index] : std::vector<Interval>{};
+  const auto contacts = layout.contacts();
+  return contacts.empty() ? std::vector<Interval>{} : intervals[contacts[0]->contact];
+}
+
+std::vector<Interval> RunStatistics::contact_loss_intervals(const unsigned int k) const
+{
+  const PantographLayout& p = layout.pantographs[k];
+  return p.has_contact() ? intervals[p.contact] : std::vector<Interval>{};
 }
 
 void RunStatistics::save(CheckpointOut& archive) const
 {
-  archive << max_force << min_force << mean << m2 << count << max_pos << max_vel << last_t
-          << intervals << open_since << max_slack;
+  for (const ForceStatistics& f : forces)
+    archive << f.max << f.min << f.mean << f.m2 << f.count;
+  archive << max_pos << max_vel << last_t << intervals << open_since << max_slack;
 }
 
 void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
 {
   layout = l;
-  archive >> max_force >> min_force >> mean >> m2 >> count >> max_pos >> max_vel >>
-      last_t >> intervals >> open_since >> max_slack;
+  forces.assign(l.pantographs.size(), {});
+  for (ForceStatistics& f : forces)
+    archive >> f.max >> f.min >> f.mean >> f.m2 >> f.count;
+  archive >> max_pos >> max_vel >> last_t >> intervals >> open_since >> max_slack;
 }
 } // namespace pantocat

@@ -45,7 +45,7 @@ std::vector<double> CatenaryDiscretisation::grid_points() const
 {
   std::vector<double> x(n_intervals() + 1);
   for (unsigned int i = 0; i <= n_intervals(); ++i)
-    x[i] = catenary.span * i / n_intervals();
+    x[i] = catenary.length() * i / n_intervals();
   return x;
 }
 
@@ -56,5 +56,15 @@ create_catenary_discretisation(const CatenaryParameters& catenary,
   if (discretisation.method == SpaceMethod::fem)
     return std::make_unique<FemCatenary>(catenary, discretisation);
   return std::make_unique<FdmCatenary>(catenary, discretisation);
+}
+SparseRow wire_point_row(const CatenaryDiscretisation& d,
+                         const SemiDiscreteSystem& system, const Wire wire,
+                         const double x)
+{
+  if (!system.has_block(block_name(wire)))
+    return {};
+  SparseRow row = d.point_row(wire, x);
+  row.shift(system.block(block_name(wire)).first);
+  return row;
 }
 } // namespace pantocat

@@ -20,7 +20,7 @@ FemCatenary::FemCatenary(const CatenaryParameters& catenary,
     : CatenaryDiscretisation(catenary, discretisation), carrier_fe(1)
 {
   dealii::GridGenerator::subdivided_hyper_cube(triangulation, discretisation.n_intervals,
-                                               0., catenary.span);
+                                               0., catenary.length());
   for (const auto& cell : triangulation.active_cell_iterators())
     cells.push_back(cell);
   std::sort(cells.begin(), cells.end(),
@@ -229,7 +229,7 @@ void FemCatenary::full_load_row(const double x_c, const unsigned int k,
   }
   const double eps = delta.epsilon();
   const unsigned int first = cell_index(std::max(0., x_c - eps));
-  const unsigned int last = cell_index(std::min(catenary.span, x_c + eps));
+  const unsigned int last = cell_index(std::min(catenary.length(), x_c + eps));
   std::vector<double> local(4);
   for (unsigned int c = first; c <= last; ++c)
   {

@@ -65,7 +65,7 @@ std::vector<Column> columns(const StudyParameters& s, const bool refines_space)
 }
 } // namespace
 
-ConvergenceStudy::ConvergenceStudy(const ProgramParameters& p) : parameters(p), plan_(p)
+ConvergenceStudy::ConvergenceStudy(const StudyCase& p) : parameters(p), plan_(p)
 {
 }
 
@@ -73,7 +73,7 @@ std::vector<double> ConvergenceStudy::refinement_parameters(const unsigned int m
 {
   std::vector<double> s;
   for (const Row& r : rows_[m])
-    s.push_back(plan_.refines_space() ? parameters.catenary.span / r.run.n_intervals
+    s.push_back(plan_.refines_space() ? parameters.catenary.length() / r.run.n_intervals
                                       : r.run.time_step);
   return s;
 }
@@ -115,7 +115,7 @@ void ConvergenceStudy::run()
       {
         row.lambda_p = compare_series(o.t, o.lambda_p, ref.t, ref.lambda_p);
         if (!o.wire.empty())
-          row.wire = compare_profiles(o.wire, ref.wire, parameters.catenary.span);
+          row.wire = compare_profiles(o.wire, ref.wire, parameters.catenary.length());
         row.carrier_frequency_error = std::abs(o.f_min_carrier - ref.f_min_carrier);
         row.contact_wire_frequency_error =
             std::abs(o.f_min_contact_wire - ref.f_min_contact_wire);
@@ -216,7 +216,7 @@ void ConvergenceStudy::write(std::ostream& out) const
     for (std::size_t k = 0; k < rows.size(); ++k)
     {
       const Row& r = rows[k];
-      csv << to_string(r.run.discretisation) << ',' << to_string(r.run.integrator) << ','
+      csv << to_string(r.run.discretisation) << ',' << r.run.integrator << ','
           << r.run.n_intervals << ',' << r.run.time_step;
       for (std::size_t c = 0; c < cols.size(); ++c)
       {
@@ -257,7 +257,7 @@ void ConvergenceStudy::write(std::ostream& out) const
   out << " to " << dir << '\n';
 }
 
-void run_convergence_study(const ProgramParameters& parameters, std::ostream& out)
+void run_convergence_study(const StudyCase& parameters, std::ostream& out)
 {
   ConvergenceStudy study(parameters);
   const RunDistribution distribution;

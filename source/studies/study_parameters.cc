@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/studies/study_parameters.h>
+#include <pantocat/time/integrator_registry.h>
 
 #include <deal.II/base/utilities.h>
 
@@ -25,7 +26,7 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Discretisations", "", List(Selection("fem|fdm"), 0),
                     "Space discretisations to study (each with every integrator); "
                     "empty: Discretisation/Method.");
-  prm.declare_entry("Integrators", "", List(Selection("half-explicit|bdf2"), 0),
+  prm.declare_entry("Integrators", "", List(Selection(integrator_selection()), 0),
                     "Time integrators to study; empty: Time integration/Integrator. "
                     "Half-explicit runs with dt above 2/omega_max are skipped and "
                     "reported.");
@@ -35,7 +36,7 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "precision mode).");
   prm.declare_entry("Reference discretisation", "fem", Selection("fem|fdm"),
                     "Discretisation of the separate reference run.");
-  prm.declare_entry("Reference integrator", "bdf2", Selection("half-explicit|bdf2"),
+  prm.declare_entry("Reference integrator", "bdf2", Selection(integrator_selection()),
                     "Integrator of the separate reference run.");
   prm.declare_entry("Reference number of intervals", "1000", dealii::Patterns::Integer(1),
                     "N+1 of the separate reference run.");
@@ -73,16 +74,13 @@ void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
     discretisations.push_back(space_method_from_string(s));
   integrators.clear();
   for (const auto& s : split_string_list(prm.get("Integrators")))
-    integrators.push_back(s == "bdf2" ? IntegratorType::bdf2
-                                      : IntegratorType::half_explicit);
+    integrators.push_back(s);
   all_combinations = prm.get("Refinements") == "all combinations";
   reference = prm.get("Reference") == "separate run" ? StudyReference::separate_run
                                                      : StudyReference::finest_run;
   reference_discretisation =
       space_method_from_string(prm.get("Reference discretisation"));
-  reference_integrator = prm.get("Reference integrator") == "bdf2"
-                             ? IntegratorType::bdf2
-                             : IntegratorType::half_explicit;
+  reference_integrator = prm.get("Reference integrator");
   reference_n_intervals = prm.get_integer("Reference number of intervals");
   reference_time_step = prm.get_double("Reference time step");
   const std::string q = prm.get("Quantities");

@@ -7,7 +7,7 @@
 
 namespace pantocat
 {
-StudyPlan::StudyPlan(const ProgramParameters& p)
+StudyPlan::StudyPlan(const StudyCase& p)
 {
   const StudyParameters& s = p.study;
   std::vector<unsigned int> n = s.n_intervals;
@@ -30,7 +30,7 @@ StudyPlan::StudyPlan(const ProgramParameters& p)
   dt.resize(n_refinements_, dt.back());
 
   std::vector<SpaceMethod> discretisations = s.discretisations;
-  std::vector<IntegratorType> integrators = s.integrators;
+  std::vector<std::string> integrators = s.integrators;
   if (discretisations.empty())
     discretisations.push_back(p.discretisation.method);
   if (integrators.empty())
@@ -41,10 +41,10 @@ StudyPlan::StudyPlan(const ProgramParameters& p)
     DiscretisationParameters d = p.discretisation;
     d.method = method;
     d.n_intervals = n_intervals;
-    d.check(p.catenary.span);
+    d.check(p.catenary.length());
   };
   for (const SpaceMethod d : discretisations)
-    for (const IntegratorType i : integrators)
+    for (const std::string& i : integrators)
     {
       ++n_methods_;
       for (unsigned int k = 0; k < n_refinements_; ++k)

@@ -1,7 +1,7 @@
 #include <pantocat/analysis/eigenfrequency_analysis.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/scene/scene_builder.h>
-#include <pantocat/simulation/dynamic_simulation.h>
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/studies/study_run.h>
 
 #include <set>
@@ -15,7 +15,7 @@ namespace pantocat
 {
 std::string StudyRun::method() const
 {
-  return std::string(to_string(discretisation)) + " + " + to_string(integrator);
+  return std::string(to_string(discretisation)) + " + " + integrator;
 }
 
 std::string StudyRun::label() const
@@ -25,10 +25,9 @@ std::string StudyRun::label() const
   return s.str();
 }
 
-ProgramParameters StudyRun::parameters(const ProgramParameters& base) const
+Case StudyRun::parameters(const Case& base) const
 {
-  ProgramParameters p = base;
-  p.mode = RunMode::dynamics;
+  Case p = base;
   p.discretisation.method = discretisation;
   p.discretisation.n_intervals = n_intervals;
   p.time_integration.integrator = integrator;
@@ -82,7 +81,10 @@ class ContactForceRecorder : public SimulationObserver
 {
 public:
   explicit ContactForceRecorder(RunOutcome& outcome) : outcome(outcome) {}
-  void start(const SimulationLayout& layout) override { contact = layout.contact_index; }
+  void start(const SimulationLayout& layout) override
+  {
+    contact = layout.contacts().at(0)->contact;
+  }
   void observe(const TimePoint& p) override
   {
     outcome.t.push_back(p.t);
@@ -131,23 +133,20 @@ RunOutcome RunOutcome::unpack(const std::vector<char>& b, std::size_t& pos)
   return o;
 }
 
-void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameters& base)
+void check_study_grids(const std::vector<StudyRun>& runs, const Case& base)
 {
   std::set<std::pair<std::string, unsigned int>> checked;
   for (const StudyRun& run : runs)
   {
-    const ProgramParameters p = run.parameters(base);
+    const Case p = run.parameters(base);
     if (!checked
              .insert({to_string(p.discretisation.method), p.discretisation.n_intervals})
              .second)
       continue;
     try
     {
-      // The run's own scene: its droppers must find their nodes on this grid.
-      const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
-      const auto pantograph = create_pantograph(p.scene, p.pantograph);
-      build_scene(p.scene, p.catenary, *space, pantograph.get(),
-                  {p.pantograph.initial_position, p.pantograph.speed});
+      // The run's own case: its droppers must find their nodes on this grid.
+      const CaseRunner runner(p);
     }
     catch (const InputError& e)
     {
@@ -156,29 +155,30 @@ void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameter
   }
 }
 
-RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
+RunOutcome execute_study_run(const StudyRun& run, const Case& base,
                              const RunRequest& request)
 {
   RunOutcome outcome;
-  const ProgramParameters p = run.parameters(base);
+  const Case p = run.parameters(base);
   const std::clock_t start = std::clock();
-  DynamicSimulation simulation(p);
-  if (run.integrator == IntegratorType::half_explicit &&
-      run.time_step > simulation.explicit_stability_limit())
+  CaseRunner runner(p);
+  if (integrator_entry(run.integrator).explicit_step_limit &&
+      run.time_step > runner.explicit_stability_limit())
   {
     std::ostringstream m;
     m << "dt = " << run.time_step
       << " s is above the stability limit 2/omega_max = " << std::setprecision(3)
-      << simulation.explicit_stability_limit() << " s of the half-explicit method";
+      << runner.explicit_stability_limit() << " s of the " << run.integrator
+      << " method";
     outcome.status = RunOutcome::Status::skipped;
     outcome.message = m.str();
     return outcome;
   }
   ContactForceRecorder recorder(outcome);
-  DynamicSimulation::Result result;
+  CaseRunner::Result result;
   try
   {
-    result = simulation.run({&recorder});
+    result = runner.run({&recorder});
   }
   catch (const SimulationError& e)
   {
@@ -190,19 +190,12 @@ RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
   outcome.cpu_seconds = cpu_seconds_since(start);
   outcome.steps = result.integrator.steps;
 
-  if (request.wire_samples > 0)
-  {
-    const DofBlock& block = simulation.system().block("contact wire");
-    dealii::Vector<double> q(block.size);
-    for (unsigned int i = 0; i < block.size; ++i)
-      q(i) = result.final_state.q(block.first + i);
-    const double span = p.catenary.span;
-    for (unsigned int j = 0; j <= request.wire_samples; ++j)
-      outcome.wire.push_back(simulation.discretisation().displacement(
-          Wire::contact_wire, q, span * j / request.wire_samples));
-  }
+  const double length = p.catenary.length();
+  for (unsigned int j = 0; request.wire_samples > 0 && j <= request.wire_samples; ++j)
+    outcome.wire.push_back(runner.contact_wire_displacement(
+        result.final_state.q, length * j / request.wire_samples));
   if (request.eigenfrequencies)
-    for (const auto& f : compute_extreme_frequencies(simulation.discretisation()))
+    for (const auto& f : compute_extreme_frequencies(runner.discretisation()))
       (f.subsystem == "carrier" ? outcome.f_min_carrier : outcome.f_min_contact_wire) =
           f.f_min_hz;
   return outcome;

@@ -22,7 +22,7 @@ LogLogCurve& curve(std::vector<LogLogCurve>& curves, const std::string& title)
 }
 } // namespace
 
-WorkPrecisionStudy::WorkPrecisionStudy(const ProgramParameters& p)
+WorkPrecisionStudy::WorkPrecisionStudy(const StudyCase& p)
     : parameters(p), plan_(p)
 {
   require(p.study.reference == StudyReference::separate_run, "Study/Reference",
@@ -101,7 +101,7 @@ void WorkPrecisionStudy::write(std::ostream& out) const
     for (unsigned int k = 0; k < plan_.n_refinements(); ++k)
     {
       const Row& r = rows_[plan_.index(m, k)];
-      csv << to_string(r.run.discretisation) << ',' << to_string(r.run.integrator) << ','
+      csv << to_string(r.run.discretisation) << ',' << r.run.integrator << ','
           << r.run.n_intervals << ',' << std::setprecision(6) << r.run.time_step;
       out << std::left << std::setw(22) << method << std::right << std::setw(7)
           << r.run.n_intervals << std::setw(11) << std::setprecision(3)
@@ -165,7 +165,7 @@ void WorkPrecisionStudy::write(std::ostream& out) const
   out << " to " << dir << '\n';
 }
 
-void run_work_precision_study(const ProgramParameters& parameters, std::ostream& out)
+void run_work_precision_study(const StudyCase& parameters, std::ostream& out)
 {
   WorkPrecisionStudy study(parameters);
   const RunDistribution distribution;

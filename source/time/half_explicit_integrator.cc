@@ -1,5 +1,5 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/base/serialization.h>
+#include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -415,5 +415,18 @@ void HalfExplicitIntegrator::load(CheckpointIn& archive)
 {
   archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported;
   load_statistics(archive);
+}
+
+IntegratorEntry HalfExplicitIntegrator::registry_entry()
+{
+  IntegratorEntry e;
+  e.name = "half-explicit";
+  e.description = "the reversible half-explicit method (39)-(41) (explicit in the unknowns, stable for dt < 2/omega_max)";
+  e.explicit_step_limit = true;
+  e.writes_checkpoints = true;
+  e.locates_events = false;
+  e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
+  { return std::make_unique<HalfExplicitIntegrator>(system, p.time_step, p.max_active_set_iterations); };
+  return e;
 }
 } // namespace pantocat

@@ -1,38 +1,15 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integration_parameters.h>
 
 namespace pantocat
 {
-const char* to_string(const IntegratorType type)
-{
-  switch (type)
-  {
-  case IntegratorType::half_explicit:
-    return "half-explicit";
-  case IntegratorType::bdf2:
-    return "bdf2";
-  case IntegratorType::generalized_alpha:
-    return "generalized-alpha";
-  case IntegratorType::ida:
-    return "ida";
-  }
-  return "";
-}
-
 void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Time integration");
-  prm.declare_entry(
-      "Integrator", "half-explicit",
-      dealii::Patterns::Selection("half-explicit|bdf2|generalized-alpha|ida"),
-      "half-explicit: the reversible half-explicit method (39)-(41) (explicit "
-      "in the unknowns, stable for dt < 2/omega_max); bdf2: two-step BDF on "
-      "the stabilised index-2 formulation (38) with a Richardson start; "
-      "generalized-alpha: the Chung-Hulbert method for the constrained "
-      "second-order system (Arnold-Bruels form, positions on the constraints, "
-      "velocities projected onto the hidden constraints); ida: SUNDIALS IDA "
-      "(variable order and step) on the GGL index-2 system, events located "
-      "by root finding.");
+  prm.declare_entry("Integrator", "half-explicit",
+                    dealii::Patterns::Selection(integrator_selection()),
+                    integrator_documentation());
   prm.declare_entry("Time step", "5e-5", dealii::Patterns::Double(0.),
                     "Constant step size dt [s], > 0 (Sec. 6: 5e-5 s).");
   prm.declare_entry("Force step size", "false", dealii::Patterns::Bool(),
@@ -70,11 +47,7 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
 void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Time integration");
-  const std::string name = prm.get("Integrator");
-  integrator = name == "bdf2"                ? IntegratorType::bdf2
-               : name == "generalized-alpha" ? IntegratorType::generalized_alpha
-               : name == "ida"               ? IntegratorType::ida
-                                             : IntegratorType::half_explicit;
+  integrator = prm.get("Integrator");
   ida_relative_tolerance = prm.get_double("IDA relative tolerance");
   ida_absolute_tolerance = prm.get_double("IDA absolute tolerance");
   ida_linear_solver = prm.get("IDA linear solver");

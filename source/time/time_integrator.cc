@@ -1,9 +1,6 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/base/serialization.h>
-#include <pantocat/time/bdf2_integrator.h>
-#include <pantocat/time/generalized_alpha_integrator.h>
-#include <pantocat/time/half_explicit_integrator.h>
-#include <pantocat/time/ida_integrator.h>
+#include <pantocat/time/dynamic_state_serialization.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 namespace pantocat
@@ -11,21 +8,7 @@ namespace pantocat
 std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem& system,
                                                        const TimeIntegrationParameters& p)
 {
-  if (p.integrator == IntegratorType::bdf2)
-    return std::make_unique<Bdf2Integrator>(system, p.time_step,
-                                            p.max_active_set_iterations, p.linear_solver);
-  if (p.integrator == IntegratorType::ida)
-    return std::make_unique<IdaIntegrator>(
-        system, p.time_step, p.ida_relative_tolerance, p.ida_absolute_tolerance,
-        p.ida_linear_solver == "umfpack"        ? IdaLinearSolver::umfpack
-        : p.ida_linear_solver == "trilinos-klu" ? IdaLinearSolver::trilinos_klu
-                                                : IdaLinearSolver::sundials_klu);
-  if (p.integrator == IntegratorType::generalized_alpha)
-    return std::make_unique<GeneralizedAlphaIntegrator>(
-        system, p.time_step, p.rho_infinity, p.max_active_set_iterations,
-        p.linear_solver);
-  return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
-                                                  p.max_active_set_iterations);
+  return integrator_entry(p.integrator).create(system, p);
 }
 
 void TimeIntegrator::save(CheckpointOut&) const

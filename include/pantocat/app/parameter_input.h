@@ -15,10 +15,13 @@ namespace pantocat
  * (file, line, entry, allowed pattern) without its stack trace.
  */
 void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
-                         const std::vector<std::string>& overrides);
+                         const std::vector<std::string>& overrides,
+                         bool skip_undefined = false);
 
 /// Applies one override "Subsection/.../Name=value"; throws InputError.
-void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting);
+/// With @p skip_undefined, an entry that is not declared is ignored (a first pass).
+void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting,
+                              bool skip_undefined = false);
 
 /// The informative part of an exception's message, on one line.
 std::string one_line_message(const std::exception& e);

@@ -2,12 +2,13 @@
 
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/io/output_parameters.h>
-#include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
+#include <pantocat/simulation/case.h>
 #include <pantocat/simulation/checkpoint_parameters.h>
 #include <pantocat/simulation/guard_parameters.h>
 #include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/study_parameters.h>
 #include <pantocat/time/time_integration_parameters.h>
 
@@ -33,9 +34,8 @@ struct ProgramParameters
   RunMode mode = RunMode::static_equilibrium;
   std::vector<SpaceMethod> eigenfrequency_discretisations = {SpaceMethod::fem,
                                                              SpaceMethod::fdm};
-  SceneParameters scene;
+  SceneParameters scene; ///< with every pantograph (subsections Pantograph, Pantograph k)
   CatenaryParameters catenary;
-  PantographParameters pantograph;
   DiscretisationParameters discretisation;
   TimeIntegrationParameters time_integration;
   OutputParameters output;
@@ -46,8 +46,30 @@ struct ProgramParameters
   /// The parameters a checkpoint of this run must agree with (critical_parameters()).
   ParameterFingerprint fingerprint;
 
-  static void declare_parameters(dealii::ParameterHandler& prm);
+  /**
+   * Declares every entry; subsections Pantograph 2 .. Pantograph
+   * @p n_pantographs with the values of @p first_pantograph as defaults.
+   */
+  static void declare_parameters(dealii::ParameterHandler& prm,
+                                 unsigned int n_pantographs = 1,
+                                 const PantographCase& first_pantograph = {});
   /// Reads every subsection and cross-checks them; throws InputError.
   void parse_parameters(dealii::ParameterHandler& prm);
+
+  /// The case these parameters describe: physics and numerics, no output settings.
+  Case make_case() const;
+  /// The case of a study mode with the study's parameters and outputs.
+  StudyCase make_study_case() const;
+  /// Pantograph 1 (subsection Pantograph).
+  const PantographParameters& pantograph() const { return scene.pantographs[0].parameters; }
+  PantographParameters& pantograph() { return scene.pantographs[0].parameters; }
 };
+/**
+ * Reads @p file and the command-line @p overrides into @p prm (empty), in two
+ * passes: the first finds Scene/Number of pantographs and pantograph 1's
+ * values, the second declares Pantograph 2 .. n with those as defaults and
+ * reads strictly. Throws InputError with one line.
+ */
+void read_program_parameters(dealii::ParameterHandler& prm, const std::string& file,
+                             const std::vector<std::string>& overrides);
 } // namespace pantocat

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <pantocat/analysis/moving_load_series.h>
 #include <pantocat/app/program_parameters.h>
 
 #include <ostream>
@@ -24,7 +23,4 @@ void run_static_equilibrium(const ProgramParameters& parameters, std::ostream& o
  */
 void run_dynamics(const ProgramParameters& parameters, std::ostream& out);
 
-/// The series solution of a classical moving-load scene
-/// (SceneParameters::is_classical_moving_load()).
-MovingLoadSeries moving_load_series(const ProgramParameters& parameters);
 } // namespace pantocat

@@ -25,7 +25,7 @@ struct WireParameters
  */
 struct CatenaryParameters
 {
-  double span = 20.0;          ///< L [m]
+  double span = 20.0;          ///< L [m]: the length of the span (Catenary/Span)
   double support_height = 1.0; ///< l_c: carrier height at x = 0 and x = L [m], Eq. (3)
   double gravity = 9.81;       ///< g [m/s^2]
   WireParameters carrier = {0.6, 15000., 0., 0.03};
@@ -37,6 +37,15 @@ struct CatenaryParameters
   double clamp_mass = 0.25;                            ///< m_s [kg]
 
   unsigned int n_droppers() const { return dropper_positions.size(); }
+
+  /**
+   * The wires' domain is [0, length()]: the spans of the catenary end to end
+   * (one span in the paper's reduced model). Grids, positions and bounds
+   * refer to the domain; span lengths only to the geometry along it.
+   */
+  double length() const { return span; }
+  /// Positions of the supports along the domain: the ends of every span.
+  std::vector<double> support_positions() const { return {0., span}; }
 
   /// Gravity load of clamps and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2) g,
   /// Eq. (4).

@@ -8,14 +8,16 @@
 namespace pantocat
 {
 /**
- * PNG plots of a time series CSV with gnuplot (Debian's gnuplot-nox), as in
- * the paper's Figs. 6 and 7: lambda_p, the dropper forces, and the pantograph
- * coordinates over time. Writes the gnuplot script next to the PNG files, so
- * `gnuplot time_series.gp` redraws them. Returns false (and writes only the
- * script) if gnuplot is not installed.
+ * contact_force.png, dropper_forces.png and pantograph.png (Figs. 6 and 7)
+ * from time_series.csv, whose header is @p columns: each plot draws the named
+ * columns that exist (found by name, never by position). Writes
+ * time_series.gp and returns false (drawing nothing) if one of the three
+ * lists is empty or gnuplot fails.
  */
-bool plot_time_series(const std::string& directory, unsigned int n_droppers,
-                      const std::vector<std::string>& pantograph_coordinates,
+bool plot_time_series(const std::string& directory, const std::vector<std::string>& columns,
+                      const std::vector<std::string>& contact_forces,
+                      const std::vector<std::string>& dropper_forces,
+                      const std::vector<std::string>& coordinates,
                       const std::string& title);
 
 /**

@@ -4,6 +4,7 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -18,6 +19,9 @@ namespace pantocat
 class TimeSeriesWriter : public SimulationObserver
 {
 public:
+  /// The columns of time_series.csv for @p layout, in order (plots find them by name).
+  static std::vector<std::string> column_names(const SimulationLayout& layout);
+
   TimeSeriesWriter(const std::string& file, unsigned int every_n_points);
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint& point) override;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/space/block_operator.h>
+#include <pantocat/system/block_operator.h>
 #include <pantocat/system/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
@@ -32,6 +32,10 @@ public:
 
   /// Mass, damping, stiffness and the constant applied force of (10).
   virtual void assemble(BlockOperator& op) const = 0;
+
+  /// The static force F_0 that presses the pantograph upwards [N]: the scale of its
+  /// contact force (guards measure forces against it).
+  virtual double static_force() const = 0;
 
   /// B = db/dq_MBS (local numbering of q_MBS).
   virtual SparseRow head_row() const = 0;

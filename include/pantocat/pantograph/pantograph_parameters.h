@@ -52,8 +52,17 @@ struct PantographParameters
   /// End time t_e with x_p(t_e) = final position.
   double end_time() const { return (final_position - initial_position) / speed; }
 
+  /// The prm subsection these were read from ("Pantograph", "Pantograph 2", ...).
+  std::string subsection = "Pantograph";
+
+  /// Declares subsection @p subsection with @p defaults as the default values.
+  static void declare_parameters(dealii::ParameterHandler& prm,
+                                 const std::string& subsection,
+                                 const PantographParameters& defaults);
+  /// Declares subsection Pantograph with the benchmark's defaults (Sec. 2.2).
   static void declare_parameters(dealii::ParameterHandler& prm);
-  void parse_parameters(dealii::ParameterHandler& prm);
+  void parse_parameters(dealii::ParameterHandler& prm,
+                        const std::string& subsection = "Pantograph");
   /// Checks against the span and the load half-width; throws InputError.
   void check(double span, double load_half_width) const;
 };

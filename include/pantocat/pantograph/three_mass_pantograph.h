@@ -31,6 +31,7 @@ public:
   }
   void assemble(BlockOperator& op) const override;
   SparseRow head_row() const override;
+  double static_force() const override { return p.uplift_force; }
 
   /**
    * As for the two-mass model: w_1 = head position, w_2 = w_1 - offset, the

@@ -20,6 +20,7 @@ public:
   std::vector<std::string> coordinate_names() const override { return {"w_p1", "w_p2"}; }
   void assemble(BlockOperator& op) const override;
   SparseRow head_row() const override;
+  double static_force() const override { return p.uplift_force; }
 
   /**
    * Sec. 2.2: w_p1 = head position, w_p2 = w_p1 - offset (13); the head

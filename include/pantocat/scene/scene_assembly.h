@@ -1,12 +1,14 @@
 #pragma once
 
+#include <pantocat/base/contact_point_motion.h>
 #include <pantocat/catenary/catenary_parameters.h>
-#include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/pantograph/pantograph_model.h>
 #include <pantocat/scene/scene_parameters.h>
-#include <pantocat/space/block_operator.h>
 #include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/block_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
+
+#include <memory>
 
 #include <deal.II/base/numbers.h>
 
@@ -16,6 +18,32 @@
 namespace pantocat
 {
 /**
+ * One pantograph of a scene as the scene builds it: its data, its lumped-mass
+ * model (nullptr for a moving force or an absent pantograph), its motion and
+ * the names of its block and contact. With one pantograph the names are
+ * "pantograph" and "contact"; with several, "pantograph k" and "contact k".
+ */
+struct ScenePantograph
+{
+  const PantographCase* data = nullptr;
+  std::shared_ptr<const PantographModel> model;
+  ContactPointMotion motion;
+  std::string block;         ///< name of its block of unknowns
+  std::string contact;       ///< name of its contact constraint
+  std::string column_suffix; ///< "" with one pantograph, "[k]" with several
+  /// Index of its contact constraint in the system, or invalid_unsigned_int.
+  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+
+  bool has_contact() const
+  {
+    return contact_index != dealii::numbers::invalid_unsigned_int;
+  }
+};
+
+/// The pantographs of @p scene with their models made from the registry.
+std::vector<ScenePantograph> make_scene_pantographs(const SceneParameters& scene);
+
+/**
  * What the effects of a scene build together, in three phases (SceneEffect):
  * the bodies' operators, the terms added to them, then the semi-discrete
  * system (35) with its constraints and time-dependent loads.
@@ -23,28 +51,25 @@ namespace pantocat
 struct SceneAssembly
 {
   SceneAssembly(const SceneParameters& scene, const CatenaryParameters& catenary,
-                const CatenaryDiscretisation& space, const PantographModel* pantograph,
-                const ContactPointMotion& motion)
-      : scene(scene), catenary(catenary), space(space), pantograph(pantograph),
-        motion(motion)
+                const CatenaryDiscretisation& space,
+                std::vector<ScenePantograph> pantographs)
+      : scene(scene), catenary(catenary), space(space), pantographs(std::move(pantographs))
   {
   }
 
   const SceneParameters& scene;
   const CatenaryParameters& catenary;
   const CatenaryDiscretisation& space;
-  /// The lumped-mass pantograph of the scene, or nullptr.
-  const PantographModel* pantograph;
-  ContactPointMotion motion;
+  /// Every pantograph of the scene (the contact effect sets contact_index).
+  std::vector<ScenePantograph> pantographs;
 
   /// Phase 1 and 2: the operators of the bodies, in the order of the unknowns.
   std::vector<BlockOperator> bodies;
-  /// The body named @p name ("carrier", "contact wire", "pantograph"), or nullptr.
+  /// The body named @p name ("carrier", "contact wire", "pantograph", ...), or nullptr.
   BlockOperator* body(const std::string& name);
 
   /// Phase 3: the system, its blocks set from the bodies.
   SemiDiscreteSystem system;
-  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
   std::vector<unsigned int> dropper_indices;
 
   /// The data of @p wire (CatenaryParameters).

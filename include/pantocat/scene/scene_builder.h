@@ -20,31 +20,26 @@ struct BuiltScene
 {
   /// The system of the whole scene.
   SemiDiscreteSystem system;
-  /// The same without the pantograph's effects (same numbering of the
+  /// The same without the pantographs' effects (same numbering of the
   /// catenary's unknowns): the static problem of the initial state.
   SemiDiscreteSystem catenary_only;
-  /// Index of the pantograph-wire contact, or invalid_unsigned_int.
-  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+  /// Every pantograph with its model, block and contact.
+  std::vector<ScenePantograph> pantographs;
   std::vector<unsigned int> dropper_indices;
   /// One line per active effect (describe()).
   std::vector<std::string> active_effects;
   /// Names of the registered effects the scene leaves out.
   std::vector<std::string> inactive_effects;
 
-  bool has_contact() const
-  {
-    return contact_index != dealii::numbers::invalid_unsigned_int;
-  }
+  /// True if some pantograph is in contact with the wire.
+  bool has_contact() const;
 };
 
 /**
  * Builds the semi-discrete system of @p scene from its enabled effects only
- * (SceneEffect's three phases). @p pantograph is the lumped-mass model if the
- * scene has one (else nullptr). Throws InputError if the grid cannot carry
- * the droppers.
+ * (SceneEffect's three phases); the pantographs' models come from the
+ * registry. Throws InputError if the grid cannot carry the droppers.
  */
 BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
-                       const CatenaryDiscretisation& space,
-                       const PantographModel* pantograph,
-                       const ContactPointMotion& motion);
+                       const CatenaryDiscretisation& space);
 } // namespace pantocat

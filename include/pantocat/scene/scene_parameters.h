@@ -1,10 +1,12 @@
 #pragma once
 
+#include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/system/constraint.h>
 
 #include <deal.II/base/parameter_handler.h>
 
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -22,12 +24,27 @@ enum class DropperModel
   absent
 };
 
-enum class PantographType
+/**
+ * One pantograph of a scene: its model, how it meets the contact wire, and its
+ * data and motion (Sec. 2.2). Pantograph 1 is Scene/Pantograph, Scene/Contact
+ * and Scene/Moving force with subsection Pantograph; pantograph k >= 2 is
+ * subsection Pantograph k, whose entries default to pantograph 1's values.
+ */
+struct PantographCase
 {
-  two_mass,     ///< the lumped-mass model (12)
-  three_mass,   ///< a three-mass chain (head, upper and lower frame)
-  moving_force, ///< a prescribed constant force moving with v_p, no pantograph body
-  absent
+  /// A registered lumped-mass model (registered_pantograph_models()), "moving
+  /// force" (a prescribed constant force, no body) or "absent".
+  std::string model = "two-mass";
+  Constraint::Kind contact = Constraint::Kind::unilateral;
+  double moving_force = 100.; ///< [N], upwards, for model = moving force
+  PantographParameters parameters;
+
+  /// A lumped-mass body in contact with the wire.
+  bool has_body() const;
+  bool is_moving_force() const { return model == "moving force"; }
+  bool is_absent() const { return model == "absent"; }
+  /// "Scene/Pantograph" for pantograph 1, "Pantograph k/Model" for the others.
+  std::string model_parameter() const;
 };
 
 /// How the run starts.
@@ -55,19 +72,16 @@ struct SceneParameters
   bool damping = true;
   bool clamp_and_dropper_masses = true;
   DropperModel droppers = DropperModel::unilateral;
-  PantographType pantograph = PantographType::two_mass;
-  Constraint::Kind contact = Constraint::Kind::unilateral;
-  double moving_force = 100.; ///< [N], upwards, for PantographType::moving_force
+  /// The pantographs, in the order of their blocks and contacts; numbers are data.
+  std::vector<PantographCase> pantographs{PantographCase{}};
   InitialShape initial_shape = InitialShape::static_equilibrium;
   unsigned int initial_mode = 1;   ///< k of the sine mode
   double initial_amplitude = 0.01; ///< A of the sine mode [m]
 
-  /// True for the two lumped-mass models: a pantograph body in contact with the wire.
-  bool has_pantograph_body() const
-  {
-    return pantograph == PantographType::two_mass ||
-           pantograph == PantographType::three_mass;
-  }
+  /// True if some pantograph is a lumped-mass body in contact with the wire.
+  bool has_pantograph_body() const;
+  /// True if some pantograph is a prescribed moving force.
+  bool has_moving_force() const;
   bool has_droppers() const { return droppers != DropperModel::absent; }
   /**
    * The classical moving-load problem: a moving force on the elastic contact
@@ -76,17 +90,30 @@ struct SceneParameters
    */
   bool is_classical_moving_load() const
   {
-    return pantograph == PantographType::moving_force && !has_droppers() && !gravity &&
-           !damping && initial_shape == InitialShape::rest &&
-           contact_wire == WireModel::elastic;
+    return pantographs.size() == 1 && pantographs[0].is_moving_force() &&
+           !has_droppers() && !gravity && !damping &&
+           initial_shape == InitialShape::rest && contact_wire == WireModel::elastic;
   }
 
-  static void declare_parameters(dealii::ParameterHandler& prm);
+  /**
+   * Declares subsection Scene and the pantographs' subsections: Pantograph,
+   * and Pantograph 2 .. Pantograph @p n_pantographs, whose entries default to
+   * @p first (pantograph 1 as read in a first pass over the file).
+   */
+  static void declare_parameters(dealii::ParameterHandler& prm,
+                                 unsigned int n_pantographs = 1,
+                                 const PantographCase& first = {});
+  /// Reads Scene and every pantograph's subsection.
   void parse_parameters(dealii::ParameterHandler& prm);
+  /// Declares subsection @p subsection of a pantograph k >= 2 with @p first's values.
+  static void declare_further_pantograph(dealii::ParameterHandler& prm,
+                                         const std::string& subsection,
+                                         const PantographCase& first);
+  /// Scene/Number of pantographs as given in @p prm (declared by declare_parameters()).
+  static unsigned int number_of_pantographs(dealii::ParameterHandler& prm);
   /// Cross-checks (a wire without stiffness, a moving force on a rigid wire, ...);
   /// throws InputError naming the parameter.
   void check() const;
 };
 
-const char* to_string(PantographType type);
 } // namespace pantocat

@@ -24,6 +24,6 @@ struct CheckpointParameters
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
   /// Refuses checkpoints for an integrator that cannot write them (IDA).
-  void check(IntegratorType integrator) const;
+  void check(const std::string& integrator) const;
 };
 } // namespace pantocat

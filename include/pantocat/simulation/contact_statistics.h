@@ -49,16 +49,18 @@ ContactForceStatistics evaluate_contact_force(const ContactForceSeries& series,
                                               std::vector<double>* filtered = nullptr);
 
 /**
- * Observer that records the contact-force series and the contact-wire
+ * Observer that records the contact-force series of one pantograph's contact
+ * (one observer per contact) and the contact-wire
  * displacement w_w(x_d, t) at every dropper position x_d (two sparse rows
  * per time point), and evaluates the statistics at the end of the run.
  */
 class ContactStatistics : public SimulationObserver
 {
 public:
+  /// For pantograph @p pantograph (its index in SimulationLayout::pantographs).
   ContactStatistics(const StatisticsParameters& parameters,
                     const CatenaryDiscretisation& discretisation,
-                    const SemiDiscreteSystem& system);
+                    const SemiDiscreteSystem& system, unsigned int pantograph = 0);
 
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint&) override {}
@@ -74,6 +76,7 @@ public:
 
 private:
   StatisticsParameters parameters;
+  unsigned int pantograph = 0;
   unsigned int contact_index = 0;
   std::vector<SparseRow> dropper_rows; ///< w_w(x_d) = row . q
   std::vector<double> initial_height, max_uplift;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/analysis/moving_load_series.h>
+#include <pantocat/simulation/case.h>
 #include <pantocat/simulation/time_point.h>
 
 #include <vector>
@@ -37,4 +38,8 @@ private:
   MovingLoadSeries series;
   std::vector<Probe> result;
 };
+
+/// The series solution of a classical moving-load case
+/// (SceneParameters::is_classical_moving_load()).
+MovingLoadSeries moving_load_series(const Case& c);
 } // namespace pantocat

@@ -27,19 +27,38 @@ public:
   void save(CheckpointOut& archive) const override;
   void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
-  double contact_force_max() const { return max_force; }
-  double contact_force_min() const { return min_force; }
-  double contact_force_mean() const;
+  /// The contact force of one contact over all time points (uniform steps).
+  struct ForceStatistics
+  {
+    double max = -std::numeric_limits<double>::infinity();
+    double min = std::numeric_limits<double>::infinity();
+    double mean = 0., m2 = 0.;
+    unsigned long count = 0;
+
+    void add(double force);
+    /// Population standard deviation.
+    double std() const;
+  };
+
+  /// Of pantograph @p k's contact (k in the order of SimulationLayout::pantographs).
+  const ForceStatistics& contact_force(unsigned int k) const { return forces[k]; }
+  /// Of pantograph 1's contact (the first pantograph in contact).
+  double contact_force_max() const { return first_contact().max; }
+  double contact_force_min() const { return first_contact().min; }
+  double contact_force_mean() const { return first_contact().mean; }
   /// Population standard deviation over the time points (uniform steps).
-  double contact_force_std() const;
-  unsigned long n_points() const { return count; }
+  double contact_force_std() const { return first_contact().std(); }
+  unsigned long n_points() const { return first_contact().count; }
   double max_position_residual() const { return max_pos; }
   double max_velocity_residual() const { return max_vel; }
   /// The largest number of droppers slack at the same time point.
   unsigned int max_droppers_slack_at_once() const { return max_slack; }
   /// Slack intervals of each dropper, in dropper order.
   std::vector<std::vector<Interval>> dropper_slack_intervals() const;
+  /// Loss intervals of the first pantograph's contact.
   std::vector<Interval> contact_loss_intervals() const;
+  /// Loss intervals of pantograph @p k's contact (empty without contact).
+  std::vector<Interval> contact_loss_intervals(unsigned int k) const;
   /// Inactive intervals of constraint i.
   const std::vector<Interval>& inactive_intervals(unsigned int i) const
   {
@@ -47,11 +66,10 @@ public:
   }
 
 private:
+  const ForceStatistics& first_contact() const;
+
   SimulationLayout layout;
-  double max_force = -std::numeric_limits<double>::infinity();
-  double min_force = std::numeric_limits<double>::infinity();
-  double mean = 0., m2 = 0.;
-  unsigned long count = 0;
+  std::vector<ForceStatistics> forces; ///< per pantograph (unused without contact)
   double max_pos = 0., max_vel = 0.;
   double last_t = 0.;
   unsigned int max_slack = 0;

@@ -10,32 +10,49 @@
 
 namespace pantocat
 {
+/// What the outputs know about one pantograph of a run.
+struct PantographLayout
+{
+  std::string name;          ///< "pantograph", or "pantograph k" with several
+  std::string column_suffix; ///< "" with one pantograph, "[k]" with several
+  std::string model;         ///< "two-mass", ..., "moving force", "absent"
+  /// Its contact constraint; invalid_unsigned_int without a body in contact.
+  unsigned int contact = dealii::numbers::invalid_unsigned_int;
+  std::vector<std::string> coordinates; ///< names of its q_MBS ("w_p1", ...)
+  unsigned int first_coordinate = 0;    ///< where they start in TimePoint::pantograph
+  double static_force = 0.;             ///< F_0 of its model, or the moving force [N]
+  double initial_contact_force = 0.;    ///< lambda_p(0) [N]
+
+  bool has_contact() const { return contact != dealii::numbers::invalid_unsigned_int; }
+};
+
 /// What the outputs know about a dynamic run: names and roles of the constraints.
 struct SimulationLayout
 {
-  std::vector<std::string> constraint_names; ///< in system order: droppers, then contact
-  std::vector<std::string> pantograph_coordinates;
-  /// The pantograph-wire contact; invalid_unsigned_int if the scene has none.
-  unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+  std::vector<std::string> constraint_names; ///< in system order: droppers, then contacts
+  /// Every pantograph, in order; numbers of pantographs and contacts are data.
+  std::vector<PantographLayout> pantographs;
   std::vector<unsigned int> dropper_indices;
   std::vector<double> probe_positions; ///< x of TimePoint::probes [m]
   bool energy = false;                 ///< TimePoint::energy is computed
 
-  bool has_contact() const
-  {
-    return contact_index != dealii::numbers::invalid_unsigned_int;
-  }
+  /// True if some pantograph is in contact with the wire.
+  bool has_contact() const;
+  /// The pantograph whose contact is constraint @p i, or nullptr.
+  const PantographLayout* contact_owner(unsigned int i) const;
+  /// The pantographs in contact with the wire.
+  std::vector<const PantographLayout*> contacts() const;
 };
 
 /// One reported time point of a dynamic run.
 struct TimePoint
 {
   double t = 0.;
-  double x_p = 0.;
+  std::vector<double> x_p;        ///< position of each pantograph [m]
   std::vector<double> lambda;     ///< per constraint [N]
   std::vector<double> gap;        ///< g_i(t, q) per constraint [m]
   std::vector<bool> active;       ///< per constraint
-  std::vector<double> pantograph; ///< q_MBS
+  std::vector<double> pantograph; ///< q_MBS of every pantograph body, in order
   double position_residual = 0.;  ///< max |g_i| over active constraints
   double velocity_residual = 0.;  ///< max |dg_i/dt| over active constraints
   std::vector<double> probes;     ///< w_w at the probe positions [m]

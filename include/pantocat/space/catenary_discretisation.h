@@ -1,9 +1,10 @@
 #pragma once
 
 #include <pantocat/catenary/catenary_parameters.h>
-#include <pantocat/space/block_operator.h>
+#include <pantocat/system/block_operator.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/space/smoothed_delta.h>
+#include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/system/sparse_row.h>
 
 #include <functional>
@@ -117,7 +118,7 @@ public:
   std::vector<double> grid_points() const;
 
   unsigned int n_intervals() const { return discretisation.n_intervals; }
-  double cell_size() const { return catenary.span / discretisation.n_intervals; }
+  double cell_size() const { return catenary.length() / discretisation.n_intervals; }
   const CatenaryParameters& catenary_parameters() const { return catenary; }
   const DiscretisationParameters& discretisation_parameters() const
   {
@@ -132,6 +133,14 @@ protected:
   DiscretisationParameters discretisation;
   SmoothedDelta delta;
 };
+
+/**
+ * Row r with r.q = w(x) of @p wire in the numbering of @p system (for the
+ * carrier without l_c); empty if the system has no such block (a wire the
+ * scene holds rigid: its displacement is 0).
+ */
+SparseRow wire_point_row(const CatenaryDiscretisation& discretisation,
+                         const SemiDiscreteSystem& system, Wire wire, double x);
 
 /// FEM or FDM, as the parameters say.
 std::unique_ptr<CatenaryDiscretisation>

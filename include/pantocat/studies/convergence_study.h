@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/app/program_parameters.h>
+#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/series_comparison.h>
 #include <pantocat/studies/study_plan.h>
 
@@ -22,7 +22,7 @@ namespace pantocat
 class ConvergenceStudy
 {
 public:
-  explicit ConvergenceStudy(const ProgramParameters& parameters);
+  explicit ConvergenceStudy(const StudyCase& parameters);
 
   /// One refinement of one method with its errors (NaN where not computed).
   struct Row
@@ -49,12 +49,12 @@ public:
   void write(std::ostream& out) const;
 
 private:
-  ProgramParameters parameters;
+  StudyCase parameters;
   StudyPlan plan_;
   std::vector<std::vector<Row>> rows_;
   bool root = true;
 };
 
 /// Mode = convergence study: runs, prints and writes the study (all ranks call it).
-void run_convergence_study(const ProgramParameters& parameters, std::ostream& out);
+void run_convergence_study(const StudyCase& parameters, std::ostream& out);
 } // namespace pantocat

@@ -29,12 +29,12 @@ struct StudyParameters
   std::vector<unsigned int> n_intervals;    ///< N+1 per refinement; empty: the case's
   std::vector<double> time_steps;           ///< dt per refinement [s]; empty: the case's
   std::vector<SpaceMethod> discretisations; ///< empty: the case's
-  std::vector<IntegratorType> integrators;  ///< empty: the case's
+  std::vector<std::string> integrators;  ///< empty: the case's
   /// Every N+1 with every dt (work precision) instead of entry by entry.
   bool all_combinations = false;
   StudyReference reference = StudyReference::finest_run;
   SpaceMethod reference_discretisation = SpaceMethod::fem;
-  IntegratorType reference_integrator = IntegratorType::bdf2;
+  std::string reference_integrator = "bdf2";
   unsigned int reference_n_intervals = 1000;
   double reference_time_step = 1e-5;
   bool wire_errors = true;           ///< contact wire at t_e in L2 and H1

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/app/program_parameters.h>
+#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/study_run.h>
 
 #include <vector>
@@ -16,7 +16,7 @@ class StudyPlan
 {
 public:
   /// Checks every run's grid against the droppers; throws InputError.
-  explicit StudyPlan(const ProgramParameters& parameters);
+  explicit StudyPlan(const StudyCase& parameters);
 
   const std::vector<StudyRun>& runs() const { return runs_; }
   unsigned int n_methods() const { return n_methods_; }

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/app/program_parameters.h>
+#include <pantocat/studies/study_case.h>
 
 #include <string>
 #include <vector>
@@ -11,7 +11,7 @@ namespace pantocat
 struct StudyRun
 {
   SpaceMethod discretisation = SpaceMethod::fdm;
-  IntegratorType integrator = IntegratorType::half_explicit;
+  std::string integrator = "half-explicit"; ///< a registered integrator
   unsigned int n_intervals = 500; ///< N+1
   double time_step = 5e-5;        ///< dt [s]
   bool reference = false;         ///< the separate reference run
@@ -21,7 +21,7 @@ struct StudyRun
   /// "fdm + half-explicit, N+1 = 500, dt = 5e-05 s".
   std::string label() const;
   /// The case @p base with this run's discretisation and time integration.
-  ProgramParameters parameters(const ProgramParameters& base) const;
+  Case parameters(const Case& base) const;
 };
 
 /// What a study wants from each run besides lambda_p(t).
@@ -62,13 +62,13 @@ const char* to_string(RunOutcome::Status status);
  * (e.g. N+1 too small for the droppers): an InputError that names the run and
  * says what is allowed. Each distinct discretisation and N+1 is built once.
  */
-void check_study_grids(const std::vector<StudyRun>& runs, const ProgramParameters& base);
+void check_study_grids(const std::vector<StudyRun>& runs, const Case& base);
 
 /**
- * Runs @p run of the case @p base: builds the DynamicSimulation, skips a
- * half-explicit step above 2/omega_max (DynamicSimulation::check_step_size
- * would refuse it), integrates and records lambda_p at every time point.
+ * Runs @p run of the case @p base through the CaseRunner, skips a step above
+ * the stability limit of an explicit integrator (the runner would refuse
+ * it), integrates and records pantograph 1's lambda_p at every time point.
  */
-RunOutcome execute_study_run(const StudyRun& run, const ProgramParameters& base,
+RunOutcome execute_study_run(const StudyRun& run, const Case& base,
                              const RunRequest& request);
 } // namespace pantocat

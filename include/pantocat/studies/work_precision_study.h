@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/app/program_parameters.h>
+#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/series_comparison.h>
 #include <pantocat/studies/study_plan.h>
 
@@ -23,7 +23,7 @@ namespace pantocat
 class WorkPrecisionStudy
 {
 public:
-  explicit WorkPrecisionStudy(const ProgramParameters& parameters);
+  explicit WorkPrecisionStudy(const StudyCase& parameters);
 
   struct Row
   {
@@ -47,7 +47,7 @@ private:
   /// One curve per method, or per method and grid if the study has several grids.
   std::string curve_title(const StudyRun& run) const;
 
-  ProgramParameters parameters;
+  StudyCase parameters;
   StudyPlan plan_;
   std::vector<Row> rows_;
   double reference_peak = 0., reference_cpu = 0.;
@@ -55,5 +55,5 @@ private:
 };
 
 /// Mode = work precision: runs, prints and writes the study (all ranks call it).
-void run_work_precision_study(const ProgramParameters& parameters, std::ostream& out);
+void run_work_precision_study(const StudyCase& parameters, std::ostream& out);
 } // namespace pantocat

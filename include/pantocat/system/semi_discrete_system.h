@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/space/block_operator.h>
+#include <pantocat/system/block_operator.h>
 #include <pantocat/system/constraint.h>
 
 #include <deal.II/lac/sparse_matrix.h>

@@ -7,6 +7,7 @@
 #include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -49,6 +50,9 @@ namespace pantocat
 class Bdf2Integrator : public TimeIntegrator
 {
 public:
+  /// Its entry in registered_integrators().
+  static IntegratorEntry registry_entry();
+
   Bdf2Integrator(const SemiDiscreteSystem& system, double time_step,
                  unsigned int max_active_set_iterations,
                  LinearSolverType linear_solver = LinearSolverType::banded);

@@ -7,6 +7,7 @@
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -48,6 +49,9 @@ namespace pantocat
 class GeneralizedAlphaIntegrator : public TimeIntegrator
 {
 public:
+  /// Its entry in registered_integrators().
+  static IntegratorEntry registry_entry();
+
   GeneralizedAlphaIntegrator(const SemiDiscreteSystem& system, double time_step,
                              double rho_infinity, unsigned int max_active_set_iterations,
                              LinearSolverType linear_solver = LinearSolverType::banded);

@@ -3,6 +3,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/mass_inverse.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>
@@ -32,6 +33,9 @@ namespace pantocat
 class HalfExplicitIntegrator : public TimeIntegrator
 {
 public:
+  /// Its entry in registered_integrators().
+  static IntegratorEntry registry_entry();
+
   HalfExplicitIntegrator(const SemiDiscreteSystem& system, double time_step,
                          unsigned int max_active_set_iterations);
 

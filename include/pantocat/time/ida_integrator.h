@@ -2,6 +2,7 @@
 
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/mass_inverse.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <memory>
@@ -44,6 +45,9 @@ enum class IdaLinearSolver
 class IdaIntegrator : public TimeIntegrator
 {
 public:
+  /// Its entry in registered_integrators().
+  static IntegratorEntry registry_entry();
+
   IdaIntegrator(const SemiDiscreteSystem& system, double output_step,
                 double relative_tolerance, double absolute_tolerance,
                 IdaLinearSolver solver = IdaLinearSolver::sundials_klu);

@@ -8,20 +8,10 @@
 
 namespace pantocat
 {
-/// The time integrators of Sec. 5.2.
-enum class IntegratorType
-{
-  half_explicit,     ///< the reversible half-explicit method (39)-(41)
-  bdf2,              ///< two-step BDF on the GGL formulation (38), Richardson start
-  generalized_alpha, ///< Chung-Hulbert generalized-alpha (Arnold-Bruels form)
-  ida                ///< SUNDIALS IDA, variable order and step, located events
-};
-
-const char* to_string(IntegratorType type);
-
 struct TimeIntegrationParameters
 {
-  IntegratorType integrator = IntegratorType::half_explicit;
+  /// Name of the integrator (registered_integrators()): half-explicit, bdf2, ...
+  std::string integrator = "half-explicit";
   double time_step = 5e-5;      ///< Delta t [s]
   bool force_step_size = false; ///< run an explicit method above its stability limit
   double rho_infinity = 0.5;    ///< generalized-alpha: spectral radius at infinity

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pantocat/coupling/contact_constraint.h>
-#include <pantocat/pantograph/pantograph_model.h>
+#include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
 
@@ -26,7 +26,7 @@ struct CoupledSystem
  * through its operators and b, B.
  */
 CoupledSystem build_coupled_system(const CatenaryDiscretisation& discretisation,
-                                   const PantographModel& pantograph,
+                                   const TwoMassPantographParameters& pantograph,
                                    const ContactPointMotion& motion,
                                    Constraint::Kind dropper_kind,
                                    Constraint::Kind contact_kind);

@@ -1,4 +1,5 @@
-// Precompiled header: the heavy deal.II headers used across the library.
+// Precompiled header of the space discretisation (fe, space, scene, analysis):
+// the heavy deal.II finite-element headers.
 #pragma once
 #include <deal.II/base/parameter_handler.h>
 #include <deal.II/base/quadrature_lib.h>

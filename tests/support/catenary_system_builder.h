@@ -19,11 +19,4 @@ namespace pantocat
 SemiDiscreteSystem build_catenary_system(const CatenaryDiscretisation& discretisation,
                                          Constraint::Kind dropper_kind);
 
-/**
- * Row r with r.q = w(x) of @p wire in the numbering of @p system (for the
- * carrier without l_c); empty if the system has no such block (a wire the
- * scene holds rigid: its displacement is 0).
- */
-SparseRow wire_point_row(const CatenaryDiscretisation& discretisation,
-                         const SemiDiscreteSystem& system, Wire wire, double x);
 } // namespace pantocat

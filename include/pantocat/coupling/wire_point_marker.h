@@ -1,0 +1,39 @@
+#pragma once
+
+#include <pantocat/base/contact_point_motion.h>
+#include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/sparse_row.h>
+
+namespace pantocat
+{
+/**
+ * The catenary's side of a coupling: a point x(t) moving along the contact
+ * wire, as rows in the numbering of the semi-discrete system,
+ *
+ *   F_w(t) q = w_w(x(t), t) weighted by the load shape,   Eq. (33),
+ *   dF_w/dt = -x' r_1,   d2F_w/dt2 = x'^2 r_2 - x'' r_1,
+ *
+ * with r_k the load rows of the space discretisation (Sec. 4.1). It knows the
+ * wire only through CatenaryDiscretisation::load_row(), and nothing of what
+ * is attached at the point (a pantograph's head, a prescribed force).
+ */
+class WirePointMarker
+{
+public:
+  WirePointMarker(const CatenaryDiscretisation& discretisation, unsigned int wire_offset,
+                  const ContactPointMotion& motion);
+
+  /// F_w(t) into @p row (global numbering).
+  void row(double t, SparseRow& row) const;
+  /// dF_w/dt and d2F_w/dt2 (the latter only if @p second_derivative).
+  void time_derivatives(double t, SparseRow& first, SparseRow& second,
+                        bool second_derivative) const;
+
+  const ContactPointMotion& motion() const { return motion_; }
+
+private:
+  const CatenaryDiscretisation& discretisation;
+  unsigned int wire_offset;
+  ContactPointMotion motion_;
+};
+} // namespace pantocat

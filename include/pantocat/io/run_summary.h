@@ -1,0 +1,48 @@
+#pragma once
+
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/contact_statistics.h>
+#include <pantocat/simulation/energy_range.h>
+#include <pantocat/simulation/event_log.h>
+#include <pantocat/simulation/moving_load_comparison.h>
+#include <pantocat/simulation/run_statistics.h>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/// What a completed dynamic run leaves for summary.json and the screen.
+struct RunRecord
+{
+  const CaseRunner& runner;
+  const CaseRunner::Result& result;
+  const RunStatistics& statistics;
+  const EventLog& events;
+  const FirstTimePoint& first_point;
+  /// Per pantograph (in layout order): its contact statistics, nullptr without contact.
+  std::vector<const ContactStatistics*> contacts;
+  const EnergyRange* energy = nullptr;            ///< if Output/Energy
+  const MovingLoadComparison* series = nullptr;   ///< if a classical moving load
+  /// Pantograph 1's contact statistics (the first in contact), or nullptr.
+  const ContactStatistics* first_contact() const;
+};
+
+/**
+ * summary.json of a completed run: the case, the scene, per pantograph its
+ * contact-force statistics, loss intervals and events ("pantographs"), and
+ * pantograph 1's figures also at the top level (the names of version 1),
+ * the constraints' events, the integrator's counters, the guards.
+ */
+void write_run_summary(const std::string& file, const RunRecord& record);
+
+/// summary.json of a failed run: "failed" with the reason.
+void write_failed_summary(const std::string& file, const std::string& reason);
+
+/// The effects the scene assembles, those it leaves out, and the problem size.
+void print_scene(std::ostream& out, const CaseRunner& runner);
+
+/// The run's figures on screen: contact forces per pantograph, slack and loss intervals.
+void print_run_report(std::ostream& out, const RunRecord& record, bool detailed);
+} // namespace pantocat

@@ -1,0 +1,121 @@
+#pragma once
+
+#include <pantocat/analysis/static_equilibrium.h>
+#include <pantocat/simulation/case.h>
+#include <pantocat/simulation/run_guard.h>
+#include <pantocat/simulation/time_point.h>
+#include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/semi_discrete_system.h>
+#include <pantocat/time/time_integrator.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+class CheckpointWriter;
+class CheckpointReader;
+
+/// Checkpoints of a run: where to write them, how often, and where to resume.
+struct CheckpointPlan
+{
+  const CheckpointWriter* writer = nullptr;
+  unsigned int interval = 0; ///< steps between checkpoints; 0: none
+  /// Continue from this checkpoint (its fingerprint already checked) instead of t_0.
+  CheckpointReader* resume_from = nullptr;
+  unsigned long stop_after_steps = 0; ///< stop as if killed (tests); 0: never
+};
+
+/**
+ * What a run measures at every time point besides the constraints' forces
+ * and gaps (an output's request, not part of the case): the contact wire at
+ * probe positions and the energy of the system.
+ */
+struct Measurements
+{
+  std::vector<double> probe_positions; ///< x [m] of w_w probes
+  bool energy = false;
+};
+
+/**
+ * The one way to run a case. Builds, once, the space discretisation, the
+ * scene's semi-discrete system with every pantograph and contact
+ * (build_scene), and the consistent initial state; run() makes the
+ * integrator from the registry, integrates from t = 0 to the case's end time
+ * and hands every time point to the observers. The program's modes and every
+ * study run cases only through it; nothing else builds a scene.
+ */
+class CaseRunner
+{
+public:
+  /// Throws InputError for a case the grid cannot carry (droppers, probes).
+  explicit CaseRunner(const Case& c, const Measurements& measurements = {});
+  ~CaseRunner();
+
+  struct Result
+  {
+    IntegratorStatistics integrator;
+    double time_loop_seconds = 0.;
+    double end_time = 0.;
+    double stability_limit = 0.; ///< 2/omega_max [s] (explicit integrators only)
+    DynamicState final_state;    ///< the state at the end time
+    GuardExtremes guards;        ///< drift, forces and energy seen by the guards
+  };
+
+  /**
+   * Refuses, before anything is written, what the run cannot do: a step above
+   * the stability limit of an explicit integrator (a warning if forced), a
+   * grid that does not resolve the smoothed load of a moving contact.
+   */
+  void check() const;
+
+  /**
+   * Integrates; throws SimulationError if the run becomes unstable. With a
+   * @p checkpoints plan, writes checkpoints every K steps (after the
+   * observers have seen the step) and/or starts from one: the observers then
+   * get resume() instead of start().
+   */
+  Result run(const std::vector<SimulationObserver*>& observers,
+             const CheckpointPlan& checkpoints = {});
+
+  /**
+   * The catenary at rest under its loads and the pantographs' initial
+   * contact forces (or moving forces) at their initial positions (Sec. 2.2,
+   * Fig. 5): step 1 of the consistent initial state, in the numbering of
+   * system() restricted to the catenary.
+   */
+  StaticEquilibrium static_catenary() const;
+
+  const Case& case_data() const { return data; }
+  const SemiDiscreteSystem& system() const;
+  const SimulationLayout& layout() const { return layout_; }
+  const DynamicState& initial_state() const { return initial; }
+  const CatenaryDiscretisation& discretisation() const { return *space; }
+  /// w_w(@p x) of the contact wire in state @p q of system() (0 if it is rigid).
+  double contact_wire_displacement(const dealii::Vector<double>& q, double x) const;
+  /// The step-size limit 2/omega_max of the explicit method (computed once).
+  double explicit_stability_limit() const;
+  /// Builds the time point of a state (gaps and residuals evaluated here).
+  TimePoint time_point(const DynamicState& state) const;
+  /// One line per effect of the scene (what is assembled), and the effects left out.
+  const std::vector<std::string>& active_effects() const;
+  const std::vector<std::string>& inactive_effects() const;
+
+private:
+  struct Scene;
+  /// The guards with F_ref from the pantographs and initial forces, E_ref = (T_c + T_w) L / 2.
+  RunGuard make_guard() const;
+  void check_step_size() const;
+  void check_load_resolution() const;
+
+  Case data;
+  std::unique_ptr<CatenaryDiscretisation> space;
+  std::unique_ptr<Scene> scene;
+  SimulationLayout layout_;
+  std::vector<SparseRow> probe_rows; ///< rows of w_w at the probe positions
+  DynamicState initial;
+  mutable double stability_limit = 0.;
+  mutable bool warned = false;
+};
+} // namespace pantocat

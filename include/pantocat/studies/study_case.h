@@ -1,0 +1,25 @@
+#pragma once
+
+#include <pantocat/simulation/case.h>
+#include <pantocat/studies/study_parameters.h>
+
+#include <string>
+
+namespace pantocat
+{
+/**
+ * What a study runs: a base case, the study's own parameters (subsection
+ * Study) and where its tables and plots go. Each run of the study is the base
+ * case with its discretisation, grid, integrator and step replaced, run by
+ * the CaseRunner.
+ */
+struct StudyCase : Case
+{
+  StudyParameters study;
+  struct Output
+  {
+    std::string directory = "output";
+    bool plots = true;
+  } output;
+};
+} // namespace pantocat

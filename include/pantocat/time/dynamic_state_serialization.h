@@ -1,0 +1,19 @@
+#pragma once
+
+#include <pantocat/base/serialization.h>
+#include <pantocat/time/dynamic_state.h>
+
+namespace pantocat
+{
+/// A state of (35) in a checkpoint: every bit of q, v, a, lambda and the active set.
+template <class Archive>
+void serialize(Archive& archive, DynamicState& s, const unsigned int /*version*/)
+{
+  archive& s.t;
+  archive& s.q;
+  archive& s.v;
+  archive& s.a;
+  archive& s.lambda;
+  archive& s.active;
+}
+} // namespace pantocat

@@ -1,0 +1,204 @@
+#include <pantocat/app/run_modes.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/io/plots.h>
+#include <pantocat/io/progress_meter.h>
+#include <pantocat/io/run_summary.h>
+#include <pantocat/io/statistics_report.h>
+#include <pantocat/io/time_series_writer.h>
+#include <pantocat/io/vtu_time_series_writer.h>
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/checkpoint.h>
+
+#include <deal.II/base/timer.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+
+namespace pantocat
+{
+namespace
+{
+/// Every file of the output directory with its size, sorted (detailed verbosity).
+void list_files(std::ostream& out, const std::string& dir)
+{
+  std::vector<std::pair<std::string, std::uintmax_t>> files;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir))
+    if (entry.is_regular_file())
+      files.emplace_back(std::filesystem::relative(entry.path(), dir).string(),
+                         entry.file_size());
+  std::sort(files.begin(), files.end());
+  out << "  files in " << dir << ":\n";
+  for (const auto& [name, size] : files)
+    out << "    " << name << " (" << size << " bytes)\n";
+}
+
+/**
+ * The results of an earlier run in @p dir go before this one starts: a run
+ * that fails or is killed must not leave them looking like its own. (A
+ * resumed run keeps the stopped run's summary.json, "failed", until it
+ * completes.)
+ */
+void remove_earlier_results(const std::string& dir, const bool resuming)
+{
+  for (const char* name :
+       {"contact_force.csv", "contact_force.png", "dropper_forces.png", "pantograph.png",
+        "contact_force_statistics.png", "time_series.gp", "contact_force_statistics.gp"})
+    std::filesystem::remove(dir + "/" + name);
+  if (!resuming)
+    std::filesystem::remove(dir + "/summary.json");
+}
+
+/// Names of the plotted columns of time_series.csv, from the layout.
+struct PlottedColumns
+{
+  std::vector<std::string> contact_forces, dropper_forces, coordinates;
+};
+
+PlottedColumns plotted_columns(const SimulationLayout& layout)
+{
+  PlottedColumns c;
+  for (const PantographLayout* p : layout.contacts())
+    c.contact_forces.push_back("lambda_p" + p->column_suffix);
+  for (unsigned int j = 0; j < layout.dropper_indices.size(); ++j)
+    c.dropper_forces.push_back("lambda_d" + std::to_string(j + 1));
+  for (const PantographLayout& p : layout.pantographs)
+    for (const auto& name : p.coordinates)
+      c.coordinates.push_back(name + p.column_suffix);
+  return c;
+}
+
+/// The PNG plots of a run; returns the names of the files drawn.
+std::vector<std::string> draw_plots(const std::string& dir, const ProgramParameters& p,
+                                    const CaseRunner& runner,
+                                    const ContactStatistics& first)
+{
+  std::ostringstream title;
+  title << to_string(p.discretisation.method) << " + " << p.time_integration.integrator
+        << ", v_p = " << p.pantograph().speed << " m/s";
+  std::vector<std::string> drawn;
+  const PlottedColumns c = plotted_columns(runner.layout());
+  if (plot_time_series(dir, TimeSeriesWriter::column_names(runner.layout()),
+                       c.contact_forces, c.dropper_forces, c.coordinates, title.str()))
+    drawn.insert(drawn.end(),
+                 {"contact_force.png", "dropper_forces.png", "pantograph.png"});
+  if (plot_contact_force_statistics(dir, first.result(), title.str()))
+    drawn.push_back("contact_force_statistics.png");
+  return drawn;
+}
+} // namespace
+
+void run_dynamics(const ProgramParameters& p, std::ostream& out)
+{
+  dealii::TimerOutput timer(out, dealii::TimerOutput::never,
+                            dealii::TimerOutput::wall_times);
+  timer.enter_subsection("setup (assembly, initial state)");
+  CaseRunner runner(p.make_case(), {p.output.probe_positions, p.output.energy});
+  runner.check(); // before any output is written
+  const std::string& dir = p.output.directory;
+  // A checkpoint to continue from is checked (its parameters) before any
+  // output is touched; a fresh run removes a checkpoint of an earlier one.
+  const std::string checkpoint_file = dir + "/checkpoint.bin";
+  std::optional<CheckpointReader> resume_from;
+  if (p.checkpoint.resume)
+    resume_from.emplace(checkpoint_file, p.fingerprint);
+  else
+    std::filesystem::remove(checkpoint_file);
+  remove_earlier_results(dir, resume_from.has_value());
+  const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
+  timer.leave_subsection();
+  out << "Dynamic run: " << to_string(p.discretisation.method)
+      << ", N+1 = " << p.discretisation.n_intervals << ", "
+      << p.time_integration.integrator << ", dt = " << p.time_integration.time_step
+      << " s, v_p = " << p.pantograph().speed << " m/s, x_p from "
+      << p.pantograph().initial_position << " to " << p.pantograph().final_position
+      << " m\n";
+  print_scene(out, runner);
+  if (resume_from)
+    out << "  resuming from " << checkpoint_file << " after step " << resume_from->step()
+        << '\n';
+
+  TimeSeriesWriter series(dir + "/time_series.csv", p.output.time_series_interval);
+  RunStatistics stats;
+  EventLog events;
+  FirstTimePoint first;
+  EnergyRange energy;
+  std::vector<SimulationObserver*> observers{&series, &stats, &events};
+  // Observers that are not asked for are not attached: they cost nothing.
+  // One contact-statistics observer per pantograph in contact.
+  const SimulationLayout& layout = runner.layout();
+  std::vector<std::unique_ptr<ContactStatistics>> contacts(layout.pantographs.size());
+  if (layout.has_contact())
+    observers.push_back(&first);
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+      observers.push_back((contacts[k] = std::make_unique<ContactStatistics>(
+                               p.statistics, runner.discretisation(), runner.system(), k))
+                              .get());
+  if (p.output.energy)
+    observers.push_back(&energy);
+  std::optional<MovingLoadComparison> reference;
+  if (p.scene.is_classical_moving_load() && !p.output.probe_positions.empty())
+    observers.push_back(&reference.emplace(moving_load_series(runner.case_data())));
+  std::optional<VtuTimeSeriesWriter> vtu;
+  if (p.output.vtu_interval > 0.)
+    observers.push_back(
+        &vtu.emplace(dir, p.output.vtu_interval, p.time_integration.time_step,
+                     p.output.vtu_subdivisions, runner.discretisation(), runner.system(),
+                     &timer));
+  std::optional<ProgressMeter> progress;
+  if (p.output.verbosity != Verbosity::quiet && stderr_is_terminal())
+    observers.push_back(&progress.emplace(std::cerr, runner.case_data().end_time()));
+  CaseRunner::Result r;
+  try
+  {
+    const dealii::TimerOutput::Scope scope(timer, "time loop (includes the VTU frames)");
+    r = runner.run(observers, {&checkpoint_writer, p.checkpoint.interval,
+                               resume_from ? &*resume_from : nullptr,
+                               p.checkpoint.stop_after_steps});
+  }
+  catch (const SimulationError& e)
+  {
+    if (progress)
+      progress->finish();
+    // Keep what was written (time_series.csv up to the failure) and say so.
+    write_failed_summary(dir + "/summary.json", e.what());
+    throw;
+  }
+  timer.enter_subsection("output (summary, plots)");
+  RunRecord record{runner, r, stats, events, first, {}, p.output.energy ? &energy : nullptr,
+                   reference ? &*reference : nullptr};
+  for (const auto& c : contacts)
+    record.contacts.push_back(c.get());
+  write_run_summary(dir + "/summary.json", record);
+  const ContactStatistics* first_contact = record.first_contact();
+  if (first_contact)
+    write_contact_force(dir + "/contact_force.csv", *first_contact);
+  print_run_report(out, record, p.output.verbosity == Verbosity::detailed);
+  std::vector<std::string> drawn;
+  if (p.output.plots && first_contact)
+  {
+    drawn = draw_plots(dir, p, runner, *first_contact);
+    if (drawn.size() < 4)
+      out << (gnuplot_available()
+                  ? "  (some plots were not drawn: nothing to draw, or gnuplot failed on "
+                    "a .gp script in the directory)\n"
+                  : "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n");
+  }
+  timer.leave_subsection();
+  out << "  wrote time_series.csv" << (first_contact ? ", contact_force.csv" : "")
+      << ", summary.json";
+  for (const std::string& file : drawn)
+    out << ", " << file;
+  out << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
+                    " frames in vtu/"
+              : "")
+      << " to " << dir << '\n';
+  if (p.output.verbosity == Verbosity::detailed)
+    list_files(out, dir);
+  if (p.output.verbosity != Verbosity::quiet)
+    timer.print_summary();
+}
+} // namespace pantocat

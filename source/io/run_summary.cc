@@ -1,0 +1,296 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/io/json_writer.h>
+#include <pantocat/io/run_summary.h>
+#include <pantocat/io/statistics_report.h>
+#include <pantocat/time/integrator_registry.h>
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+namespace pantocat
+{
+const ContactStatistics* RunRecord::first_contact() const
+{
+  for (const ContactStatistics* c : contacts)
+    if (c != nullptr)
+      return c;
+  return nullptr;
+}
+
+namespace
+{
+void write_force(JsonWriter& json, const RunStatistics::ForceStatistics& f)
+{
+  json.begin_object("contact_force")
+      .value("max", f.max)
+      .value("min", f.min)
+      .value("mean", f.mean)
+      .value("std", f.std())
+      .end_object();
+}
+
+/// Kind of a switch of constraint @p i: a dropper's or a contact's.
+std::string event_kind(const SimulationLayout& layout, const unsigned int i,
+                       const bool closes)
+{
+  if (layout.contact_owner(i) != nullptr)
+    return closes ? "contact_return" : "contact_loss";
+  return closes ? "dropper_taut" : "dropper_slack";
+}
+
+/// Every event of the run, located (IDA) or at step resolution.
+std::vector<ConstraintEvent> run_events(const RunRecord& r)
+{
+  const SimulationLayout& layout = r.runner.layout();
+  if (!r.result.integrator.events_localised)
+    return r.events.events();
+  std::vector<ConstraintEvent> list;
+  for (const SwitchEvent& e : r.result.integrator.localised_events)
+    list.push_back({e.t, layout.constraint_names[e.constraint],
+                    event_kind(layout, e.constraint, e.closes)});
+  return list;
+}
+
+void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
+                  const std::string& only_constraint = "")
+{
+  json.begin_array("events");
+  for (const ConstraintEvent& e : events)
+    if (only_constraint.empty() || e.constraint == only_constraint)
+      json.begin_object()
+          .value("t", e.t)
+          .value("constraint", e.constraint)
+          .value("kind", e.kind)
+          .end_object();
+  json.end_array();
+}
+
+void write_pantographs(JsonWriter& json, const RunRecord& r,
+                       const std::vector<ConstraintEvent>& events)
+{
+  const SimulationLayout& layout = r.runner.layout();
+  const Case& c = r.runner.case_data();
+  json.begin_array("pantographs");
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+  {
+    const PantographLayout& p = layout.pantographs[k];
+    const PantographParameters& data = c.scene.pantographs[k].parameters;
+    json.begin_object()
+        .value("name", p.name)
+        .value("model", p.model)
+        .value("initial_position", data.initial_position)
+        .value("speed", data.speed);
+    if (p.has_contact())
+    {
+      write_force(json, r.statistics.contact_force(k));
+      if (r.contacts[k] != nullptr)
+        write_statistics(json, r.contacts[k]->result());
+      json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
+      write_events(json, events, layout.constraint_names[p.contact]);
+    }
+    json.end_object();
+  }
+  json.end_array();
+}
+} // namespace
+
+void write_run_summary(const std::string& file, const RunRecord& r)
+{
+  const Case& c = r.runner.case_data();
+  const SemiDiscreteSystem& system = r.runner.system();
+  const RunStatistics& stats = r.statistics;
+  const auto events = run_events(r);
+  std::ofstream out(file);
+  JsonWriter json(out);
+  json.begin_object()
+      .value("status", "completed")
+      .value("discretisation", to_string(c.discretisation.method))
+      .value("number_of_intervals",
+             static_cast<unsigned long>(c.discretisation.n_intervals))
+      .value("integrator", c.time_integration.integrator)
+      .value("time_step", c.time_integration.time_step)
+      .value("speed", c.scene.pantographs[0].parameters.speed)
+      .value("end_time", r.result.end_time)
+      .value("unknowns", static_cast<unsigned long>(system.n_dofs()))
+      .value("constraints", static_cast<unsigned long>(system.n_constraints()));
+  json.begin_array("scene");
+  for (const std::string& effect : r.runner.active_effects())
+    json.value("", effect);
+  json.end_array();
+  write_pantographs(json, r, events);
+  if (const ContactStatistics* first = r.first_contact())
+  {
+    json.begin_object("contact_force")
+        .value("max", stats.contact_force_max())
+        .value("min", stats.contact_force_min())
+        .value("mean", stats.contact_force_mean())
+        .value("std", stats.contact_force_std())
+        .end_object();
+    write_statistics(json, first->result());
+  }
+  if (r.energy != nullptr && r.energy->count > 0)
+    json.begin_object("energy")
+        .value("initial", r.energy->initial)
+        .value("min", r.energy->min)
+        .value("max", r.energy->max)
+        .value("final", r.energy->final)
+        .value("max_relative_variation", r.energy->relative_variation())
+        .end_object();
+  if (r.series != nullptr)
+  {
+    json.begin_array("series_reference");
+    for (const auto& probe : r.series->probes())
+      json.begin_object()
+          .value("x", probe.x)
+          .value("max_error", probe.max_error)
+          .value("max_reference", probe.max_reference)
+          .value("relative_error", probe.relative())
+          .end_object();
+    json.end_array();
+  }
+  json.begin_array("dropper_slack_intervals");
+  for (const auto& list : stats.dropper_slack_intervals())
+    json.intervals("", list);
+  json.end_array();
+  if (r.runner.layout().has_contact())
+    json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  json.value("max_droppers_slack_at_once",
+             static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
+  // Events: located in time by the integrator (IDA's root finding), or at
+  // step resolution from the reported time points.
+  json.value("event_resolution", r.result.integrator.events_localised ? "localised" : "step");
+  write_events(json, events);
+  if (!r.result.integrator.counters.empty())
+  {
+    json.begin_object("integrator_counters");
+    for (const auto& [name, value] : r.result.integrator.counters)
+      json.value(name, static_cast<unsigned long>(value));
+    json.end_object();
+  }
+  json.value("steps", r.result.integrator.steps)
+      .value("active_set_changes", r.result.integrator.active_set_changes)
+      .value("active_set_iterations", r.result.integrator.active_set_iterations);
+  json.begin_object("max_constraint_residual")
+      .value("position", stats.max_position_residual())
+      .value("velocity", stats.max_velocity_residual())
+      .end_object();
+  const GuardExtremes& g = r.result.guards;
+  json.begin_object("guards")
+      .value("max_drift", g.max_drift)
+      .value("max_multiplier", g.max_multiplier)
+      .value("reference_force", g.reference_force)
+      .value("max_energy_increase", g.max_energy_increase)
+      .value("min_energy_increase", g.min_energy_increase)
+      .value("reference_energy", g.reference_energy)
+      .end_object();
+  json.value("stability_limit_explicit", r.result.stability_limit)
+      .value("time_loop_seconds", r.result.time_loop_seconds)
+      .end_object();
+  if (!out)
+    throw SimulationError("cannot write " + file);
+}
+
+void write_failed_summary(const std::string& file, const std::string& reason)
+{
+  std::ofstream out(file);
+  JsonWriter json(out);
+  json.begin_object().value("status", "failed").value("reason", reason).end_object();
+}
+
+namespace
+{
+std::string format_intervals(const std::vector<Interval>& list)
+{
+  if (list.empty())
+    return "none";
+  std::ostringstream s;
+  s << std::setprecision(4);
+  for (std::size_t i = 0; i < list.size(); ++i)
+    s << (i ? ", " : "") << '[' << list[i].first << ", " << list[i].second << ']';
+  return s.str();
+}
+} // namespace
+
+void print_scene(std::ostream& out, const CaseRunner& runner)
+{
+  const SemiDiscreteSystem& system = runner.system();
+  const SimulationLayout& layout = runner.layout();
+  out << "  scene: " << runner.active_effects().size() << " effects\n";
+  for (const std::string& effect : runner.active_effects())
+    out << "    " << effect << '\n';
+  if (!runner.inactive_effects().empty())
+  {
+    out << "  left out (not assembled):";
+    for (const std::string& name : runner.inactive_effects())
+      out << (name == runner.inactive_effects().front() ? " " : ", ") << name;
+    out << '\n';
+  }
+  out << "  problem size: " << system.n_dofs() << " unknowns (";
+  for (const DofBlock& b : system.blocks)
+    out << (&b == &system.blocks.front() ? "" : ", ") << b.name << ' ' << b.size;
+  const auto contacts = layout.contacts();
+  out << "), " << system.n_constraints() << " constraints ("
+      << layout.dropper_indices.size() << " droppers";
+  if (contacts.size() == 1)
+    out << ", contact";
+  else if (contacts.size() > 1)
+    out << ", " << contacts.size() << " contacts";
+  out << ")\n";
+}
+
+void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed)
+{
+  const SimulationLayout& layout = r.runner.layout();
+  const RunStatistics& stats = r.statistics;
+  const bool several = layout.contacts().size() > 1;
+  for (const PantographLayout* p : layout.contacts())
+    out << std::setprecision(6) << "  " << (several ? p->name + ": " : "")
+        << "first time point t = " << r.first_point.t << " s: lambda_p = "
+        << r.first_point.lambda[p->contact] << " N (lambda_p(0) = " << p->initial_contact_force
+        << " N)\n";
+  out << "  " << r.result.integrator.steps << " steps in " << std::setprecision(3)
+      << r.result.time_loop_seconds
+      << " s; active-set changes: " << r.result.integrator.active_set_changes << '\n';
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+    {
+      const auto& f = stats.contact_force(k);
+      out << std::setprecision(5) << "  "
+          << (several ? layout.pantographs[k].name + ": " : "")
+          << "contact force: max " << f.max << " N, min " << f.min << " N, mean "
+          << f.mean << " N, std " << f.std() << " N\n";
+    }
+  if (r.series != nullptr)
+    for (const auto& probe : r.series->probes())
+      out << std::setprecision(4) << "  series solution at x = " << probe.x
+          << " m: max |w - w_series| = " << probe.max_error << " m, "
+          << 100. * probe.relative() << " % of max |w_series| = " << probe.max_reference
+          << " m\n";
+  if (r.energy != nullptr && r.energy->count > 0)
+    out << std::setprecision(6) << "  energy: initial " << r.energy->initial
+        << " J, final " << r.energy->final
+        << " J, max |E - E(0)| / |E(0)| = " << std::setprecision(3)
+        << r.energy->relative_variation() << '\n';
+  const auto slack = stats.dropper_slack_intervals();
+  for (unsigned int j = 0; j < slack.size(); ++j)
+    out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+      out << "  " << (several ? layout.pantographs[k].name + ": " : "")
+          << "contact lost: " << format_intervals(stats.contact_loss_intervals(k)) << '\n';
+  out << std::setprecision(3) << "  max constraint residual: position "
+      << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
+      << " m/s\n";
+  if (detailed)
+    out << "  active-set iterations: " << r.result.integrator.active_set_iterations
+        << '\n';
+  for (unsigned int k = 0; k < r.contacts.size(); ++k)
+    if (r.contacts[k] != nullptr)
+    {
+      if (several)
+        out << "  " << layout.pantographs[k].name << ":\n";
+      print_statistics(out, r.contacts[k]->result());
+    }
+}
+} // namespace pantocat

@@ -1,0 +1,49 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/simulation/case.h>
+
+#include <limits>
+
+namespace pantocat
+{
+namespace
+{
+/// t at which @p p reaches its final position.
+double arrival_time(const PantographParameters& p)
+{
+  return (p.final_position - p.initial_position) / p.speed;
+}
+} // namespace
+
+double Case::end_time() const
+{
+  double t = std::numeric_limits<double>::infinity();
+  for (const PantographCase& p : scene.pantographs)
+    if (!p.is_absent())
+      t = std::min(t, arrival_time(p.parameters));
+  return t < std::numeric_limits<double>::infinity()
+             ? t
+             : arrival_time(scene.pantographs.front().parameters);
+}
+
+void Case::check() const
+{
+  scene.check();
+  if (scene.carrier_bending && scene.carrier == WireModel::elastic)
+  {
+    require(catenary.carrier.bending_stiffness > 0., "Catenary/Carrier/Bending stiffness",
+            catenary.carrier.bending_stiffness, "must be > 0 with Scene/Carrier bending");
+    require(discretisation.method == SpaceMethod::fdm ||
+                discretisation.carrier_element == CarrierElement::cubic_hermite,
+            "Discretisation/Carrier element", "linear Lagrange",
+            "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
+            "Hermite (or Method = fdm)");
+  }
+  discretisation.check(catenary.length());
+  const double eps = discretisation.load_shape == LoadShape::smoothed_delta
+                         ? discretisation.load_half_width
+                         : 0.;
+  for (const PantographCase& p : scene.pantographs)
+    p.parameters.check(catenary.length(), eps);
+}
+} // namespace pantocat

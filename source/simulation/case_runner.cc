@@ -1,0 +1,324 @@
+#include <pantocat/analysis/stability_limit.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/scene/scene_builder.h>
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/checkpoint.h>
+#include <pantocat/simulation/initial_state.h>
+#include <pantocat/time/integrator_registry.h>
+
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+namespace pantocat
+{
+/// The built scene, kept out of the header: only the runner sees scene/.
+struct CaseRunner::Scene
+{
+  BuiltScene built;
+};
+
+namespace
+{
+/// The layout of the outputs: constraint names, pantographs and their contacts.
+SimulationLayout make_layout(const BuiltScene& built, const Measurements& measurements)
+{
+  SimulationLayout layout;
+  for (const auto& c : built.system.constraints)
+    layout.constraint_names.push_back(c->name());
+  layout.dropper_indices = built.dropper_indices;
+  unsigned int coordinate = 0;
+  for (const ScenePantograph& p : built.pantographs)
+  {
+    PantographLayout l;
+    l.name = p.block;
+    l.column_suffix = p.column_suffix;
+    l.model = p.data->model;
+    l.contact = p.contact_index;
+    l.initial_contact_force = p.data->parameters.initial_contact_force;
+    l.static_force = p.model                        ? p.model->static_force()
+                     : p.data->is_moving_force() ? std::abs(p.data->moving_force)
+                                                 : 0.;
+    if (p.model)
+      l.coordinates = p.model->coordinate_names();
+    l.first_coordinate = coordinate;
+    coordinate += l.coordinates.size();
+    layout.pantographs.push_back(l);
+  }
+  layout.probe_positions = measurements.probe_positions;
+  layout.energy = measurements.energy;
+  return layout;
+}
+
+/// The pantographs in contact at t = 0, for the consistent initial state.
+std::vector<InitialContact> initial_contacts(const BuiltScene& built)
+{
+  std::vector<InitialContact> contacts;
+  for (const ScenePantograph& p : built.pantographs)
+    if (p.has_contact())
+      contacts.push_back({p.model.get(), p.contact_index, p.block,
+                          p.data->parameters.initial_contact_force,
+                          p.data->parameters.initial_offset});
+  return contacts;
+}
+
+/**
+ * Stops a run that goes unstable: non-finite values, or a displacement (or
+ * Hermite slope) beyond @p bound, the length of the domain: no physical state
+ * of a wire comes near that, while an unstable mode grows through it within a
+ * few steps of exponential growth.
+ */
+void check_bounded(const DynamicState& s, const unsigned long step, const double bound)
+{
+  const double largest = s.q.linfty_norm();
+  bool finite = std::isfinite(largest) && std::isfinite(s.v.linfty_norm());
+  for (const double l : s.lambda)
+    finite = finite && std::isfinite(l);
+  std::ostringstream m;
+  if (!finite)
+    m << "unstable: non-finite positions, velocities or multipliers at t = " << s.t
+      << " s (step " << step << ")";
+  else if (largest > bound)
+    m << "unstable: a displacement of " << largest << " m exceeds the span " << bound
+      << " m at t = " << s.t << " s (step " << step << ")";
+  else
+    return;
+  throw SimulationError(m.str());
+}
+} // namespace
+
+CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
+    : data(c),
+      space(create_catenary_discretisation(data.catenary, data.discretisation)),
+      scene(std::make_unique<Scene>())
+{
+  scene->built = build_scene(data.scene, data.catenary, *space);
+  const BuiltScene& built = scene->built;
+  layout_ = make_layout(built, measurements);
+  for (const double x : measurements.probe_positions)
+  {
+    require(built.system.has_block("contact wire"), "Output/Probe positions", x,
+            "probes measure the contact wire, which this scene holds rigid");
+    require(x > 0. && x < data.catenary.length(), "Output/Probe positions", x,
+            "must lie inside (0, " + number_to_string(data.catenary.length()) +
+                ") m, the wires' domain");
+    probe_rows.push_back(wire_point_row(*space, built.system, Wire::contact_wire, x));
+  }
+  initial = data.scene.initial_shape == InitialShape::static_equilibrium
+                ? consistent_initial_state(built.catenary_only, built.system,
+                                           initial_contacts(built))
+                : shaped_initial_state(built.system, *space, data.scene);
+}
+
+CaseRunner::~CaseRunner() = default;
+
+const SemiDiscreteSystem& CaseRunner::system() const
+{
+  return scene->built.system;
+}
+
+const std::vector<std::string>& CaseRunner::active_effects() const
+{
+  return scene->built.active_effects;
+}
+
+const std::vector<std::string>& CaseRunner::inactive_effects() const
+{
+  return scene->built.inactive_effects;
+}
+
+StaticEquilibrium CaseRunner::static_catenary() const
+{
+  return pantocat::static_catenary(scene->built.catenary_only, scene->built.system,
+                                   initial_contacts(scene->built));
+}
+
+double CaseRunner::contact_wire_displacement(const dealii::Vector<double>& q,
+                                             const double x) const
+{
+  return wire_point_row(*space, system(), Wire::contact_wire, x).dot(q);
+}
+
+double CaseRunner::explicit_stability_limit() const
+{
+  if (stability_limit == 0.)
+    stability_limit = 2. / largest_circular_frequency(system());
+  return stability_limit;
+}
+
+void CaseRunner::check() const
+{
+  check_step_size();
+  check_load_resolution();
+}
+
+void CaseRunner::check_step_size() const
+{
+  const auto& ti = data.time_integration;
+  if (!integrator_entry(ti.integrator).explicit_step_limit)
+    return;
+  const double limit = explicit_stability_limit();
+  if (ti.time_step <= limit)
+    return;
+  std::ostringstream message;
+  message << "above the stability limit 2/omega_max = " << std::setprecision(3) << limit
+          << " s of the " << ti.integrator << " method for this grid ("
+          << to_string(data.discretisation.method)
+          << ", N+1 = " << data.discretisation.n_intervals << ")";
+  if (!ti.force_step_size)
+    throw InputError("Time integration/Time step = " + number_to_string(ti.time_step) +
+                     ": " + message.str() +
+                     "; choose a smaller step or set Force step size = true");
+  if (!warned)
+    std::cerr << "pantocat-fem: warning: time step " << ti.time_step << " s is "
+              << message.str() << " (forced)\n";
+  warned = true;
+}
+
+void CaseRunner::check_load_resolution() const
+{
+  const auto& d = data.discretisation;
+  // It matters for a contact constraint, whose row moves with x_p; a
+  // prescribed moving force on a coarse grid is merely less accurate.
+  if (d.load_shape != LoadShape::smoothed_delta || !layout_.has_contact() ||
+      !system().has_block("contact wire"))
+    return;
+  const double h = data.catenary.length() / d.n_intervals;
+  if (h < d.load_half_width)
+    return;
+  std::ostringstream m;
+  m << "Discretisation/Number of intervals = " << d.n_intervals
+    << ": the grid spacing h = " << h
+    << " m is not below Load half-width = " << d.load_half_width
+    << " m, so the smoothed load of the contact is not resolved; choose Number of "
+       "intervals > "
+    << data.catenary.length() / d.load_half_width << " or a wider Load half-width";
+  throw InputError(m.str());
+}
+
+TimePoint CaseRunner::time_point(const DynamicState& s) const
+{
+  const SemiDiscreteSystem& sys = system();
+  TimePoint p;
+  p.t = s.t;
+  for (const ScenePantograph& pantograph : scene->built.pantographs)
+    p.x_p.push_back(pantograph.motion.position(s.t));
+  p.lambda = s.lambda;
+  p.active = s.active;
+  const unsigned int m = sys.n_constraints();
+  p.gap.resize(m);
+  ConstraintState rows;
+  for (unsigned int i = 0; i < m; ++i)
+  {
+    sys.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
+    p.gap[i] = rows.position_residual(s.q);
+    if (s.active[i])
+    {
+      p.position_residual = std::max(p.position_residual, std::abs(p.gap[i]));
+      p.velocity_residual =
+          std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
+    }
+  }
+  for (const ScenePantograph& pantograph : scene->built.pantographs)
+    if (pantograph.model)
+    {
+      const DofBlock& b = sys.block(pantograph.block);
+      for (unsigned int i = 0; i < b.size; ++i)
+        p.pantograph.push_back(s.q(b.first + i));
+    }
+  for (const SparseRow& row : probe_rows)
+    p.probes.push_back(row.dot(s.q));
+  if (layout_.energy)
+    p.energy = sys.energy(s.q, s.v, s.t);
+  return p;
+}
+
+RunGuard CaseRunner::make_guard() const
+{
+  // F_ref = max(F_0 of every pantograph, |lambda_i(0)|).
+  double reference_force = 0.;
+  for (const PantographLayout& p : layout_.pantographs)
+    reference_force = std::max(reference_force, p.static_force);
+  for (const double l : initial.lambda)
+    reference_force = std::max(reference_force, std::abs(l));
+  const auto& c = data.catenary;
+  return RunGuard(data.guards, system(), reference_force,
+                  0.5 * (c.carrier.tension + c.contact_wire.tension) * c.length(),
+                  initial);
+}
+
+CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& observers,
+                                   const CheckpointPlan& checkpoints)
+{
+  check_step_size();
+  const auto& ti = data.time_integration;
+  auto integrator = create_time_integrator(system(), ti);
+  Result result;
+  result.end_time = data.end_time();
+  const auto n_steps =
+      static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
+
+  // The guards watch each time point after the outputs have it: a run
+  // stopped by them keeps its time series up to the failure.
+  RunGuard guard = make_guard();
+  std::vector<SimulationObserver*> all = observers;
+  all.push_back(&guard);
+  const auto notify = [&](const DynamicState& s)
+  {
+    const TimePoint p = time_point(s);
+    for (auto* o : all)
+    {
+      o->observe(p);
+      o->observe_state(p, s);
+    }
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  integrator->initialize(initial);
+  const bool lags = integrator->multipliers_lag_one_step();
+  unsigned long first_step = 1;
+  if (checkpoints.resume_from)
+  {
+    checkpoints.resume_from->restore(*integrator, layout_, all);
+    first_step = checkpoints.resume_from->step() + 1;
+  }
+  else
+  {
+    for (auto* o : all)
+      o->start(layout_);
+    if (!lags)
+      notify(initial);
+  }
+  for (unsigned long n = first_step; n <= n_steps; ++n)
+  {
+    integrator->advance();
+    check_bounded(integrator->latest(), n, data.catenary.length());
+    notify(integrator->latest());
+    if (n == n_steps)
+      break;
+    if (checkpoints.writer && checkpoints.interval > 0 && n % checkpoints.interval == 0)
+      checkpoints.writer->write(n, *integrator, all);
+    if (n == checkpoints.stop_after_steps)
+      throw SimulationError("stopped after step " + std::to_string(n) + " of " +
+                            std::to_string(n_steps) +
+                            " at t = " + number_to_string(integrator->time()) +
+                            " s as asked (Checkpoint/Stop after steps)");
+  }
+  integrator->finish();
+  if (lags)
+    notify(integrator->latest());
+  result.time_loop_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result.integrator = integrator->statistics();
+  result.final_state = integrator->latest();
+  result.guards = guard.extremes();
+  result.stability_limit = integrator_entry(ti.integrator).explicit_step_limit
+                               ? explicit_stability_limit()
+                               : std::numeric_limits<double>::quiet_NaN();
+  for (auto* o : observers)
+    o->finish();
+  return result;
+}
+} // namespace pantocat
