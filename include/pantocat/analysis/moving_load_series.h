@@ -27,7 +27,7 @@ namespace pantocat
  *         - sin(theta_n) cos(omega_n t) - (Omega_n / omega_n) cos(theta_n) sin(omega_n
  * t)].
  *
- * The reference of the moving-force scenes (issue 7): independent of any
+ * The reference of the moving-force scenes: independent of any
  * grid, it checks FEM and FDM, the load row (33) and the time integrators.
  */
 class MovingLoadSeries

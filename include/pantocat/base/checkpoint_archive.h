@@ -2,7 +2,7 @@
 
 /**
  * @file
- * The archives of a checkpoint (issue 6): Boost's binary archives, declared
+ * The archives of a checkpoint: Boost's binary archives, declared
  * here only, so that the headers of integrators and observers need not pull
  * in Boost.Serialization. A .cc file that writes or reads one includes
  * pantocat/base/serialization.h.

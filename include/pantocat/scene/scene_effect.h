@@ -7,7 +7,7 @@
 namespace pantocat
 {
 /**
- * One effect of a scene (issue 7): a body, a term of the weak form, a load or
+ * One effect of a scene: a body, a term of the weak form, a load or
  * a constraint. The scene builder asks every registered effect whether the
  * scene enables it, and lets the enabled ones contribute in three phases:
  *  1. add_bodies():      a body's operator (its unknowns and mass);

@@ -56,7 +56,7 @@ enum class InitialShape
 };
 
 /**
- * A scene: which bodies exist and which effects act (issue 7). The defaults
+ * A scene: which bodies exist and which effects act. The defaults
  * are the paper's benchmark (Sec. 6). Every effect the scene leaves out is
  * neither assembled nor integrated.
  */

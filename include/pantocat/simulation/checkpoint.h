@@ -26,7 +26,7 @@ namespace pantocat
 ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm);
 
 /**
- * Writes checkpoints of a dynamic run (issue 6): the fingerprint of its
+ * Writes checkpoints of a dynamic run: the fingerprint of its
  * parameters, the step counter, the integrator's internal state and each
  * observer's state, in a Boost binary archive. Written to a temporary file
  * in the same directory and renamed over the old checkpoint: a run killed

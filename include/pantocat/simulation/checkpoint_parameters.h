@@ -13,7 +13,7 @@ namespace pantocat
 /// (name "Subsection/Entry", value) of every parameter a checkpoint depends on.
 using ParameterFingerprint = std::vector<std::pair<std::string, std::string>>;
 
-/// Subsection Checkpoint: saving a run every K steps and continuing it (issue 6).
+/// Subsection Checkpoint: saving a run every K steps and continuing it.
 struct CheckpointParameters
 {
   unsigned int interval = 0; ///< steps between checkpoints; 0: none

@@ -6,7 +6,7 @@ namespace pantocat
 {
 /**
  * Subsection Guards: the bounds beyond which a dynamic run counts as unstable
- * and stops (issue 6; doc/stability.md gives the reasoning and measured
+ * and stops (doc/stability.md gives the reasoning and measured
  * figures).
  */
 struct GuardParameters

@@ -75,7 +75,7 @@ public:
   virtual void observe_state(const TimePoint& /*point*/, const DynamicState& /*state*/) {}
   virtual void finish() {}
   /**
-   * Checkpoints (issue 6): save() writes what the observer needs to continue
+   * Checkpoints: save() writes what the observer needs to continue
    * the run from the last time point it saw (accumulators, the length of its
    * files); resume() replaces start() when a run continues from a
    * checkpoint and reads the same, so that the outputs come out as those of

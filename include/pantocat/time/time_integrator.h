@@ -63,7 +63,7 @@ public:
   const IntegratorStatistics& statistics() const { return stats; }
 
   /**
-   * Checkpoints (issue 6): save() writes the method's whole internal state
+   * Checkpoints: save() writes the method's whole internal state
    * after a step (history, auxiliary variables, active set, counters), so that
    * load() into an integrator made for the same system and parameters, after
    * initialize(), continues bit for bit as if never stopped. The default
