@@ -379,8 +379,8 @@ int main(int argc, char** argv)
   {
     // dt = c dx^2 as in Sec. 5.2, scaled from the paper's 5e-5 s at N+1 = 500.
     const double scale = 500. / n, dt = 5e-5 * scale * scale;
-    const double he = library_step(
-        benchmark(n, SpaceMethod::fdm, "half-explicit", dt), steps);
+    const double he =
+        library_step(benchmark(n, SpaceMethod::fdm, "half-explicit", dt), steps);
     double loop = 1e300;
     for (unsigned int b = 0; b < batches; ++b)
       loop = std::min(loop,

@@ -7,8 +7,8 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
-#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/run_statistics.h>
 
 #include <deal.II/base/mpi.h>

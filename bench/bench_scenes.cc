@@ -79,8 +79,7 @@ int main(int argc, char** argv)
     p.discretisation.n_intervals = n;
     p.pantograph().final_position = 4.;
     const bool fdm = method == SpaceMethod::fdm;
-    p.time_integration.integrator =
-        fdm ? "half-explicit" : "bdf2";
+    p.time_integration.integrator = fdm ? "half-explicit" : "bdf2";
     // Below 2/omega_max of the full scene (FDM): the same step for every scene.
     p.time_integration.time_step = fdm ? 2e-6 * (1000. / n) * (1000. / n) : 5e-5;
     std::cout << "\n"

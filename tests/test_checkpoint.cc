@@ -3,8 +3,8 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
-#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/checkpoint.h>
 
 #include <gtest/gtest.h>
 
@@ -112,8 +112,7 @@ ProgramParameters case_48(const SpaceMethod method, const std::string& integrato
 // the slack interval of dropper 2; 200 steps on, across its re-tension.
 TEST(Checkpoint, HalfExplicitResumesBitForBit)
 {
-  expect_resume_bit_for_bit(case_48(SpaceMethod::fdm, "half-explicit"),
-                            5150, 200);
+  expect_resume_bit_for_bit(case_48(SpaceMethod::fdm, "half-explicit"), 5150, 200);
 }
 
 TEST(Checkpoint, Bdf2ResumesBitForBitFem)
@@ -128,8 +127,7 @@ TEST(Checkpoint, Bdf2ResumesBitForBitRightAfterItsRichardsonStart)
 
 TEST(Checkpoint, GeneralizedAlphaResumesBitForBitFem)
 {
-  expect_resume_bit_for_bit(case_48(SpaceMethod::fem, "generalized-alpha"),
-                            5150, 200);
+  expect_resume_bit_for_bit(case_48(SpaceMethod::fem, "generalized-alpha"), 5150, 200);
 }
 
 TEST(Checkpoint, IdaRefusesToWriteOne)

@@ -1,15 +1,15 @@
 // Coupled pantograph-catenary dynamics (Secs. 5, 6): the paper's 32 and
 // 48 m/s runs, agreement of discretisations and integrators, reversibility
 // and energy of the half-explicit method, constraint residuals, step-size guard.
-#include <pantocat/app/program_parameters.h>
-#include <pantocat/analysis/static_equilibrium.h>
-#include <pantocat/base/input_error.h>
+#include "support/catenary_system_builder.h"
 #include "support/coupled_system_builder.h"
+#include <pantocat/analysis/static_equilibrium.h>
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/base/input_error.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
-#include "support/catenary_system_builder.h"
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
@@ -66,8 +66,7 @@ double time_of_minimum(const Recorder& r, unsigned int i, double t0, double t1)
 
 TEST(Benchmark32, ConsistentStartNoSlackNoLossAndMethodsAgree)
 {
-  const BenchmarkRun fdm_he(
-      benchmark(32., SpaceMethod::fdm, "half-explicit"));
+  const BenchmarkRun fdm_he(benchmark(32., SpaceMethod::fdm, "half-explicit"));
   const BenchmarkRun fdm_bdf(benchmark(32., SpaceMethod::fdm, "bdf2"));
   const BenchmarkRun fem_bdf(benchmark(32., SpaceMethod::fem, "bdf2"));
 

@@ -17,8 +17,7 @@ using namespace pantocat;
 
 namespace
 {
-ProgramParameters benchmark(std::string integrator,
-                            SpaceMethod method = SpaceMethod::fdm)
+ProgramParameters benchmark(std::string integrator, SpaceMethod method = SpaceMethod::fdm)
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;

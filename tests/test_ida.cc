@@ -42,8 +42,7 @@ TEST(Ida, AgreesWithBdf2AndHalfExplicitAt32MetresPerSecond)
   // 1.5e-9 m, 1.5e-6 m/s), not at round-off as for the fixed-step methods.
   RunStatistics ida, bdf, he;
   for (auto [integrator, stats] :
-       {std::pair{"ida", &ida}, std::pair{"bdf2", &bdf},
-        std::pair{"half-explicit", &he}})
+       {std::pair{"ida", &ida}, std::pair{"bdf2", &bdf}, std::pair{"half-explicit", &he}})
   {
     ProgramParameters p = benchmark(32., integrator, 250);
     p.pantograph().final_position = 8.;

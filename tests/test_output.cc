@@ -2,17 +2,17 @@
 // analytic response, the contact-force statistics against hand-computed values,
 // the ParaView time series (files, physical times, first frame = static
 // profile), the progress line, and the log-log plot helper.
-#include <pantocat/app/program_parameters.h>
+#include "support/catenary_system_builder.h"
 #include <pantocat/analysis/butterworth_low_pass.h>
 #include <pantocat/analysis/static_equilibrium.h>
+#include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/io/wire_output.h>
-#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/case_runner.h>
-#include "support/catenary_system_builder.h"
+#include <pantocat/simulation/contact_statistics.h>
 
 #include <deal.II/base/utilities.h>
 

@@ -57,7 +57,8 @@ TEST(Pantographs, AnAbsentSecondPantographReproducesTheBenchmarkBitForBit)
   auto with_second = shorter;
   with_second.insert(with_second.end(),
                      {"Scene/Number of pantographs=2", "Pantograph 2/Model=absent",
-                      "Pantograph 2/Initial position=10", "Pantograph 2/Final position=14"});
+                      "Pantograph 2/Initial position=10",
+                      "Pantograph 2/Final position=14"});
   const CaseRun one(shipped("benchmark-32.prm", shorter));
   const CaseRun two(shipped("benchmark-32.prm", with_second));
   ASSERT_EQ(two.runner.layout().pantographs.size(), 2u);
@@ -80,11 +81,11 @@ TEST(Pantographs, TwoPantographsOnARigidWireEachFollowTheClosedForm)
   // The rigid-wire scene with a second pantograph of its own data (another
   // initial force, offset and head damping): the bodies do not interact
   // through a rigid wire, so each follows its own damped frame oscillator.
-  const ProgramParameters p =
-      shipped("scenes/pantograph-rigid-wire.prm",
-              {"Scene/Number of pantographs=2", "Pantograph 2/Initial position=8",
-               "Pantograph 2/Initial contact force=50", "Pantograph 2/Initial offset=-0.002",
-               "Pantograph 2/Two-mass model/Head damping=45"});
+  const ProgramParameters p = shipped(
+      "scenes/pantograph-rigid-wire.prm",
+      {"Scene/Number of pantographs=2", "Pantograph 2/Initial position=8",
+       "Pantograph 2/Initial contact force=50", "Pantograph 2/Initial offset=-0.002",
+       "Pantograph 2/Two-mass model/Head damping=45"});
   const CaseRun run(p);
   const auto& layout = run.runner.layout();
   ASSERT_EQ(layout.contacts().size(), 2u);

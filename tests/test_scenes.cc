@@ -3,7 +3,6 @@
 // energy and the period of free vibration, the closed-form response of a
 // pantograph on a rigid wire, the grid-crossing oscillations of a point load),
 // and effects a scene leaves out are not assembled.
-#include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/analysis/moving_load_series.h>
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
@@ -11,13 +10,14 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/moving_load_comparison.h>
 
 #include <deal.II/lac/full_matrix.h>
 
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include "support/rigid_wire_response.h"
+#include <algorithm>
 
 #include <cmath>
 #include <complex>

@@ -1,8 +1,8 @@
 // Static problems: string and tensioned beam under point and uniform loads
 // against closed forms; the paper's initial catenary (Fig. 5) with droppers.
+#include "support/catenary_system_builder.h"
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
-#include "support/catenary_system_builder.h"
 
 #include <gtest/gtest.h>
 

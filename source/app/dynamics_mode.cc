@@ -144,10 +144,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     observers.push_back(&reference.emplace(moving_load_series(runner.case_data())));
   std::optional<VtuTimeSeriesWriter> vtu;
   if (p.output.vtu_interval > 0.)
-    observers.push_back(
-        &vtu.emplace(dir, p.output.vtu_interval, p.time_integration.time_step,
-                     p.output.vtu_subdivisions, runner.discretisation(), runner.system(),
-                     &timer));
+    observers.push_back(&vtu.emplace(
+        dir, p.output.vtu_interval, p.time_integration.time_step,
+        p.output.vtu_subdivisions, runner.discretisation(), runner.system(), &timer));
   std::optional<ProgressMeter> progress;
   if (p.output.verbosity != Verbosity::quiet && stderr_is_terminal())
     observers.push_back(&progress.emplace(std::cerr, runner.case_data().end_time()));
@@ -168,7 +167,13 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     throw;
   }
   timer.enter_subsection("output (summary, plots)");
-  RunRecord record{runner, r, stats, events, first, {}, p.output.energy ? &energy : nullptr,
+  RunRecord record{runner,
+                   r,
+                   stats,
+                   events,
+                   first,
+                   {},
+                   p.output.energy ? &energy : nullptr,
                    reference ? &*reference : nullptr};
   for (const auto& c : contacts)
     record.contacts.push_back(c.get());

@@ -25,11 +25,12 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
   csv << "dropper,x_m,force_n,gap_m,active\n" << std::setprecision(12);
   const auto& droppers = runner.layout().dropper_indices;
   out << "Static equilibrium (" << to_string(p.discretisation.method)
-      << ", N+1 = " << p.discretisation.n_intervals << ", " << s.q.size()
-      << " unknowns, " << droppers.size() << " dropper constraints)\n";
+      << ", N+1 = " << p.discretisation.n_intervals << ", " << s.q.size() << " unknowns, "
+      << droppers.size() << " dropper constraints)\n";
   for (const PantographCase& pantograph : p.scene.pantographs)
   {
-    const double force = pantograph.has_body()            ? pantograph.parameters.initial_contact_force
+    const double force = pantograph.has_body()
+                             ? pantograph.parameters.initial_contact_force
                          : pantograph.is_moving_force() ? pantograph.moving_force
                                                         : 0.;
     const double x = pantograph.parameters.initial_position;

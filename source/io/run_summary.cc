@@ -121,12 +121,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   write_pantographs(json, r, events);
   if (const ContactStatistics* first = r.first_contact())
   {
-    json.begin_object("contact_force")
-        .value("max", stats.contact_force_max())
-        .value("min", stats.contact_force_min())
-        .value("mean", stats.contact_force_mean())
-        .value("std", stats.contact_force_std())
-        .end_object();
+    write_force(json, stats.first_contact_force());
     write_statistics(json, first->result());
   }
   if (r.energy != nullptr && r.energy->count > 0)
@@ -159,7 +154,8 @@ void write_run_summary(const std::string& file, const RunRecord& r)
              static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
   // Events: located in time by the integrator (IDA's root finding), or at
   // step resolution from the reported time points.
-  json.value("event_resolution", r.result.integrator.events_localised ? "localised" : "step");
+  json.value("event_resolution",
+             r.result.integrator.events_localised ? "localised" : "step");
   write_events(json, events);
   if (!r.result.integrator.counters.empty())
   {
@@ -246,9 +242,9 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
   const bool several = layout.contacts().size() > 1;
   for (const PantographLayout* p : layout.contacts())
     out << std::setprecision(6) << "  " << (several ? p->name + ": " : "")
-        << "first time point t = " << r.first_point.t << " s: lambda_p = "
-        << r.first_point.lambda[p->contact] << " N (lambda_p(0) = " << p->initial_contact_force
-        << " N)\n";
+        << "first time point t = " << r.first_point.t
+        << " s: lambda_p = " << r.first_point.lambda[p->contact]
+        << " N (lambda_p(0) = " << p->initial_contact_force << " N)\n";
   out << "  " << r.result.integrator.steps << " steps in " << std::setprecision(3)
       << r.result.time_loop_seconds
       << " s; active-set changes: " << r.result.integrator.active_set_changes << '\n';
@@ -257,9 +253,9 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
     {
       const auto& f = stats.contact_force(k);
       out << std::setprecision(5) << "  "
-          << (several ? layout.pantographs[k].name + ": " : "")
-          << "contact force: max " << f.max << " N, min " << f.min << " N, mean "
-          << f.mean << " N, std " << f.std() << " N\n";
+          << (several ? layout.pantographs[k].name + ": " : "") << "contact force: max "
+          << f.max << " N, min " << f.min << " N, mean " << f.mean << " N, std "
+          << f.std() << " N\n";
     }
   if (r.series != nullptr)
     for (const auto& probe : r.series->probes())
@@ -278,7 +274,8 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
       out << "  " << (several ? layout.pantographs[k].name + ": " : "")
-          << "contact lost: " << format_intervals(stats.contact_loss_intervals(k)) << '\n';
+          << "contact lost: " << format_intervals(stats.contact_loss_intervals(k))
+          << '\n';
   out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
       << " m/s\n";

@@ -15,8 +15,7 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.enter_subsection(subsection);
   prm.declare_entry("Initial position", number_to_string(defaults.initial_position),
                     Double(), "x_p(0) [m], inside (epsilon, L - epsilon).");
-  prm.declare_entry("Final position", number_to_string(defaults.final_position),
-                    Double(),
+  prm.declare_entry("Final position", number_to_string(defaults.final_position), Double(),
                     "The run stops when x_p reaches this position [m] (with several "
                     "pantographs: when the first of them reaches its final position).");
   prm.declare_entry("Speed", number_to_string(defaults.speed), Double(),

@@ -29,8 +29,8 @@ std::string PantographBody::describe(const SceneAssembly& a) const
   std::string line;
   for (const ScenePantograph& p : a.pantographs)
     if (p.model)
-      line += (line.empty() ? "" : "; ") + p.block + ": " + p.model->name() +
-              " model, " + std::to_string(p.model->n_dofs()) + " unknowns";
+      line += (line.empty() ? "" : "; ") + p.block + ": " + p.model->name() + " model, " +
+              std::to_string(p.model->n_dofs()) + " unknowns";
   return line;
 }
 } // namespace pantocat

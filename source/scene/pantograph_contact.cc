@@ -43,11 +43,11 @@ std::string PantographContact::describe(const SceneAssembly& a) const
   std::string line;
   for (const ScenePantograph& p : a.pantographs)
     if (p.model)
-      line += (line.empty() ? "" : "; ") + p.contact + ": " +
-              (p.data->contact == Constraint::Kind::bilateral ? "bilateral"
-                                                              : "unilateral") +
-              (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
-                                                        : " (32), " + a.load_shape());
+      line +=
+          (line.empty() ? "" : "; ") + p.contact + ": " +
+          (p.data->contact == Constraint::Kind::bilateral ? "bilateral" : "unilateral") +
+          (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
+                                                    : " (32), " + a.load_shape());
   return line;
 }
 } // namespace pantocat

@@ -135,7 +135,8 @@ void SceneParameters::declare_further_pantograph(dealii::ParameterHandler& prm,
                     Selection("unilateral|bilateral"),
                     "As Scene/Contact, for this pantograph.");
   prm.declare_entry("Moving force", number_to_string(first.moving_force),
-                    dealii::Patterns::Double(), "As Scene/Moving force, for this pantograph.");
+                    dealii::Patterns::Double(),
+                    "As Scene/Moving force, for this pantograph.");
   prm.leave_subsection();
 }
 

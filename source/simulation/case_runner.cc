@@ -38,7 +38,7 @@ SimulationLayout make_layout(const BuiltScene& built, const Measurements& measur
     l.model = p.data->model;
     l.contact = p.contact_index;
     l.initial_contact_force = p.data->parameters.initial_contact_force;
-    l.static_force = p.model                        ? p.model->static_force()
+    l.static_force = p.model                     ? p.model->static_force()
                      : p.data->is_moving_force() ? std::abs(p.data->moving_force)
                                                  : 0.;
     if (p.model)
@@ -90,8 +90,7 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
 } // namespace
 
 CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
-    : data(c),
-      space(create_catenary_discretisation(data.catenary, data.discretisation)),
+    : data(c), space(create_catenary_discretisation(data.catenary, data.discretisation)),
       scene(std::make_unique<Scene>())
 {
   scene->built = build_scene(data.scene, data.catenary, *space);

@@ -1,6 +1,6 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/simulation/checkpoint.h>
+#include <pantocat/time/dynamic_state_serialization.h>
 
 #include <boost/archive/archive_exception.hpp>
 

@@ -47,8 +47,8 @@ DynamicState zero_state(const SemiDiscreteSystem& system)
 } // namespace
 
 StaticEquilibrium static_catenary(const SemiDiscreteSystem& catenary_only,
-                                   const SemiDiscreteSystem& coupled,
-                                   const std::vector<InitialContact>& contacts)
+                                  const SemiDiscreteSystem& coupled,
+                                  const std::vector<InitialContact>& contacts)
 {
   const unsigned int n_catenary = catenary_only.n_dofs();
   // The time-dependent loads at t = 0 and every lambda_p(0) F_w(0)^T: the

@@ -65,9 +65,7 @@ std::vector<Column> columns(const StudyParameters& s, const bool refines_space)
 }
 } // namespace
 
-ConvergenceStudy::ConvergenceStudy(const StudyCase& p) : parameters(p), plan_(p)
-{
-}
+ConvergenceStudy::ConvergenceStudy(const StudyCase& p) : parameters(p), plan_(p) {}
 
 std::vector<double> ConvergenceStudy::refinement_parameters(const unsigned int m) const
 {

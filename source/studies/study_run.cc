@@ -1,8 +1,8 @@
 #include <pantocat/analysis/eigenfrequency_analysis.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/case_runner.h>
-#include <pantocat/time/integrator_registry.h>
 #include <pantocat/studies/study_run.h>
+#include <pantocat/time/integrator_registry.h>
 
 #include <set>
 
@@ -168,8 +168,7 @@ RunOutcome execute_study_run(const StudyRun& run, const Case& base,
     std::ostringstream m;
     m << "dt = " << run.time_step
       << " s is above the stability limit 2/omega_max = " << std::setprecision(3)
-      << runner.explicit_stability_limit() << " s of the " << run.integrator
-      << " method";
+      << runner.explicit_stability_limit() << " s of the " << run.integrator << " method";
     outcome.status = RunOutcome::Status::skipped;
     outcome.message = m.str();
     return outcome;

@@ -22,8 +22,7 @@ LogLogCurve& curve(std::vector<LogLogCurve>& curves, const std::string& title)
 }
 } // namespace
 
-WorkPrecisionStudy::WorkPrecisionStudy(const StudyCase& p)
-    : parameters(p), plan_(p)
+WorkPrecisionStudy::WorkPrecisionStudy(const StudyCase& p) : parameters(p), plan_(p)
 {
   require(p.study.reference == StudyReference::separate_run, "Study/Reference",
           "finest run",

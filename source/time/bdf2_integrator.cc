@@ -1,5 +1,5 @@
-#include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/multiplier_system.h>
 
 #include <array>
@@ -367,12 +367,16 @@ IntegratorEntry Bdf2Integrator::registry_entry()
 {
   IntegratorEntry e;
   e.name = "bdf2";
-  e.description = "two-step BDF on the stabilised index-2 formulation (38) with a Richardson start";
+  e.description =
+      "two-step BDF on the stabilised index-2 formulation (38) with a Richardson start";
   e.explicit_step_limit = false;
   e.writes_checkpoints = true;
   e.locates_events = false;
   e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
-  { return std::make_unique<Bdf2Integrator>(system, p.time_step, p.max_active_set_iterations, p.linear_solver); };
+  {
+    return std::make_unique<Bdf2Integrator>(system, p.time_step,
+                                            p.max_active_set_iterations, p.linear_solver);
+  };
   return e;
 }
 } // namespace pantocat

@@ -193,12 +193,18 @@ IntegratorEntry GeneralizedAlphaIntegrator::registry_entry()
 {
   IntegratorEntry e;
   e.name = "generalized-alpha";
-  e.description = "the Chung-Hulbert method for the constrained second-order system (Arnold-Bruels form, positions on the constraints, velocities projected onto the hidden constraints)";
+  e.description = "the Chung-Hulbert method for the constrained second-order system "
+                  "(Arnold-Bruels form, positions on the constraints, velocities "
+                  "projected onto the hidden constraints)";
   e.explicit_step_limit = false;
   e.writes_checkpoints = true;
   e.locates_events = false;
   e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
-  { return std::make_unique<GeneralizedAlphaIntegrator>(system, p.time_step, p.rho_infinity, p.max_active_set_iterations, p.linear_solver); };
+  {
+    return std::make_unique<GeneralizedAlphaIntegrator>(
+        system, p.time_step, p.rho_infinity, p.max_active_set_iterations,
+        p.linear_solver);
+  };
   return e;
 }
 } // namespace pantocat

@@ -421,12 +421,16 @@ IntegratorEntry HalfExplicitIntegrator::registry_entry()
 {
   IntegratorEntry e;
   e.name = "half-explicit";
-  e.description = "the reversible half-explicit method (39)-(41) (explicit in the unknowns, stable for dt < 2/omega_max)";
+  e.description = "the reversible half-explicit method (39)-(41) (explicit in the "
+                  "unknowns, stable for dt < 2/omega_max)";
   e.explicit_step_limit = true;
   e.writes_checkpoints = true;
   e.locates_events = false;
   e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
-  { return std::make_unique<HalfExplicitIntegrator>(system, p.time_step, p.max_active_set_iterations); };
+  {
+    return std::make_unique<HalfExplicitIntegrator>(system, p.time_step,
+                                                    p.max_active_set_iterations);
+  };
   return e;
 }
 } // namespace pantocat

@@ -512,16 +512,19 @@ IntegratorEntry IdaIntegrator::registry_entry()
 {
   IntegratorEntry e;
   e.name = "ida";
-  e.description = "SUNDIALS IDA (variable order and step) on the GGL index-2 system, events located by root finding";
+  e.description = "SUNDIALS IDA (variable order and step) on the GGL index-2 system, "
+                  "events located by root finding";
   e.explicit_step_limit = false;
   e.writes_checkpoints = false;
   e.locates_events = true;
   e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
-  { return std::make_unique<IdaIntegrator>(
+  {
+    return std::make_unique<IdaIntegrator>(
         system, p.time_step, p.ida_relative_tolerance, p.ida_absolute_tolerance,
         p.ida_linear_solver == "umfpack"        ? IdaLinearSolver::umfpack
         : p.ida_linear_solver == "trilinos-klu" ? IdaLinearSolver::trilinos_klu
-                                                : IdaLinearSolver::sundials_klu); };
+                                                : IdaLinearSolver::sundials_klu);
+  };
   return e;
 }
 } // namespace pantocat

@@ -1,5 +1,5 @@
-#include <pantocat/scene/scene_builder.h>
 #include "catenary_system_builder.h"
+#include <pantocat/scene/scene_builder.h>
 
 namespace pantocat
 {

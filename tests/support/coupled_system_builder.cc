@@ -18,8 +18,8 @@ CoupledSystem build_coupled_system(const CatenaryDiscretisation& discretisation,
   p.parameters.two_mass = pantograph;
   p.parameters.initial_position = motion.initial_position;
   p.parameters.speed = motion.speed;
-  BuiltScene built = build_scene(scene, discretisation.catenary_parameters(),
-                                 discretisation);
+  BuiltScene built =
+      build_scene(scene, discretisation.catenary_parameters(), discretisation);
   CoupledSystem s;
   s.catenary_only = std::move(built.catenary_only);
   s.coupled = std::move(built.system);

@@ -26,8 +26,9 @@ inline double rigid_wire_contact_force(const PantographParameters& p, const doub
   const double B = (v0 + sigma * y0) / omega_d;
   const double e = std::exp(-sigma * t);
   const double y = e * (y0 * std::cos(omega_d * t) + B * std::sin(omega_d * t));
-  const double dy = -sigma * y + e * omega_d *
-                                     (-y0 * std::sin(omega_d * t) + B * std::cos(omega_d * t));
+  const double dy =
+      -sigma * y +
+      e * omega_d * (-y0 * std::sin(omega_d * t) + B * std::cos(omega_d * t));
   return m.head_stiffness * (y + m.uplift_force / c) + m.head_damping * dy;
 }
 } // namespace pantocat

@@ -1,7 +1,7 @@
 #pragma once
 
-#include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/base/contact_point_motion.h>
+#include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/space/smoothed_delta.h>
 
 #include <optional>

@@ -61,7 +61,10 @@ struct ProgramParameters
   /// The case of a study mode with the study's parameters and outputs.
   StudyCase make_study_case() const;
   /// Pantograph 1 (subsection Pantograph).
-  const PantographParameters& pantograph() const { return scene.pantographs[0].parameters; }
+  const PantographParameters& pantograph() const
+  {
+    return scene.pantographs[0].parameters;
+  }
   PantographParameters& pantograph() { return scene.pantographs[0].parameters; }
 };
 /**

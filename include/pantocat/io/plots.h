@@ -14,7 +14,8 @@ namespace pantocat
  * time_series.gp and returns false (drawing nothing) if one of the three
  * lists is empty or gnuplot fails.
  */
-bool plot_time_series(const std::string& directory, const std::vector<std::string>& columns,
+bool plot_time_series(const std::string& directory,
+                      const std::vector<std::string>& columns,
                       const std::vector<std::string>& contact_forces,
                       const std::vector<std::string>& dropper_forces,
                       const std::vector<std::string>& coordinates,

@@ -23,8 +23,8 @@ struct RunRecord
   const FirstTimePoint& first_point;
   /// Per pantograph (in layout order): its contact statistics, nullptr without contact.
   std::vector<const ContactStatistics*> contacts;
-  const EnergyRange* energy = nullptr;            ///< if Output/Energy
-  const MovingLoadComparison* series = nullptr;   ///< if a classical moving load
+  const EnergyRange* energy = nullptr;          ///< if Output/Energy
+  const MovingLoadComparison* series = nullptr; ///< if a classical moving load
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
 };

@@ -53,7 +53,8 @@ struct SceneAssembly
   SceneAssembly(const SceneParameters& scene, const CatenaryParameters& catenary,
                 const CatenaryDiscretisation& space,
                 std::vector<ScenePantograph> pantographs)
-      : scene(scene), catenary(catenary), space(space), pantographs(std::move(pantographs))
+      : scene(scene), catenary(catenary), space(space),
+        pantographs(std::move(pantographs))
   {
   }
 

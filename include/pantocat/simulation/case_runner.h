@@ -104,7 +104,8 @@ public:
 
 private:
   struct Scene;
-  /// The guards with F_ref from the pantographs and initial forces, E_ref = (T_c + T_w) L / 2.
+  /// The guards with F_ref from the pantographs and initial forces, E_ref = (T_c + T_w) L
+  /// / 2.
   RunGuard make_guard() const;
   void check_step_size() const;
   void check_load_resolution() const;

@@ -29,8 +29,8 @@ struct InitialContact
  * load lambda_p(0) F_w(0)^T (Fig. 5), in the numbering of @p catenary_only.
  */
 StaticEquilibrium static_catenary(const SemiDiscreteSystem& catenary_only,
-                                   const SemiDiscreteSystem& coupled,
-                                   const std::vector<InitialContact>& contacts);
+                                  const SemiDiscreteSystem& coupled,
+                                  const std::vector<InitialContact>& contacts);
 
 /**
  * The consistent initial state of Sec. 2.2 for the system of a scene:

@@ -42,7 +42,8 @@ public:
 
   /// Of pantograph @p k's contact (k in the order of SimulationLayout::pantographs).
   const ForceStatistics& contact_force(unsigned int k) const { return forces[k]; }
-  /// Of pantograph 1's contact (the first pantograph in contact).
+  /// Of the first pantograph in contact (pantograph 1 in version 1's outputs).
+  const ForceStatistics& first_contact_force() const { return first_contact(); }
   double contact_force_max() const { return first_contact().max; }
   double contact_force_min() const { return first_contact().min; }
   double contact_force_mean() const { return first_contact().mean; }

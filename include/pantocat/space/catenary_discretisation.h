@@ -1,9 +1,9 @@
 #pragma once
 
 #include <pantocat/catenary/catenary_parameters.h>
-#include <pantocat/system/block_operator.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/space/smoothed_delta.h>
+#include <pantocat/system/block_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/system/sparse_row.h>
 

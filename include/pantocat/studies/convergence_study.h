@@ -1,7 +1,7 @@
 #pragma once
 
-#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/series_comparison.h>
+#include <pantocat/studies/study_case.h>
 #include <pantocat/studies/study_plan.h>
 
 #include <ostream>

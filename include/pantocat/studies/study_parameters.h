@@ -29,7 +29,7 @@ struct StudyParameters
   std::vector<unsigned int> n_intervals;    ///< N+1 per refinement; empty: the case's
   std::vector<double> time_steps;           ///< dt per refinement [s]; empty: the case's
   std::vector<SpaceMethod> discretisations; ///< empty: the case's
-  std::vector<std::string> integrators;  ///< empty: the case's
+  std::vector<std::string> integrators;     ///< empty: the case's
   /// Every N+1 with every dt (work precision) instead of entry by entry.
   bool all_combinations = false;
   StudyReference reference = StudyReference::finest_run;

@@ -12,9 +12,9 @@ struct StudyRun
 {
   SpaceMethod discretisation = SpaceMethod::fdm;
   std::string integrator = "half-explicit"; ///< a registered integrator
-  unsigned int n_intervals = 500; ///< N+1
-  double time_step = 5e-5;        ///< dt [s]
-  bool reference = false;         ///< the separate reference run
+  unsigned int n_intervals = 500;           ///< N+1
+  double time_step = 5e-5;                  ///< dt [s]
+  bool reference = false;                   ///< the separate reference run
 
   /// "fdm + half-explicit".
   std::string method() const;

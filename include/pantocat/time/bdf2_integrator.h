@@ -5,9 +5,9 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
-#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>
