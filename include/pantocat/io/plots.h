@@ -28,10 +28,19 @@ bool plot_contact_force_statistics(const std::string& directory,
                                    const ContactForceStatistics& statistics,
                                    const std::string& title);
 
-/// True if gnuplot is on the PATH.
+/// True if gnuplot is on the PATH (looked up without a shell: find_program()).
 bool gnuplot_available();
 
-/// Runs @p script (a file name in @p directory) with gnuplot inside @p directory;
-/// false if gnuplot is not installed or fails.
+/**
+ * Runs @p script (a file name in @p directory) with gnuplot inside @p
+ * directory, without a shell (run_program()): the directory's name may hold
+ * any character. False if gnuplot is not installed or fails.
+ */
 bool run_gnuplot(const std::string& directory, const std::string& script);
+
+/**
+ * @p text as a single-quoted gnuplot string: quotes doubled, control
+ * characters (a newline would end the command) replaced by spaces.
+ */
+std::string gnuplot_string(const std::string& text);
 } // namespace pantocat
