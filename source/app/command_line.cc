@@ -3,6 +3,18 @@
 
 namespace pantocat
 {
+namespace
+{
+/// The formats of --print-parameters (as --help lists them); InputError otherwise.
+std::string print_format(const std::string& format)
+{
+  if (format != "prm" && format != "json")
+    throw InputError("--print-parameters " + format +
+                     ": unknown format; allowed: prm | json");
+  return format;
+}
+} // namespace
+
 std::string CommandLine::usage()
 {
   return "usage: pantocat-fem [options] CASE.prm\n"
@@ -39,10 +51,10 @@ CommandLine CommandLine::parse(const int argc, const char* const* argv)
       cl.help = true;
     else if (arg == "--print-parameters")
     {
+      // The format is optional; a word that follows must be one of them.
       cl.print_parameters = "prm";
-      if (i + 1 < argc &&
-          (std::string(argv[i + 1]) == "prm" || std::string(argv[i + 1]) == "json"))
-        cl.print_parameters = argv[++i];
+      if (i + 1 < argc && argv[i + 1][0] != '-')
+        cl.print_parameters = print_format(argv[++i]);
     }
     else if (arg == "--set")
       cl.overrides.push_back(value(arg));

@@ -4,6 +4,9 @@
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -11,6 +14,11 @@ namespace pantocat
 {
 namespace
 {
+/// At most this many include lines are followed in one parameter file and the
+/// files it includes (a file that includes another twice, which includes a
+/// third twice, ... would otherwise be read 2^depth times).
+constexpr unsigned int max_includes = 1000;
+
 std::string collapse_whitespace(const std::string& text)
 {
   std::istringstream in(text);
@@ -19,6 +27,116 @@ std::string collapse_whitespace(const std::string& text)
     out += (out.empty() ? "" : " ") + word;
   return out;
 }
+
+bool is_control_character(const char c)
+{
+  return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+}
+
+/// "Line <n> of file <name>: ", as deal.II starts its messages about a line.
+std::string at_line(const std::string& file, const unsigned int line)
+{
+  return "Line <" + std::to_string(line) + "> of file <" + file + ">: ";
+}
+
+/**
+ * Refuses a parameter file that cannot be read as one: missing, a directory
+ * (an input stream opens one and reads it as empty, which would run the
+ * defaults), or not a regular file (a FIFO or device may never end).
+ * @p where starts the message.
+ */
+void require_regular_file(const std::string& file, const std::string& where)
+{
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (status.type() == std::filesystem::file_type::not_found)
+    throw InputError(where + "no such file");
+  if (status.type() == std::filesystem::file_type::directory)
+    throw InputError(where + "this is a directory, not a parameter file");
+  if (error || status.type() != std::filesystem::file_type::regular)
+    throw InputError(where + "not a regular file that can be read");
+}
+
+/**
+ * The file named by an include line, or empty if @p line is none. Lines are
+ * read as deal.II's ParameterHandler reads them: a comment from '#' on is
+ * dropped, tabs count as spaces, and "include " or "INCLUDE " starts the
+ * statement; the name is relative to the working directory.
+ */
+std::string included_file(std::string line)
+{
+  line = line.substr(0, line.find('#'));
+  std::replace(line.begin(), line.end(), '\t', ' ');
+  line = dealii::Utilities::trim(line);
+  if (!dealii::Utilities::match_at_string_start(line, "include ") &&
+      !dealii::Utilities::match_at_string_start(line, "INCLUDE "))
+    return "";
+  return dealii::Utilities::trim(line.substr(7));
+}
+
+/// The logical lines of @p file with their first physical line number: lines
+/// ending in a backslash continue on the next one (as deal.II joins them).
+std::vector<std::pair<unsigned int, std::string>> logical_lines(const std::string& file)
+{
+  std::ifstream in(file);
+  std::vector<std::pair<unsigned int, std::string>> lines;
+  std::string line, joined;
+  unsigned int number = 0, first = 0;
+  bool continued = false;
+  while (std::getline(in, line))
+  {
+    ++number;
+    if (!continued)
+      first = number, joined.clear();
+    line = dealii::Utilities::trim(line);
+    continued = !line.empty() && line.back() == '\\';
+    joined += continued ? line.substr(0, line.size() - 1) : line;
+    if (!continued)
+      lines.emplace_back(first, joined);
+  }
+  if (continued)
+    lines.emplace_back(first, joined);
+  return lines;
+}
+
+/**
+ * Follows the include lines of @p file (already checked to be a regular
+ * file) before deal.II reads it: each included file must be a regular file,
+ * and no file may include itself, directly or through others (deal.II would
+ * recurse until the stack overflows). @p chain holds the files being read,
+ * outermost first.
+ */
+void check_includes(const std::string& file, std::vector<std::string>& chain,
+                    unsigned int& includes)
+{
+  std::error_code error;
+  const std::filesystem::path canonical = std::filesystem::canonical(file, error);
+  chain.push_back(error ? file : canonical.string());
+  for (const auto& [number, line] : logical_lines(file))
+  {
+    const std::string target = included_file(line);
+    if (target.empty())
+      continue;
+    const std::string where = at_line(file, number) + "include " + target + ": ";
+    require_regular_file(target, where);
+    if (++includes > max_includes)
+      throw InputError(where + "more than " + std::to_string(max_includes) +
+                       " include lines in all; the includes repeat too often");
+    const std::string resolved = std::filesystem::canonical(target, error).string();
+    const auto cycle = std::find(chain.begin(), chain.end(), resolved);
+    if (cycle != chain.end())
+    {
+      std::string path;
+      for (auto f = cycle; f != chain.end(); ++f)
+        path += *f + " -> ";
+      throw InputError(where + "include cycle " + path + resolved +
+                       " (a file must not include itself)");
+    }
+    check_includes(target, chain, includes);
+  }
+  chain.pop_back();
+}
+
 } // namespace
 
 std::string one_line_message(const std::exception& e)
@@ -34,8 +152,31 @@ std::string one_line_message(const std::exception& e)
   return collapse_whitespace(e.what());
 }
 
+std::string printable_line(const std::string& text)
+{
+  std::string out;
+  for (const char c : text)
+    if (is_control_character(c))
+    {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", static_cast<unsigned char>(c));
+      out += escaped;
+    }
+    else
+      out += c;
+  return out;
+}
+
 void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting)
 {
+  // A newline (or any control character) would start a line of its own in the
+  // text below: --set "A/B=1\nend\nsubsection C\nset D = 2" would set C/D.
+  const auto control = std::find_if(setting.begin(), setting.end(), is_control_character);
+  if (control != setting.end())
+    throw InputError("--set " + printable_line(setting) +
+                     ": contains the control character " +
+                     printable_line(std::string(1, *control)) +
+                     "; a value must be printable text on one line");
   const auto eq = setting.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + setting +
@@ -64,6 +205,14 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
   }
 }
 
+void check_parameter_file(const std::string& file)
+{
+  require_regular_file(file, "cannot read parameter file '" + file + "': ");
+  std::vector<std::string> chain;
+  unsigned int includes = 0;
+  check_includes(file, chain, includes);
+}
+
 void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
                          const std::vector<std::string>& overrides)
 {
@@ -72,6 +221,7 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
     throw InputError("cannot read parameter file '" + file +
                      "'; write a template with: pantocat-fem --print-parameters > " +
                      file);
+  check_parameter_file(file);
   try
   {
     prm.parse_input(in, file);

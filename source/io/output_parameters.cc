@@ -1,3 +1,4 @@
+#include <pantocat/base/input_error.h>
 #include <pantocat/io/output_parameters.h>
 
 #include <deal.II/base/utilities.h>
@@ -42,6 +43,8 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Output");
   directory = prm.get("Output directory");
+  require(!directory.empty(), "Output/Output directory", "''",
+          "must name a directory (-o DIR or the entry)");
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");

@@ -17,9 +17,24 @@ namespace pantocat
 void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
                          const std::vector<std::string>& overrides);
 
-/// Applies one override "Subsection/.../Name=value"; throws InputError.
+/**
+ * Applies one override "Subsection/.../Name=value"; throws InputError, also
+ * for a setting with a control character (a newline would inject prm lines).
+ */
 void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& setting);
+
+/**
+ * Checks, before deal.II reads it, that @p file and every file it includes
+ * (`include name`, relative to the working directory, as deal.II resolves it)
+ * is a regular file, and that the includes form no cycle (a file including
+ * itself, directly or through others); throws an InputError naming the file,
+ * the line and the include.
+ */
+void check_parameter_file(const std::string& file);
 
 /// The informative part of an exception's message, on one line.
 std::string one_line_message(const std::exception& e);
+
+/// @p text with every control character (newline included) written as \xNN.
+std::string printable_line(const std::string& text);
 } // namespace pantocat
