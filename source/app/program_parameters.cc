@@ -76,6 +76,14 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
             "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
             "Hermite (or Method = fdm)");
   }
+  // The same refusal as create_time_integrator's, before any output is touched.
+  if (mode == RunMode::dynamics)
+    require(scene.carrier == WireModel::elastic ||
+                scene.contact_wire == WireModel::elastic || scene.has_pantograph_body(),
+            "Scene/Pantograph", to_string(scene.pantograph),
+            "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
+            "nothing to integrate in time; make a wire elastic or choose two-mass | "
+            "three-mass");
   if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
     require(scene.has_pantograph_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", to_string(scene.pantograph),
@@ -86,6 +94,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
                                       ? discretisation.load_half_width
                                       : 0.);
   checkpoint.check(time_integration.integrator);
+  output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph.initial_position,
                    pantograph.final_position);
 }

@@ -11,6 +11,13 @@ namespace pantocat
 std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem& system,
                                                        const TimeIntegrationParameters& p)
 {
+  // Every method factorises or inverts a matrix of the system's size; deal.II's
+  // matrices of size 0 have no storage (the methods read past it).
+  if (system.n_dofs() == 0)
+    throw InputError("Scene: the scene has no unknowns (both wires rigid, no pantograph "
+                     "body), so there is nothing to integrate in time; make a wire "
+                     "elastic (Scene/Carrier, Scene/Contact wire) or choose "
+                     "Scene/Pantograph = two-mass | three-mass");
   if (p.integrator == IntegratorType::bdf2)
     return std::make_unique<Bdf2Integrator>(system, p.time_step,
                                             p.max_active_set_iterations, p.linear_solver);
