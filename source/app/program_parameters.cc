@@ -4,6 +4,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <sstream>
+
 namespace pantocat
 {
 void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
@@ -97,5 +99,13 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph.initial_position,
                    pantograph.final_position);
+  if (mode == RunMode::dynamics)
+  {
+    std::ostringstream run;
+    run << "the run from x_p = " << pantograph.initial_position << " to "
+        << pantograph.final_position << " m at v_p = " << pantograph.speed << " m/s ("
+        << pantograph.end_time() << " s)";
+    time_integration.check_number_of_steps(pantograph.end_time(), run.str());
+  }
 }
 } // namespace pantocat
