@@ -2,7 +2,11 @@
 #include <pantocat/base/input_error.h>
 
 #include <deal.II/base/exceptions.h>
+#include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
 
 #include <algorithm>
 #include <cstdio>
@@ -137,6 +141,33 @@ void check_includes(const std::string& file, std::vector<std::string>& chain,
   chain.pop_back();
 }
 
+/**
+ * Checks the values of the entries under @p node (the JSON form of the
+ * parameters) whose value contains '{' against their patterns. deal.II does
+ * not check those: '{' starts the alternatives of its MultipleParameterLoop,
+ * which this program does not use; "{abc}" would reach get_double(), and
+ * "{x}" for a selection would be taken as its last choice.
+ */
+void check_values_with_braces(const boost::property_tree::ptree& node,
+                              const std::string& path)
+{
+  for (const auto& [key, child] : node)
+  {
+    const auto value = child.get_optional<std::string>("value");
+    const auto pattern = child.get_optional<std::string>("pattern_description");
+    if (!value || !pattern)
+    {
+      check_values_with_braces(child, path + key + "/");
+      continue;
+    }
+    if (value->find('{') == std::string::npos)
+      continue;
+    const auto matcher = dealii::Patterns::pattern_factory(*pattern);
+    if (matcher && !matcher->match(*value))
+      throw InputError(path + key + " = " + *value + ": does not match the pattern " +
+                       *pattern);
+  }
+}
 } // namespace
 
 std::string one_line_message(const std::exception& e)
@@ -232,5 +263,10 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
   }
   for (const auto& setting : overrides)
     apply_parameter_override(prm, setting);
+  std::stringstream json;
+  prm.print_parameters(json, dealii::ParameterHandler::JSON);
+  boost::property_tree::ptree tree;
+  boost::property_tree::read_json(json, tree);
+  check_values_with_braces(tree, "");
 }
 } // namespace pantocat

@@ -284,9 +284,9 @@ private:
            set_value(c,
                      [&](const Entry&)
                      {
-                       return pick(std::vector<std::string>{"abc", "1.5.3", "true", "1e",
-                                                            "--", "3.5", "fem fdm",
-                                                            "0x10", "= 2", "\\"});
+                       return pick(std::vector<std::string>{
+                           "abc", "1.5.3", "true", "1e", "--", "3.5", "fem fdm", "0x10",
+                           "= 2", "\\", "{abc}", "{1|2}"});
                      });
          }},
         {"list",

@@ -10,7 +10,9 @@ namespace pantocat
 {
 /**
  * Reads the prm file @p file into @p prm (whose entries are declared), then
- * applies the command-line overrides, each "Subsection/.../Name=value".
+ * applies the command-line overrides, each "Subsection/.../Name=value", and
+ * checks every value against its pattern that deal.II lets through (one with
+ * a '{').
  * Every error becomes an InputError with one line: deal.II's own message
  * (file, line, entry, allowed pattern) without its stack trace.
  */
