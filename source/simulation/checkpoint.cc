@@ -296,7 +296,8 @@ void CheckpointReader::restore(TimeIntegrator& integrator, const SimulationLayou
   }
   catch (const std::exception& e)
   {
-    throw damaged(e.what());
+    throw InputError(refusal() + "the checkpoint " + file_name + " cannot be resumed: " +
+                     e.what() + "; start afresh (Resume from checkpoint = false)");
   }
 }
 
