@@ -1,4 +1,5 @@
 #include <pantocat/app/command_line.h>
+#include <pantocat/app/parameter_input.h>
 #include <pantocat/base/input_error.h>
 
 namespace pantocat
@@ -12,6 +13,18 @@ std::string print_format(const std::string& format)
     throw InputError("--print-parameters " + format +
                      ": unknown format; allowed: prm | json");
   return format;
+}
+/**
+ * The output directory of -o: not with a control character, which would
+ * also go into the parameters.prm written there (a newline would start a
+ * line of its own when that file is read again).
+ */
+std::string checked_directory(const std::string& option, const std::string& dir)
+{
+  if (printable_line(dir) != dir)
+    throw InputError(option + " " + printable_line(dir) +
+                     ": a directory name with a control character is not allowed");
+  return dir;
 }
 } // namespace
 
@@ -59,7 +72,7 @@ CommandLine CommandLine::parse(const int argc, const char* const* argv)
     else if (arg == "--set")
       cl.overrides.push_back(value(arg));
     else if (arg == "-o" || arg == "--output-directory")
-      cl.output_directory = value(arg);
+      cl.output_directory = checked_directory(arg, value(arg));
     else if (!arg.empty() && arg[0] == '-')
       throw InputError("unknown option " + arg + " (see pantocat-fem --help)");
     else if (cl.parameter_file.empty())

@@ -41,6 +41,11 @@ elseif(CASE STREQUAL "set_with_control_character")
   expect_refusal("--set Catenary/Span=20.x01: contains the control character .x01"
                  ${PRM} -o ${out} --set "Catenary/Span=20${control}")
   expect_no_output_directory()
+elseif(CASE STREQUAL "output_directory_with_newline")
+  # It would go into parameters.prm there, a line of its own when read again.
+  expect_refusal("-o out.x0asubsection Foo: a directory name with a control character"
+                 ${PRM} -o "out${newline}subsection Foo")
+  expect_no_output_directory()
 elseif(CASE STREQUAL "print_parameters_unknown_format")
   expect_refusal("^pantocat-fem: error: --print-parameters xml: unknown format[;] allowed: prm [|] json$"
                  --print-parameters xml)
