@@ -151,3 +151,24 @@ TEST(Robustness, ErrorLinesArePrintable)
 {
   EXPECT_EQ(printable_line("a\nb\x01"), "a\\x0ab\\x01");
 }
+
+TEST(Robustness, ValuesWithBracesAreCheckedAgainstTheirPatterns)
+{
+  const std::filesystem::path file = "test_robustness_braces.prm";
+  std::ofstream(file) << "subsection Study\n  set Output name = caf\xe9 \xff\nend\n";
+  const auto read = [&](const std::vector<std::string>& overrides)
+  {
+    dealii::ParameterHandler prm;
+    ProgramParameters::declare_parameters(prm);
+    return input_error_of([&] { read_parameter_file(prm, file.string(), overrides); });
+  };
+  // Bytes that are not UTF-8 (in the file) do not upset the check.
+  EXPECT_EQ(read({}), "");
+  EXPECT_EQ(read({"Output/Verbosity={x}"}),
+            "Output/Verbosity = {x}: does not match the pattern [Selection "
+            "quiet|normal|detailed ]");
+  EXPECT_EQ(
+      read({"Catenary/Span={abc}"}).rfind("Catenary/Span = {abc}: does not match", 0),
+      0u);
+  EXPECT_EQ(read({"Output/Output directory=out{1}"}), ""); // a file name may hold '{'
+}

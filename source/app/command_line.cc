@@ -14,6 +14,7 @@ std::string print_format(const std::string& format)
                      ": unknown format; allowed: prm | json");
   return format;
 }
+
 /**
  * The output directory of -o: not with a control character, which would
  * also go into the parameters.prm written there (a newline would start a

@@ -143,13 +143,15 @@ void check_includes(const std::string& file, std::vector<std::string>& chain,
 
 /**
  * Checks the values of the entries under @p node (the JSON form of the
- * parameters) whose value contains '{' against their patterns. deal.II does
- * not check those: '{' starts the alternatives of its MultipleParameterLoop,
- * which this program does not use; "{abc}" would reach get_double(), and
- * "{x}" for a selection would be taken as its last choice.
+ * parameters, at subsection @p path) whose value contains '{' against their
+ * patterns. deal.II does not check those: '{' starts the alternatives of its
+ * MultipleParameterLoop, which this program does not use; "{abc}" would
+ * reach get_double(), and "{x}" for a selection would be taken as its last
+ * choice. The message shows the value as @p prm holds it.
  */
-void check_values_with_braces(const boost::property_tree::ptree& node,
-                              const std::string& path)
+void check_values_with_braces(const dealii::ParameterHandler& prm,
+                              const boost::property_tree::ptree& node,
+                              const std::vector<std::string>& path)
 {
   for (const auto& [key, child] : node)
   {
@@ -157,16 +159,42 @@ void check_values_with_braces(const boost::property_tree::ptree& node,
     const auto pattern = child.get_optional<std::string>("pattern_description");
     if (!value || !pattern)
     {
-      check_values_with_braces(child, path + key + "/");
+      std::vector<std::string> inner = path;
+      inner.push_back(key);
+      check_values_with_braces(prm, child, inner);
       continue;
     }
     if (value->find('{') == std::string::npos)
       continue;
     const auto matcher = dealii::Patterns::pattern_factory(*pattern);
     if (matcher && !matcher->match(*value))
-      throw InputError(path + key + " = " + *value + ": does not match the pattern " +
-                       *pattern);
+    {
+      std::string name;
+      for (const auto& p : path)
+        name += p + "/";
+      throw InputError(name + key + " = " + prm.get(path, key) +
+                       ": does not match the pattern " + *pattern);
+    }
   }
+}
+
+/**
+ * check_values_with_braces() for all of @p prm. Its JSON form holds the
+ * values' bytes as they are; the JSON reader wants UTF-8, so bytes above
+ * 0x7f are read as '?' (no pattern that refuses '{' accepts them either).
+ */
+void check_values_with_braces(const dealii::ParameterHandler& prm)
+{
+  std::ostringstream printed;
+  prm.print_parameters(printed, dealii::ParameterHandler::JSON);
+  std::string json = printed.str();
+  std::replace_if(
+      json.begin(), json.end(),
+      [](const char c) { return static_cast<unsigned char>(c) > 0x7f; }, '?');
+  std::istringstream in(json);
+  boost::property_tree::ptree tree;
+  boost::property_tree::read_json(in, tree);
+  check_values_with_braces(prm, tree, {});
 }
 } // namespace
 
@@ -263,10 +291,6 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
   }
   for (const auto& setting : overrides)
     apply_parameter_override(prm, setting);
-  std::stringstream json;
-  prm.print_parameters(json, dealii::ParameterHandler::JSON);
-  boost::property_tree::ptree tree;
-  boost::property_tree::read_json(json, tree);
-  check_values_with_braces(tree, "");
+  check_values_with_braces(prm);
 }
 } // namespace pantocat

@@ -8,6 +8,32 @@
 
 namespace pantocat
 {
+namespace
+{
+/**
+ * What a dynamic run needs beyond each subsection's own checks, before any
+ * output is touched: unknowns to integrate (create_time_integrator refuses
+ * an empty system too, for any caller), and a number of steps that is finite
+ * and fits into memory.
+ */
+void check_dynamic_run(const ProgramParameters& p)
+{
+  const SceneParameters& scene = p.scene;
+  require(scene.carrier == WireModel::elastic ||
+              scene.contact_wire == WireModel::elastic || scene.has_pantograph_body(),
+          "Scene/Pantograph", to_string(scene.pantograph),
+          "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
+          "nothing to integrate in time; make a wire elastic or choose two-mass | "
+          "three-mass");
+  const PantographParameters& pantograph = p.pantograph;
+  std::ostringstream run;
+  run << "the run from x_p = " << pantograph.initial_position << " to "
+      << pantograph.final_position << " m at v_p = " << pantograph.speed << " m/s ("
+      << pantograph.end_time() << " s)";
+  p.time_integration.check_number_of_steps(pantograph.end_time(), run.str());
+}
+} // namespace
+
 void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Run");
@@ -78,14 +104,6 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
             "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
             "Hermite (or Method = fdm)");
   }
-  // The same refusal as create_time_integrator's, before any output is touched.
-  if (mode == RunMode::dynamics)
-    require(scene.carrier == WireModel::elastic ||
-                scene.contact_wire == WireModel::elastic || scene.has_pantograph_body(),
-            "Scene/Pantograph", to_string(scene.pantograph),
-            "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
-            "nothing to integrate in time; make a wire elastic or choose two-mass | "
-            "three-mass");
   if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
     require(scene.has_pantograph_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", to_string(scene.pantograph),
@@ -100,12 +118,6 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   statistics.check(time_integration.time_step, pantograph.initial_position,
                    pantograph.final_position);
   if (mode == RunMode::dynamics)
-  {
-    std::ostringstream run;
-    run << "the run from x_p = " << pantograph.initial_position << " to "
-        << pantograph.final_position << " m at v_p = " << pantograph.speed << " m/s ("
-        << pantograph.end_time() << " s)";
-    time_integration.check_number_of_steps(pantograph.end_time(), run.str());
-  }
+    check_dynamic_run(*this);
 }
 } // namespace pantocat
