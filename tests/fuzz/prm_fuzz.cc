@@ -523,6 +523,17 @@ std::string broken_promise(const fuzz::Outcome& o, const fs::path& out)
   }
 }
 
+/// The kind of a failure (exit 1): its last stderr line up to the first digit.
+std::string failure_kind(const std::string& err)
+{
+  const auto lines = fuzz::lines_of(err);
+  std::string line = lines.empty() ? "" : lines.back();
+  if (line.rfind("pantocat-fem: ", 0) == 0)
+    line = line.substr(14);
+  line = line.substr(0, std::min(line.find_first_of("0123456789"), std::size_t(70)));
+  return line;
+}
+
 std::vector<std::string> arguments_of(const Case& c)
 {
   std::vector<std::string> arguments{"case.prm"};
@@ -597,6 +608,7 @@ int main(int argc, char** argv)
   Generator generate(entries, base_files(source), seed);
   std::map<std::string, unsigned int> outcomes;
   std::map<std::string, std::map<std::string, unsigned int>> by_kind;
+  std::map<std::string, unsigned int> failures; ///< of the runs that exit 1
   unsigned long passed = 0, failed = 0;
   double slowest = 0., total = 0.;
   for (unsigned long k = 0; k < n_cases; ++k)
@@ -613,6 +625,8 @@ int main(int argc, char** argv)
                                             : "exit " + std::to_string(o.exit_status);
     ++outcomes[outcome];
     ++by_kind[c.kind][outcome];
+    if (o.exit_status == 1)
+      ++failures[failure_kind(o.err)];
     const std::string why = broken_promise(o, dir / "out");
     if (why.empty())
     {
@@ -637,6 +651,9 @@ int main(int argc, char** argv)
       std::cout << " " << outcome << " " << count << ";";
     std::cout << "\n";
   }
+  std::cout << "  exit 1, by message:\n";
+  for (const auto& [kind, count] : failures)
+    std::cout << "    " << count << " x " << kind << "...\n";
   std::cout << passed << " passed, " << failed << " failed\n";
   return failed == 0 ? 0 : 1;
 }
