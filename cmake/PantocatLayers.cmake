@@ -66,6 +66,9 @@ endfunction()
 foreach(kind fe algebra)
   add_library(pantocat_pch_${kind} OBJECT ${CMAKE_SOURCE_DIR}/cmake/pch.cc)
   deal_ii_setup_target(pantocat_pch_${kind})
+  # The same definitions as every layer (Boost.Serialization's, through
+  # pantocat_base): gcc ignores a precompiled header built with others.
+  target_link_libraries(pantocat_pch_${kind} PRIVATE pantocat_base)
   target_compile_options(pantocat_pch_${kind} PRIVATE $<$<CONFIG:Release>:-O3>)
   target_precompile_headers(pantocat_pch_${kind} PRIVATE
     ${CMAKE_SOURCE_DIR}/include/pantocat/pch_${kind}.h)

@@ -43,6 +43,25 @@ std::vector<double> band_storage(const dealii::SparseMatrix<double>& A, const in
   }
   return ab;
 }
+/// What dsbgvx's @p info says went wrong for A x = lambda B x of size @p n.
+std::string dsbgvx_failure(const int info, const int n)
+{
+  const std::string start =
+      "LAPACK dsbgvx failed (info = " + std::to_string(info) + "): ";
+  if (info > n)
+    return start +
+           "the second matrix of the generalized eigenproblem (M, or K for the "
+           "smallest eigenvalue) is not positive definite in floating point "
+           "(leading minor " +
+           std::to_string(info - n) +
+           "); check the masses, tensions and stiffnesses for values that are zero "
+           "or of very different magnitudes";
+  if (info > 0)
+    return start + "the eigenvalue iteration did not converge; the matrices are badly "
+                   "scaled (masses, tensions or stiffnesses of very different "
+                   "magnitudes)";
+  return start + (info < 0 ? "an argument was illegal" : "no eigenvalue was found");
+}
 } // namespace
 
 double largest_generalized_eigenvalue(const dealii::SparseMatrix<double>& A,
@@ -61,8 +80,7 @@ double largest_generalized_eigenvalue(const dealii::SparseMatrix<double>& A,
           &vl, &vu, &n, &n, &abstol, &m, w.data(), z.data(), &one, work.data(),
           iwork.data(), ifail.data(), &info);
   if (info != 0 || m != 1)
-    throw SimulationError("LAPACK dsbgvx failed (info = " + std::to_string(info) +
-                          "): the mass matrix is not positive definite");
+    throw SimulationError(dsbgvx_failure(info, n));
   return w[0];
 }
 

@@ -16,6 +16,8 @@
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <sstream>
+#include <streambuf>
 
 namespace pantocat
 {
@@ -29,11 +31,60 @@ void print_parameters(const std::string& format)
                                                    : dealii::ParameterHandler::PRM);
 }
 
+/// The files a run of some mode writes into its output directory (README).
+const char* const result_files[] = {
+    "parameters.prm",       "summary.json",
+    "time_series.csv",      "contact_force.csv",
+    "contact_force.png",    "dropper_forces.png",
+    "pantograph.png",       "contact_force_statistics.png",
+    "time_series.gp",       "contact_force_statistics.gp",
+    "solution.pvd",         "checkpoint.bin",
+    "checkpoint.bin.tmp",   "static_profile.csv",
+    "static_profile.vtu",   "dropper_forces.csv",
+    "eigenfrequencies.csv", "convergence.txt",
+    "convergence.csv",      "work_precision.csv"};
+
+/// The whole content of @p file, if it is a regular file.
+std::optional<std::string> content_of(const std::filesystem::path& file)
+{
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    return std::nullopt;
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (!in)
+    return std::nullopt;
+  return text.str();
+}
+
+/// Writes @p text to @p file through a temporary file renamed over it: a
+/// reader (or a crash) never sees it half written.
+bool write_atomically(const std::filesystem::path& file, const std::string& text)
+{
+  const std::filesystem::path temporary = file.string() + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.flush();
+    if (!out)
+      return false;
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, file, error);
+  if (error)
+    std::filesystem::remove(temporary, error);
+  return !error;
+}
+
 /**
  * Creates the output directory and writes the fully resolved parameters into
- * it. discard() removes what it wrote (and the directory, if it made it and
- * nothing else is in it): for a run stopped by bad input, so that nothing is
- * left that looks like a result.
+ * it. discard() undoes that for a run stopped by bad input, so that nothing
+ * is left that looks like a result: it removes parameters.prm (and the
+ * directory, if it made it and nothing else is in it), or puts back the
+ * parameters.prm that was there before. That may be the input file itself
+ * (`pantocat-fem out/parameters.prm`), read before this object is made: a
+ * refusal leaves it as it was.
  */
 class OutputDirectory
 {
@@ -41,25 +92,124 @@ public:
   OutputDirectory(const dealii::ParameterHandler& prm, const std::string& dir)
       : parameters(std::filesystem::path(dir) / "parameters.prm")
   {
+    const std::string what = "Output/Output directory = " + dir + ": ";
     std::error_code error;
     created = std::filesystem::create_directories(dir, error);
-    std::ofstream out(parameters);
-    if (error || !out)
-      throw InputError("Output/Output directory = " + dir +
-                       ": cannot create or write to this directory");
-    prm.print_parameters(out, dealii::ParameterHandler::PRM);
+    if (error || !std::filesystem::is_directory(dir, error))
+      throw InputError(what + "cannot create this directory" +
+                       (error ? " (" + error.message() + ")" : ""));
+    for (const char* name : result_files)
+      if (std::filesystem::is_directory(std::filesystem::path(dir) / name, error))
+        throw InputError(what + (std::filesystem::path(dir) / name).string() +
+                         " is a directory; a run writes a file of that name there");
+    previous = content_of(parameters);
+    std::ostringstream text;
+    prm.print_parameters(text, dealii::ParameterHandler::PRM);
+    if (!write_atomically(parameters, text.str()))
+    {
+      discard();
+      throw InputError(what + "cannot write " + parameters.string());
+    }
   }
   void discard() const
   {
     std::error_code ignored;
-    std::filesystem::remove(parameters, ignored);
+    if (previous)
+      write_atomically(parameters, *previous);
+    else
+      std::filesystem::remove(parameters, ignored);
     if (created && std::filesystem::is_empty(parameters.parent_path(), ignored))
       std::filesystem::remove(parameters.parent_path(), ignored);
   }
 
 private:
   std::filesystem::path parameters;
+  std::optional<std::string> previous; ///< parameters.prm before this run
   bool created = false;
+};
+
+/**
+ * Holds back the lines that start with "pantocat-fem: warning:" written to a
+ * stream (std::cerr) and passes everything else through as it comes (the
+ * progress line included). A run refused for bad input prints exactly one
+ * line, its error, so the warnings of a refused run are dropped; otherwise
+ * release() prints them, at the end.
+ */
+class WarningHold : public std::streambuf
+{
+public:
+  explicit WarningHold(std::ostream& stream) : stream(stream), target(stream.rdbuf())
+  {
+    stream.rdbuf(this);
+  }
+  ~WarningHold() override { restore(); }
+  WarningHold(const WarningHold&) = delete;
+  WarningHold& operator=(const WarningHold&) = delete;
+
+  /// Gives the stream its own buffer back; the held warnings stay here.
+  void restore()
+  {
+    if (stream.rdbuf() != this)
+      return;
+    if (mode != Mode::holding)
+      target->sputn(line.data(), line.size()); // an unfinished line that is no warning
+    line.clear();
+    stream.rdbuf(target);
+  }
+  /// Prints the held warnings to the stream.
+  void release()
+  {
+    restore();
+    stream << held << std::flush;
+    held.clear();
+  }
+
+protected:
+  int_type overflow(const int_type c) override
+  {
+    if (!traits_type::eq_int_type(c, traits_type::eof()))
+      put(traits_type::to_char_type(c));
+    return traits_type::not_eof(c);
+  }
+  std::streamsize xsputn(const char* s, const std::streamsize n) override
+  {
+    for (std::streamsize i = 0; i < n; ++i)
+      put(s[i]);
+    return n;
+  }
+  int sync() override { return mode == Mode::passing ? target->pubsync() : 0; }
+
+private:
+  enum class Mode
+  {
+    deciding, ///< at the start of a line, which may still become a warning
+    holding,  ///< in a warning line
+    passing   ///< in any other line
+  };
+
+  void put(const char c)
+  {
+    if (mode == Mode::holding)
+      held += c;
+    else if (mode == Mode::passing)
+      target->sputc(c);
+    else
+    {
+      line += c;
+      if (line == marker)
+        mode = Mode::holding, held += line, line.clear();
+      else if (marker.compare(0, line.size(), line) != 0)
+        mode = Mode::passing, target->sputn(line.data(), line.size()), line.clear();
+    }
+    if ((c == '\n' || c == '\r') && mode != Mode::deciding)
+      mode = Mode::deciding;
+  }
+
+  const std::string marker = "pantocat-fem: warning:";
+  std::ostream& stream;
+  std::streambuf* target;
+  Mode mode = Mode::deciding;
+  std::string line, held;
 };
 
 /// True when started by an MPI launcher (mpirun sets one of these).
@@ -69,6 +219,46 @@ bool launched_by_mpi()
     if (std::getenv(variable) != nullptr)
       return true;
   return false;
+}
+
+/**
+ * This process's rank as the MPI launcher announces it (0 without one). Known
+ * before MPI starts, so that only rank 0 prints the error of bad input, which
+ * every rank finds.
+ */
+unsigned int launcher_rank()
+{
+  for (const char* variable : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK"})
+    if (const char* value = std::getenv(variable))
+      return static_cast<unsigned int>(std::strtoul(value, nullptr, 10));
+  return 0;
+}
+
+bool is_study(const RunMode mode)
+{
+  return mode == RunMode::convergence_study || mode == RunMode::work_precision;
+}
+
+void run_mode(const ProgramParameters& parameters, std::ostream& out)
+{
+  switch (parameters.mode)
+  {
+  case RunMode::eigenfrequencies:
+    run_eigenfrequencies(parameters, out);
+    break;
+  case RunMode::static_equilibrium:
+    run_static_equilibrium(parameters, out);
+    break;
+  case RunMode::dynamics:
+    run_dynamics(parameters, out);
+    break;
+  case RunMode::convergence_study:
+    run_convergence_study(parameters.make_study_case(), std::cout);
+    break;
+  case RunMode::work_precision:
+    run_work_precision_study(parameters.make_study_case(), std::cout);
+    break;
+  }
 }
 
 int run(const CommandLine& cl, int argc, char** argv)
@@ -99,6 +289,12 @@ int run(const CommandLine& cl, int argc, char** argv)
   if (launched_by_mpi() || ti.linear_solver == LinearSolverType::trilinos_klu ||
       (ti.integrator == "ida" && ti.ida_linear_solver == "trilinos-klu"))
     mpi.emplace(argc, argv, 1);
+  // Only the studies spread their runs over MPI ranks. Any other mode under
+  // mpirun runs once, on rank 0; the other ranks (which had to start MPI
+  // with it) leave at once, silently, with status 0.
+  if (mpi && !is_study(parameters.mode) &&
+      dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) != 0)
+    return 0;
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.
   dealii::MultithreadInfo::set_thread_limit(1);
@@ -109,24 +305,7 @@ int run(const CommandLine& cl, int argc, char** argv)
       parameters.output.verbosity == Verbosity::quiet ? discard : std::cout;
   try
   {
-    switch (parameters.mode)
-    {
-    case RunMode::eigenfrequencies:
-      run_eigenfrequencies(parameters, out);
-      break;
-    case RunMode::static_equilibrium:
-      run_static_equilibrium(parameters, out);
-      break;
-    case RunMode::dynamics:
-      run_dynamics(parameters, out);
-      break;
-    case RunMode::convergence_study:
-      run_convergence_study(parameters.make_study_case(), std::cout);
-      break;
-    case RunMode::work_precision:
-      run_work_precision_study(parameters.make_study_case(), std::cout);
-      break;
-    }
+    run_mode(parameters, out);
   }
   catch (const InputError&)
   {
@@ -135,28 +314,75 @@ int run(const CommandLine& cl, int argc, char** argv)
   }
   return 0;
 }
+
+/**
+ * "cannot remove out/summary.json: Directory not empty" from a filesystem
+ * error, whose what() is "filesystem error: cannot remove: ... [path]".
+ */
+std::string filesystem_failure(const std::filesystem::filesystem_error& e)
+{
+  const std::string what = e.what();
+  const auto begin = what.find("cannot ");
+  const auto end = what.find(':', begin);
+  const std::string operation = begin != std::string::npos && end != std::string::npos
+                                    ? what.substr(begin, end - begin)
+                                    : "file system operation failed on";
+  return operation + " " + e.path1().string() + ": " + e.code().message();
+}
+
+/// The error line of an exception that ends the program, and its exit status.
+std::pair<int, std::string> error_line(const std::exception_ptr& error)
+{
+  try
+  {
+    std::rethrow_exception(error);
+  }
+  catch (const InputError& e)
+  {
+    return {2, std::string("error: ") + e.what()};
+  }
+  catch (const SimulationError& e)
+  {
+    return {1, std::string("simulation failed: ") + e.what()};
+  }
+  catch (const std::filesystem::filesystem_error& e)
+  {
+    return {1, "error: " + filesystem_failure(e)};
+  }
+  catch (const std::bad_alloc&)
+  {
+    return {1, "error: out of memory"};
+  }
+  catch (const std::exception& e)
+  {
+    return {1, "error: " + one_line_message(e)};
+  }
+}
 } // namespace
 
 int run_application(int argc, char** argv)
 {
+  WarningHold warnings(std::cerr);
+  std::exception_ptr error;
   try
   {
-    return run(CommandLine::parse(argc, argv), argc, argv);
+    const int status = run(CommandLine::parse(argc, argv), argc, argv);
+    warnings.release();
+    return status;
   }
-  catch (const InputError& e)
+  catch (...)
   {
-    std::cerr << "pantocat-fem: error: " << e.what() << std::endl;
-    return 2;
+    error = std::current_exception();
   }
-  catch (const SimulationError& e)
-  {
-    std::cerr << "pantocat-fem: simulation failed: " << e.what() << std::endl;
-    return 1;
-  }
-  catch (const std::exception& e)
-  {
-    std::cerr << "pantocat-fem: error: " << one_line_message(e) << std::endl;
-    return 1;
-  }
+  const auto [status, line] = error_line(error);
+  // Bad input: exactly one line, the error (no warnings before it); under
+  // mpirun, every rank finds it and rank 0 says it.
+  if (status == 2)
+    warnings.restore();
+  else
+    warnings.release();
+  if (launcher_rank() == 0)
+    std::cerr << "pantocat-fem: " << printable_line(line) << std::endl;
+  return status;
 }
 } // namespace pantocat

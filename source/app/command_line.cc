@@ -1,8 +1,34 @@
 #include <pantocat/app/command_line.h>
+#include <pantocat/app/parameter_input.h>
 #include <pantocat/base/input_error.h>
 
 namespace pantocat
 {
+namespace
+{
+/// The formats of --print-parameters (as --help lists them); InputError otherwise.
+std::string print_format(const std::string& format)
+{
+  if (format != "prm" && format != "json")
+    throw InputError("--print-parameters " + format +
+                     ": unknown format; allowed: prm | json");
+  return format;
+}
+
+/**
+ * The output directory of -o: not with a control character, which would
+ * also go into the parameters.prm written there (a newline would start a
+ * line of its own when that file is read again).
+ */
+std::string checked_directory(const std::string& option, const std::string& dir)
+{
+  if (printable_line(dir) != dir)
+    throw InputError(option + " " + printable_line(dir) +
+                     ": a directory name with a control character is not allowed");
+  return dir;
+}
+} // namespace
+
 std::string CommandLine::usage()
 {
   return "usage: pantocat-fem [options] CASE.prm\n"
@@ -39,15 +65,15 @@ CommandLine CommandLine::parse(const int argc, const char* const* argv)
       cl.help = true;
     else if (arg == "--print-parameters")
     {
+      // The format is optional; a word that follows must be one of them.
       cl.print_parameters = "prm";
-      if (i + 1 < argc &&
-          (std::string(argv[i + 1]) == "prm" || std::string(argv[i + 1]) == "json"))
-        cl.print_parameters = argv[++i];
+      if (i + 1 < argc && argv[i + 1][0] != '-')
+        cl.print_parameters = print_format(argv[++i]);
     }
     else if (arg == "--set")
       cl.overrides.push_back(value(arg));
     else if (arg == "-o" || arg == "--output-directory")
-      cl.output_directory = value(arg);
+      cl.output_directory = checked_directory(arg, value(arg));
     else if (!arg.empty() && arg[0] == '-')
       throw InputError("unknown option " + arg + " (see pantocat-fem --help)");
     else if (cl.parameter_file.empty())

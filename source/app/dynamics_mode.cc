@@ -78,12 +78,10 @@ std::vector<std::string> draw_plots(const std::string& dir, const ProgramParamet
   std::ostringstream title;
   title << to_string(p.discretisation.method) << " + " << p.time_integration.integrator
         << ", v_p = " << p.pantograph().speed << " m/s";
-  std::vector<std::string> drawn;
   const PlottedColumns c = plotted_columns(runner.layout());
-  if (plot_time_series(dir, TimeSeriesWriter::column_names(runner.layout()),
-                       c.contact_forces, c.dropper_forces, c.coordinates, title.str()))
-    drawn.insert(drawn.end(),
-                 {"contact_force.png", "dropper_forces.png", "pantograph.png"});
+  std::vector<std::string> drawn =
+      plot_time_series(dir, TimeSeriesWriter::column_names(runner.layout()),
+                       c.contact_forces, c.dropper_forces, c.coordinates, title.str());
   if (plot_contact_force_statistics(dir, first.result(), title.str()))
     drawn.push_back("contact_force_statistics.png");
   return drawn;

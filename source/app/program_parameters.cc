@@ -73,8 +73,11 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
             "studies measure the contact force lambda_p on the elastic wire: allowed "
             "two-mass | three-mass with Contact wire = elastic");
   checkpoint.check(time_integration.integrator);
+  output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,
                    pantograph().final_position);
+  if (mode == RunMode::dynamics)
+    make_case().check_dynamics();
 }
 
 Case ProgramParameters::make_case() const

@@ -1,95 +1,109 @@
 #include <pantocat/io/json_writer.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
-#include <sstream>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
 
 namespace pantocat
 {
-JsonWriter::JsonWriter(std::ostream& out) : out(out) {}
-
-void JsonWriter::separator_and_key(const std::string& key)
+namespace
 {
-  if (!first_in_scope.empty())
-  {
-    if (!first_in_scope.back())
-      out << ',';
-    first_in_scope.back() = false;
-    out << '\n' << std::string(2 * depth(), ' ');
-  }
-  if (!key.empty())
-    out << quoted(key) << ": ";
-}
+using Json = nlohmann::ordered_json;
 
-std::string JsonWriter::quoted(const std::string& text)
-{
-  std::string s = "\"";
-  for (const char c : text)
-  {
-    if (c == '"' || c == '\\')
-      s += '\\';
-    if (c == '\n')
-    {
-      s += "\\n";
-      continue;
-    }
-    s += c;
-  }
-  return s + "\"";
-}
-
-std::string JsonWriter::number(const double x) const
+/**
+ * @p x as a JSON number of 12 significant digits (the precision summary.json
+ * has always had): null if not finite, an integer if the rounded value is
+ * integral and below 10^12 (as a 12-digit %g prints it), else the rounded
+ * double, which the library writes in its shortest round-trip form.
+ */
+Json number(const double x)
 {
   if (!std::isfinite(x))
-    return "null";
-  std::ostringstream s;
-  s.precision(12);
-  s << x;
-  return s.str();
+    return nullptr;
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", x);
+  const double rounded = std::strtod(text, nullptr);
+  if (rounded == std::trunc(rounded) && std::abs(rounded) < 1e12)
+    return static_cast<std::int64_t>(rounded);
+  return rounded;
+}
+} // namespace
+
+struct JsonWriter::Document
+{
+  Json root;
+  /// The open objects and arrays, innermost last. Only the innermost one
+  /// grows, so pointers to the outer ones stay valid.
+  std::vector<Json*> open;
+
+  /// Adds @p item to the innermost open scope (under @p key in an object).
+  Json& add(const std::string& key, Json item)
+  {
+    if (open.empty())
+      return root = std::move(item);
+    Json& scope = *open.back();
+    if (scope.is_array())
+    {
+      scope.push_back(std::move(item));
+      return scope.back();
+    }
+    return scope[key] = std::move(item);
+  }
+};
+
+JsonWriter::JsonWriter(std::ostream& out)
+    : out(out), document(std::make_unique<Document>())
+{
+}
+
+JsonWriter::~JsonWriter() = default;
+
+void JsonWriter::close()
+{
+  if (document->open.empty())
+    throw std::logic_error("JsonWriter: end_object or end_array without a begin");
+  document->open.pop_back();
+  if (document->open.empty())
+    out << document->root.dump(2, ' ', false, Json::error_handler_t::replace) << '\n';
 }
 
 JsonWriter& JsonWriter::begin_object(const std::string& key)
 {
-  separator_and_key(key);
-  out << '{';
-  first_in_scope.push_back(true);
+  document->open.push_back(&document->add(key, Json::object()));
   return *this;
 }
 
 JsonWriter& JsonWriter::end_object()
 {
-  first_in_scope.pop_back();
-  out << '\n' << std::string(2 * depth(), ' ') << '}';
-  if (first_in_scope.empty())
-    out << '\n';
+  close();
   return *this;
 }
 
 JsonWriter& JsonWriter::begin_array(const std::string& key)
 {
-  separator_and_key(key);
-  out << '[';
-  first_in_scope.push_back(true);
+  document->open.push_back(&document->add(key, Json::array()));
   return *this;
 }
 
 JsonWriter& JsonWriter::end_array()
 {
-  first_in_scope.pop_back();
-  out << ']';
+  close();
   return *this;
 }
 
 JsonWriter& JsonWriter::value(const std::string& key, const double x)
 {
-  separator_and_key(key);
-  out << number(x);
+  document->add(key, number(x));
   return *this;
 }
 
 JsonWriter& JsonWriter::value(const std::string& key, const std::string& text)
 {
-  separator_and_key(key);
-  out << quoted(text);
+  document->add(key, text);
   return *this;
 }
 
@@ -100,27 +114,23 @@ JsonWriter& JsonWriter::value(const std::string& key, const char* text)
 
 JsonWriter& JsonWriter::value(const std::string& key, const bool flag)
 {
-  separator_and_key(key);
-  out << (flag ? "true" : "false");
+  document->add(key, flag);
   return *this;
 }
 
 JsonWriter& JsonWriter::value(const std::string& key, const unsigned long n)
 {
-  separator_and_key(key);
-  out << n;
+  document->add(key, n);
   return *this;
 }
 
 JsonWriter& JsonWriter::intervals(const std::string& key,
                                   const std::vector<std::pair<double, double>>& list)
 {
-  separator_and_key(key);
-  out << '[';
-  for (std::size_t i = 0; i < list.size(); ++i)
-    out << (i ? ", " : "") << '[' << number(list[i].first) << ", "
-        << number(list[i].second) << ']';
-  out << ']';
+  Json pairs = Json::array();
+  for (const auto& [begin, end] : list)
+    pairs.push_back(Json::array({number(begin), number(end)}));
+  document->add(key, std::move(pairs));
   return *this;
 }
 } // namespace pantocat

@@ -1,7 +1,6 @@
 #include <pantocat/io/log_log_plot.h>
 #include <pantocat/io/plots.h>
 
-#include <cstdlib>
 #include <fstream>
 
 namespace pantocat
@@ -20,8 +19,8 @@ bool plot_log_log(const std::string& dir, const std::string& name,
        << "set output '" << name << ".png'\n"
        << "set logscale xy\nset format x '%g'\nset format y '%.0e'\n"
        << "set grid xtics ytics mxtics mytics\nset key outside right font ',10'\n"
-       << "set title '" << title << "'\nset xlabel '" << x_label << "'\nset ylabel '"
-       << y_label << "'\n";
+       << "set title " << gnuplot_string(title) << "\nset xlabel "
+       << gnuplot_string(x_label) << "\nset ylabel " << gnuplot_string(y_label) << '\n';
     gp.precision(10);
     std::vector<std::size_t> drawn;
     for (std::size_t c = 0; c < curves.size(); ++c)
@@ -38,7 +37,8 @@ bool plot_log_log(const std::string& dir, const std::string& name,
     gp << "plot ";
     for (std::size_t i = 0; i < drawn.size(); ++i)
       gp << (i ? ", " : "") << "$curve" << drawn[i]
-         << " using 1:2 with linespoints title '" << curves[drawn[i]].title << "'";
+         << " using 1:2 with linespoints title "
+         << gnuplot_string(curves[drawn[i]].title);
     if (target > 0.)
       gp << (drawn.empty() ? "" : ", ") << target
          << " with lines dashtype 2 lc 'black' title 'target " << target << "'";
@@ -46,6 +46,6 @@ bool plot_log_log(const std::string& dir, const std::string& name,
       gp << "1/0 notitle";
     gp << '\n';
   }
-  return run_gnuplot(dir, script);
+  return !run_gnuplot(dir, script, {name + ".png"}).empty();
 }
 } // namespace pantocat

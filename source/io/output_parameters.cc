@@ -1,3 +1,5 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/io/output_parameters.h>
 
 #include <deal.II/base/utilities.h>
@@ -42,6 +44,8 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Output");
   directory = prm.get("Output directory");
+  require(!directory.empty(), "Output/Output directory", "''",
+          "must name a directory (-o DIR or the entry)");
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");
@@ -54,5 +58,13 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
               : v == "detailed" ? Verbosity::detailed
                                 : Verbosity::normal;
   prm.leave_subsection();
+}
+
+void OutputParameters::check(const double time_step) const
+{
+  require(vtu_interval == 0. || vtu_interval >= time_step, "Output/VTU interval",
+          vtu_interval,
+          "must be 0 (no frames) or at least Time integration/Time step = " +
+              number_to_string(time_step) + " s (a frame every time step)");
 }
 } // namespace pantocat

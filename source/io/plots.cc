@@ -1,25 +1,50 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/external_program.h>
 #include <pantocat/io/plots.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 
 namespace pantocat
 {
 bool gnuplot_available()
 {
-  return std::system("command -v gnuplot > /dev/null 2>&1") == 0;
+  return !find_program("gnuplot").empty();
 }
 
-bool run_gnuplot(const std::string& dir, const std::string& script)
+std::vector<std::string> run_gnuplot(const std::string& dir, const std::string& script,
+                                     const std::vector<std::string>& outputs)
 {
-  if (!gnuplot_available())
-    return false;
-  const std::string command = "cd '" + dir + "' && gnuplot '" + script + "' 2> /dev/null";
-  return std::system(command.c_str()) == 0;
+  for (const std::string& file : outputs)
+    std::filesystem::remove(dir + "/" + file);
+  const std::string gnuplot = find_program("gnuplot");
+  // The script is a plain file name: a leading "./" keeps gnuplot from
+  // reading one that starts with '-' as an option.
+  if (gnuplot.empty() || !run_program(gnuplot, {"./" + script}, dir))
+    return {};
+  std::vector<std::string> written;
+  for (const std::string& file : outputs)
+  {
+    std::error_code error;
+    const auto size = std::filesystem::file_size(dir + "/" + file, error);
+    if (!error && size > 0)
+      written.push_back(file);
+  }
+  return written;
+}
+
+std::string gnuplot_string(const std::string& text)
+{
+  std::string quoted = "'";
+  for (const char c : text)
+    if (c == '\'')
+      quoted += "''";
+    else
+      quoted += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? ' ' : c;
+  return quoted + "'";
 }
 
 bool plot_contact_force_statistics(const std::string& dir,
@@ -36,7 +61,8 @@ bool plot_contact_force_statistics(const std::string& dir,
        << "set grid\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\nset "
           "key outside right\n"
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
-       << "set title '" << title << ": contact force and its statistics'\n";
+       << "set title " << gnuplot_string(title + ": contact force and its statistics")
+       << '\n';
     const bool window = s.n_points > 0; // else: no statistics to draw
     if (window)
       for (const double x : {s.window_start, s.window_end})
@@ -57,7 +83,7 @@ bool plot_contact_force_statistics(const std::string& dir,
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
   }
-  return run_gnuplot(dir, script);
+  return !run_gnuplot(dir, script, {"contact_force_statistics.png"}).empty();
 }
 
 namespace
@@ -79,38 +105,58 @@ void plot_columns(std::ostream& gp, const std::vector<std::string>& columns,
     if (const std::size_t c = column_of(columns, name))
     {
       gp << (first ? "" : ", ") << "'time_series.csv' using 1:" << c
-         << " with lines title '" << name << "'";
+         << " with lines title " << gnuplot_string(name);
       first = false;
     }
   gp << '\n';
 }
 } // namespace
 
-bool plot_time_series(const std::string& dir, const std::vector<std::string>& columns,
-                      const std::vector<std::string>& contact_forces,
-                      const std::vector<std::string>& dropper_forces,
-                      const std::vector<std::string>& coordinates,
-                      const std::string& title)
+std::vector<std::string> plot_time_series(const std::string& dir,
+                                          const std::vector<std::string>& columns,
+                                          const std::vector<std::string>& contact_forces,
+                                          const std::vector<std::string>& dropper_forces,
+                                          const std::vector<std::string>& coordinates,
+                                          const std::string& title)
 {
-  if (contact_forces.empty() || dropper_forces.empty() || coordinates.empty())
-    return false; // nothing to draw in one of the three plots
-  const std::string script = dir + "/time_series.gp";
+  struct Plot
   {
-    std::ofstream gp(script);
+    std::string png, what, ylabel;
+    std::vector<std::string> names; ///< of the columns that exist
+  };
+  std::vector<Plot> plots{{"contact_force.png", "contact force", "lambda_p [N]", {}},
+                          {"dropper_forces.png", "dropper forces", "lambda_d [N]", {}},
+                          {"pantograph.png", "pantograph", "w [m]", {}}};
+  const std::vector<std::string>* lists[] = {&contact_forces, &dropper_forces, &coordinates};
+  for (unsigned int i = 0; i < plots.size(); ++i)
+    for (const std::string& name : *lists[i])
+      if (column_of(columns, name) > 0)
+        plots[i].names.push_back(name);
+  plots.erase(std::remove_if(plots.begin(), plots.end(),
+                             [](const Plot& plot) { return plot.names.empty(); }),
+              plots.end());
+  if (plots.empty())
+    return {}; // nothing to draw
+  const std::string script = "time_series.gp";
+  {
+    std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot time_series.gp (in this directory)\n"
        << "set datafile separator ','\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
-       << "set grid\nset xlabel 't [s]'\nset key outside right\n"
-       << "set output 'contact_force.png'\n"
-       << "set title '" << title << ": contact force'\nset ylabel 'lambda_p [N]'\n";
-    plot_columns(gp, columns, contact_forces);
-    gp << "set output 'dropper_forces.png'\n"
-       << "set title '" << title << ": dropper forces'\nset ylabel 'lambda_d [N]'\n";
-    plot_columns(gp, columns, dropper_forces);
-    gp << "set output 'pantograph.png'\n"
-       << "set title '" << title << ": pantograph'\nset ylabel 'w [m]'\n";
-    plot_columns(gp, columns, coordinates);
+       << "set grid\nset xlabel 't [s]'\nset key outside right\n";
+    for (const Plot& plot : plots)
+    {
+      gp << "set output '" << plot.png << "'\n"
+         << "set title " << gnuplot_string(title + ": " + plot.what) << "\n"
+         << "set ylabel '" << plot.ylabel << "'\n";
+      plot_columns(gp, columns, plot.names);
+    }
+    if (!gp)
+      throw SimulationError("cannot write " + dir + "/" + script);
   }
-  return run_gnuplot(dir, "time_series.gp");
+  std::vector<std::string> pngs;
+  for (const Plot& plot : plots)
+    pngs.push_back(plot.png);
+  return run_gnuplot(dir, script, pngs);
 }
 } // namespace pantocat

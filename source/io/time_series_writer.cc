@@ -65,6 +65,7 @@ void TimeSeriesWriter::start(const SimulationLayout& l)
 
 void TimeSeriesWriter::observe(const TimePoint& p)
 {
+  reopen_after_resume();
   if (seen++ % every != 0)
     return;
   const auto contacts = layout.contacts();
@@ -96,6 +97,7 @@ void TimeSeriesWriter::observe(const TimePoint& p)
 
 void TimeSeriesWriter::finish()
 {
+  reopen_after_resume();
   out.flush();
   if (!out)
     throw SimulationError("writing " + file_name + " failed");
@@ -114,11 +116,20 @@ void TimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archive)
   unsigned long length = 0;
   archive >> seen >> length;
   std::error_code error;
-  if (std::filesystem::file_size(file_name, error) < length || error)
-    throw SimulationError("cannot resume: " + file_name +
-                          " is shorter than at the checkpoint (" +
-                          std::to_string(length) + " bytes)");
-  std::filesystem::resize_file(file_name, length, error);
+  const auto size = std::filesystem::file_size(file_name, error);
+  if (error || size < length)
+    throw InputError(file_name + " is shorter than at the checkpoint (" +
+                     std::to_string(length) + " bytes)");
+  resume_length = length;
+}
+
+void TimeSeriesWriter::reopen_after_resume()
+{
+  if (!resume_length)
+    return;
+  std::error_code error;
+  std::filesystem::resize_file(file_name, *resume_length, error);
+  resume_length.reset();
   out.open(file_name, std::ios::app);
   if (error || !out)
     throw SimulationError("cannot resume writing " + file_name);

@@ -7,6 +7,7 @@
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/numerics/data_out.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -40,7 +41,8 @@ VtuTimeSeriesWriter::VtuTimeSeriesWriter(const std::string& directory,
                                          const CatenaryDiscretisation& d,
                                          const SemiDiscreteSystem& system,
                                          dealii::TimerOutput* timer)
-    : directory(directory), interval(interval), tolerance(0.5 * time_step), timer(timer),
+    : directory(directory), interval(std::max(interval, time_step)),
+      tolerance(0.5 * time_step), timer(timer),
       dropper_x(d.catenary_parameters().dropper_positions),
       support_height(d.catenary_parameters().support_height), sample_fe(1),
       sample_dofs(sample_mesh)

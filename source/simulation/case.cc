@@ -3,6 +3,7 @@
 #include <pantocat/simulation/case.h>
 
 #include <limits>
+#include <sstream>
 
 namespace pantocat
 {
@@ -45,5 +46,20 @@ void Case::check() const
                          : 0.;
   for (const PantographCase& p : scene.pantographs)
     p.parameters.check(catenary.length(), eps);
+}
+
+void Case::check_dynamics() const
+{
+  require(scene.carrier == WireModel::elastic || scene.contact_wire == WireModel::elastic ||
+              scene.has_pantograph_body(),
+          "Scene/Pantograph", scene.pantographs[0].model,
+          "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
+          "nothing to integrate in time; make a wire elastic or choose two-mass | "
+          "three-mass");
+  const PantographParameters& p = scene.pantographs[0].parameters;
+  std::ostringstream run;
+  run << "the run from x_p = " << p.initial_position << " to " << p.final_position
+      << " m at v_p = " << p.speed << " m/s (" << end_time() << " s)";
+  time_integration.check_number_of_steps(end_time(), run.str());
 }
 } // namespace pantocat

@@ -2,9 +2,14 @@
 #include <pantocat/simulation/checkpoint.h>
 #include <pantocat/time/dynamic_state_serialization.h>
 
-#include <boost/archive/archive_exception.hpp>
+#include <deal.II/base/utilities.h>
+
+#include <boost/crc.hpp>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <sstream>
 
@@ -12,8 +17,71 @@ namespace pantocat
 {
 namespace
 {
-/// Written first: a file that does not start with it is no checkpoint of ours.
-const std::string checkpoint_magic = "pantocat-fem checkpoint 1";
+/**
+ * The file starts with this line, then the length of the payload (8 bytes)
+ * and its CRC-32 (4 bytes), little endian; the payload, a Boost binary
+ * archive, follows. Version 1 (a Boost archive that began with its own magic
+ * string, without length or checksum) is no longer read.
+ */
+const std::string checkpoint_magic = "pantocat-fem checkpoint 2\n";
+const std::size_t header_size = checkpoint_magic.size() + 8 + 4;
+
+std::uint32_t crc32_of(const std::string& bytes)
+{
+  boost::crc_32_type crc;
+  crc.process_bytes(bytes.data(), bytes.size());
+  return crc.checksum();
+}
+
+template <typename Integer>
+void append_little_endian(std::string& bytes, Integer value, const unsigned int n)
+{
+  for (unsigned int i = 0; i < n; ++i, value >>= 8)
+    bytes += static_cast<char>(value & 0xff);
+}
+
+template <typename Integer>
+Integer read_little_endian(const std::string& bytes, const std::size_t at,
+                           const unsigned int n)
+{
+  Integer value = 0;
+  for (unsigned int i = n; i-- > 0;)
+    value = (value << 8) | static_cast<unsigned char>(bytes[at + i]);
+  return value;
+}
+
+/// The value of @p name in @p fingerprint as a number; NaN if it is not there.
+double fingerprint_number(const ParameterFingerprint& fingerprint,
+                          const std::string& name)
+{
+  for (const auto& [entry, value] : fingerprint)
+    if (entry == name)
+      try
+      {
+        return dealii::Utilities::string_to_double(value);
+      }
+      catch (...)
+      {
+        break;
+      }
+  return std::nan("");
+}
+
+/**
+ * The number of steps of a run with @p fingerprint, as DynamicSimulation::run
+ * counts them (ceil(end time / dt)); 0 if the fingerprint lacks an entry.
+ */
+unsigned long steps_of_run(const ParameterFingerprint& fingerprint)
+{
+  const double x0 = fingerprint_number(fingerprint, "Pantograph/Initial position"),
+               x1 = fingerprint_number(fingerprint, "Pantograph/Final position"),
+               v = fingerprint_number(fingerprint, "Pantograph/Speed"),
+               dt = fingerprint_number(fingerprint, "Time integration/Time step");
+  const double steps = std::ceil((x1 - x0) / v / dt - 1e-9);
+  return std::isfinite(steps) && steps > 0. && steps < 1e18
+             ? static_cast<unsigned long>(steps)
+             : 0;
+}
 
 bool is_critical(const std::string& name)
 {
@@ -83,11 +151,10 @@ CheckpointWriter::CheckpointWriter(std::string file, ParameterFingerprint f)
 void CheckpointWriter::write(const unsigned long step, const TimeIntegrator& integrator,
                              const std::vector<SimulationObserver*>& observers) const
 {
-  const std::string temporary = file_name + ".tmp";
+  std::ostringstream payload;
   {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    CheckpointOut archive(out);
-    archive << checkpoint_magic << fingerprint << step;
+    CheckpointOut archive(payload);
+    archive << fingerprint << step;
     integrator.save(archive);
     const auto n = static_cast<unsigned long>(std::count_if(
         observers.begin(), observers.end(), [](auto* o) { return o->checkpointed(); }));
@@ -95,6 +162,16 @@ void CheckpointWriter::write(const unsigned long step, const TimeIntegrator& int
     for (const auto* o : observers)
       if (o->checkpointed())
         o->save(archive);
+  }
+  const std::string bytes = payload.str();
+  std::string header = checkpoint_magic;
+  append_little_endian(header, static_cast<std::uint64_t>(bytes.size()), 8);
+  append_little_endian(header, crc32_of(bytes), 4);
+
+  const std::string temporary = file_name + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << header << bytes;
     out.flush();
     if (!out)
       throw SimulationError("cannot write the checkpoint " + temporary);
@@ -108,28 +185,74 @@ void CheckpointWriter::write(const unsigned long step, const TimeIntegrator& int
 
 CheckpointReader::CheckpointReader(const std::string& file,
                                    const ParameterFingerprint& fingerprint)
-    : file_name(file), in(file, std::ios::binary)
+    : file_name(file)
 {
-  const std::string parameter = "Checkpoint/Resume from checkpoint = true";
+  std::ifstream in(file, std::ios::binary);
   if (!in)
-    throw InputError(parameter + ": there is no checkpoint " + file +
+    throw InputError(refusal() + "there is no checkpoint " + file +
                      " (write one with Checkpoint/Interval > 0)");
+  std::ostringstream bytes;
+  bytes << in.rdbuf();
+  if (!in)
+    throw InputError(refusal() + "cannot read the checkpoint " + file);
+  payload.str(verified_payload(bytes.str()));
   ParameterFingerprint saved;
   try
   {
-    archive = std::make_unique<CheckpointIn>(in);
-    std::string magic;
-    *archive >> magic;
-    if (magic != checkpoint_magic)
-      throw InputError("");
+    archive = std::make_unique<CheckpointIn>(payload);
     *archive >> saved >> steps;
   }
-  catch (const std::exception&)
+  catch (const std::exception& e)
   {
-    throw InputError(parameter + ": " + file +
-                     " is not a checkpoint of this version of pantocat-fem, or it is "
-                     "damaged");
+    throw damaged(std::string("its parameters cannot be read (") + e.what() + ")");
   }
+  check_fingerprint(saved, fingerprint);
+  time_step = fingerprint_number(fingerprint, "Time integration/Time step");
+  const unsigned long run_steps = steps_of_run(fingerprint);
+  if (steps == 0 || (run_steps > 0 && steps >= run_steps))
+    throw damaged("it was written after step " + std::to_string(steps) +
+                  ", but a checkpoint lies between step 1 and the run's last step " +
+                  std::to_string(run_steps));
+}
+
+CheckpointReader::~CheckpointReader() = default;
+
+std::string CheckpointReader::refusal()
+{
+  return "Checkpoint/Resume from checkpoint = true: ";
+}
+
+InputError CheckpointReader::damaged(const std::string& what) const
+{
+  return InputError(refusal() + "the checkpoint " + file_name + " is damaged: " + what +
+                    "; start afresh (Resume from checkpoint = false)");
+}
+
+std::string CheckpointReader::verified_payload(const std::string& bytes) const
+{
+  if (bytes.compare(0, checkpoint_magic.size(), checkpoint_magic) != 0)
+    throw InputError(refusal() + file_name +
+                     " is not a checkpoint of this version of pantocat-fem (it does not "
+                     "start with \"pantocat-fem checkpoint 2\"), or it is damaged");
+  if (bytes.size() < header_size)
+    throw damaged("it ends inside its header");
+  const auto length =
+      read_little_endian<std::uint64_t>(bytes, checkpoint_magic.size(), 8);
+  const auto checksum =
+      read_little_endian<std::uint32_t>(bytes, checkpoint_magic.size() + 8, 4);
+  if (length != bytes.size() - header_size)
+    throw damaged("its header announces " + std::to_string(length) +
+                  " bytes of data, the file holds " +
+                  std::to_string(bytes.size() - header_size));
+  std::string data = bytes.substr(header_size);
+  if (crc32_of(data) != checksum)
+    throw damaged("its checksum (CRC-32) does not match its data");
+  return data;
+}
+
+void CheckpointReader::check_fingerprint(const ParameterFingerprint& saved,
+                                         const ParameterFingerprint& fingerprint) const
+{
   // The first parameter that differs, or is only in one of the two lists.
   for (const auto& [name, value] : fingerprint)
   {
@@ -137,42 +260,61 @@ CheckpointReader::CheckpointReader(const std::string& file,
                                   [&](const auto& e) { return e.first == name; });
     const std::string old_value = old == saved.end() ? "(not set)" : old->second;
     if (old_value != value)
-      throw InputError(parameter + ": the checkpoint " + file + " was made with " + name +
-                       " = " + old_value + ", this run has " + value +
+      throw InputError(refusal() + "the checkpoint " + file_name + " was made with " +
+                       name + " = " + old_value + ", this run has " + value +
                        "; run with the checkpoint's value or start afresh");
   }
   for (const auto& [name, value] : saved)
     if (std::none_of(fingerprint.begin(), fingerprint.end(),
                      [&](const auto& e) { return e.first == name; }))
-      throw InputError(parameter + ": the checkpoint " + file + " was made with " + name +
-                       " = " + value + ", which this version does not know");
+      throw InputError(refusal() + "the checkpoint " + file_name + " was made with " +
+                       name + " = " + value + ", which this version does not know");
 }
-
-CheckpointReader::~CheckpointReader() = default;
 
 void CheckpointReader::restore(TimeIntegrator& integrator, const SimulationLayout& layout,
                                const std::vector<SimulationObserver*>& observers)
 {
   try
   {
+    const double t0 = integrator.time();
     integrator.load(*archive);
+    check_integrator(integrator, t0);
     unsigned long n = 0;
     *archive >> n;
     const auto expected = static_cast<unsigned long>(std::count_if(
         observers.begin(), observers.end(), [](auto* o) { return o->checkpointed(); }));
     if (n != expected)
-      throw SimulationError("the checkpoint " + file_name + " holds " +
-                            std::to_string(n) + " outputs, this run has " +
-                            std::to_string(expected));
+      throw InputError("it holds " + std::to_string(n) + " outputs, this run has " +
+                       std::to_string(expected));
     for (auto* o : observers)
       if (o->checkpointed())
         o->resume(layout, *archive);
       else
         o->start(layout);
+    if (payload.peek() != std::char_traits<char>::eof())
+      throw InputError("it holds more data than this run reads");
   }
-  catch (const boost::archive::archive_exception& e)
+  catch (const std::exception& e)
   {
-    throw SimulationError("cannot read the checkpoint " + file_name + ": " + e.what());
+    throw InputError(refusal() + "the checkpoint " + file_name + " cannot be resumed: " +
+                     e.what() + "; start afresh (Resume from checkpoint = false)");
+  }
+}
+
+void CheckpointReader::check_integrator(const TimeIntegrator& integrator,
+                                        const double t0) const
+{
+  if (integrator.statistics().steps != steps)
+    throw InputError("its integrator counted " +
+                     std::to_string(integrator.statistics().steps) +
+                     " steps, its header says " + std::to_string(steps));
+  const double dt = time_step;
+  if (std::isfinite(dt) && !(std::abs(integrator.time() - (t0 + steps * dt)) <= 0.5 * dt))
+  {
+    std::ostringstream m;
+    m << "its time " << integrator.time() << " s is not that of step " << steps << " ("
+      << t0 + steps * dt << " s)";
+    throw InputError(m.str());
   }
 }
 } // namespace pantocat

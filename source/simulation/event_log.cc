@@ -36,8 +36,13 @@ void EventLog::resume(const SimulationLayout& l, CheckpointIn& archive)
   layout = l;
   unsigned long size = 0;
   archive >> previous >> size;
-  list.resize(size);
-  for (ConstraintEvent& e : list)
+  // One by one: a wrong size ends with the archive, not with a huge allocation.
+  list.clear();
+  for (unsigned long k = 0; k < size; ++k)
+  {
+    ConstraintEvent e;
     archive >> e.t >> e.constraint >> e.kind;
+    list.push_back(std::move(e));
+  }
 }
 } // namespace pantocat

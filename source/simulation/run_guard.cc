@@ -63,6 +63,9 @@ void RunGuard::observe_state(const TimePoint& p, const DynamicState& s)
   const double increase = system.energy(s.q, s.v, s.t) - initial_energy;
   seen.max_energy_increase = std::max(seen.max_energy_increase, increase);
   seen.min_energy_increase = std::min(seen.min_energy_increase, increase);
+  if (!std::isfinite(increase))
+    stop(p, "the energy E(t) - E(0) is not finite (" + std::to_string(increase) +
+                " J): the state is too large for its energy to be computed");
   if (!(increase <= parameters.energy_bound * seen.reference_energy))
   {
     std::ostringstream m;

@@ -2,6 +2,9 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/space/discretisation_parameters.h>
 
+
+#include <sstream>
+
 namespace pantocat
 {
 const char* to_string(const SpaceMethod method)
@@ -52,13 +55,34 @@ void DiscretisationParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
 }
 
+double estimated_memory_bytes(const unsigned int n_intervals)
+{
+  return memory_per_interval * n_intervals;
+}
+
 void DiscretisationParameters::check(const double span) const
 {
   require(n_intervals >= 2, "Discretisation/Number of intervals", n_intervals,
           "must be >= 2");
+  check_memory();
   if (load_shape == LoadShape::smoothed_delta)
     require(load_half_width > 0. && 2. * load_half_width < span,
             "Discretisation/Load half-width", load_half_width,
             "must lie in (0, L/2) = (0, " + number_to_string(span / 2.) + ")");
+}
+void DiscretisationParameters::check_memory() const
+{
+  const double available = physical_memory_bytes();
+  const double needed = estimated_memory_bytes(n_intervals);
+  if (available == 0. || needed <= available)
+    return;
+  std::ostringstream message;
+  message.precision(3);
+  message << "a run on this grid needs about " << needed / 1e9
+          << " GB of memory (estimate: " << memory_per_interval / 1e3
+          << " kB per interval), more than the " << available / 1e9
+          << " GB this machine has; choose at most "
+          << static_cast<unsigned long>(available / memory_per_interval) << " intervals";
+  require(false, "Discretisation/Number of intervals", n_intervals, message.str());
 }
 } // namespace pantocat

@@ -361,6 +361,9 @@ void Bdf2Integrator::load(CheckpointIn& archive)
 {
   archive >> step_number >> previous >> current;
   load_statistics(archive);
+  check_loaded(previous, "x_{n-1}");
+  check_loaded(current, "x_n");
+  check_loaded_steps(step_number);
 }
 
 IntegratorEntry Bdf2Integrator::registry_entry()

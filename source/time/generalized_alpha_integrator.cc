@@ -187,6 +187,9 @@ void GeneralizedAlphaIntegrator::load(CheckpointIn& archive)
 {
   archive >> step_number >> current >> pseudo_acceleration;
   load_statistics(archive);
+  check_loaded(current, "x_n");
+  check_loaded(pseudo_acceleration, system.n_dofs(), "the pseudo-acceleration a_n");
+  check_loaded_steps(step_number);
 }
 
 IntegratorEntry GeneralizedAlphaIntegrator::registry_entry()

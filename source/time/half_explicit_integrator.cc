@@ -415,6 +415,14 @@ void HalfExplicitIntegrator::load(CheckpointIn& archive)
 {
   archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported;
   load_statistics(archive);
+  if (!std::isfinite(t))
+    throw InputError("the time t_n is not finite");
+  check_loaded(q, system.n_dofs(), "q_n");
+  check_loaded(v, system.n_dofs(), "v_n");
+  check_loaded(v_prev, system.n_dofs(), "v_{n-1}");
+  check_loaded(active_now, "the active set");
+  check_loaded(reported, "the last reported state");
+  check_loaded_steps(step_number);
 }
 
 IntegratorEntry HalfExplicitIntegrator::registry_entry()

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 namespace pantocat
@@ -95,6 +96,56 @@ struct DealiiDirectSolver
   }
 };
 
+/**
+ * IDA's smallest step, relative to the output step dt. A step this small
+ * (5e-13 s at dt = 5e-5 s) resolves no physics of the catenary; IDA gets
+ * there only where the problem is not smooth enough for it (a point load
+ * crossing a node: its row jumps), and kept shrinking the step to 1e-20 s,
+ * below the round-off of t, for minutes.
+ */
+constexpr double min_step_per_output_step = 1e-8;
+
+/// IDA's internal steps per output step dt (one call of IDASolve); normal
+/// runs take a few.
+constexpr long max_steps_per_output_step = 500;
+
+/// Events (restarts) per output step: more means that constraints chatter
+/// without IDA getting on.
+constexpr unsigned int max_events_per_output_step = 100;
+
+/// Why IDASolve returned @p flag, in words.
+std::string ida_failure_reason(const int flag, const double h_min)
+{
+  std::ostringstream reason;
+  reason << std::setprecision(3);
+  switch (flag)
+  {
+  case IDA_TOO_MUCH_WORK:
+    reason << "more than " << max_steps_per_output_step
+           << " internal steps in one output step";
+    break;
+  case IDA_ERR_FAIL:
+    reason << "the error test failed repeatedly, or with the step at its minimum "
+           << h_min << " s";
+    break;
+  case IDA_CONV_FAIL:
+    reason << "the Newton iteration did not converge, repeatedly or with the step at "
+              "its minimum "
+           << h_min << " s";
+    break;
+  default:
+    reason << "IDASolve failed";
+  }
+  reason << " (" << IDAGetReturnFlagName(flag) << ')';
+  return reason.str();
+}
+
+/// Keeps SUNDIALS' last error message (instead of printing it on stderr).
+void keep_error_message(int, const char*, const char*, char* message, void* data)
+{
+  *static_cast<std::string*>(data) = message;
+}
+
 SUNLinearSolver make_dealii_solver(LinearSolverType type, SUNContext context)
 {
   SUNLinearSolver S = SUNLinSolNewEmpty(context);
@@ -160,6 +211,7 @@ struct IdaIntegrator::Sundials
   SUNLinearSolver solver = nullptr;
   void* memory = nullptr;
   sunindextype nnz = 0;
+  std::string last_error;            ///< SUNDIALS' message of its last error
   std::vector<sunindextype> pattern; ///< of the last Jacobian (column starts, rows)
   PatternOperators operators;        ///< M, D, K, f for the residual's pass
 };
@@ -425,7 +477,9 @@ void IdaIntegrator::initialize(const DynamicState& initial)
             IDASetLinearSolver(mem, sun->solver, sun->J) == IDA_SUCCESS &&
             IDASetJacFn(mem, Sundials::jacobian) == IDA_SUCCESS &&
             IDARootInit(mem, m, Sundials::roots) == IDA_SUCCESS &&
-            IDASetMaxNumSteps(mem, 100000) == IDA_SUCCESS;
+            IDASetMaxNumSteps(mem, max_steps_per_output_step) == IDA_SUCCESS &&
+            IDASetMinStep(mem, min_step_per_output_step * dt) == IDA_SUCCESS &&
+            IDASetErrHandlerFn(mem, keep_error_message, &sun->last_error) == IDA_SUCCESS;
   std::vector<int> direction(m, -1); // gaps and forces falling through zero
   // (A scene without constraints has no roots: IDA refuses directions then.)
   ok = ok && (m == 0 || IDASetRootDirection(mem, direction.data()) == IDA_SUCCESS);
@@ -455,11 +509,20 @@ void IdaIntegrator::advance()
 {
   const double t_out = current.t + dt;
   double t = current.t;
+  unsigned int events = 0;
   while (t < t_out - 1e-14 * std::max(1., std::abs(t_out)))
   {
     const int flag = IDASolve(sun->memory, t_out, &t, sun->y, sun->yp, IDA_NORMAL);
     if (flag == IDA_ROOT_RETURN)
     {
+      if (++events > max_events_per_output_step)
+      {
+        std::ostringstream s;
+        s << "IDA failed at t = " << t << " s: more than " << max_events_per_output_step
+          << " switches of the active set in the output step from " << current.t
+          << " s (the constraints chatter)";
+        throw SimulationError(s.str());
+      }
       std::vector<int> found(m, 0);
       IDAGetRootInfo(sun->memory, found.data());
       std::vector<bool> set = active;
@@ -476,7 +539,10 @@ void IdaIntegrator::advance()
     if (flag < 0)
     {
       std::ostringstream s;
-      s << "IDA failed at t = " << t << " s: " << IDAGetReturnFlagName(flag);
+      s << "IDA failed at t = " << t
+        << " s: " << ida_failure_reason(flag, min_step_per_output_step * dt);
+      if (!sun->last_error.empty())
+        s << "; IDA: " << sun->last_error;
       throw SimulationError(s.str());
     }
   }

@@ -1,6 +1,10 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/physical_memory.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integration_parameters.h>
+
+#include <cmath>
+#include <sstream>
 
 namespace pantocat
 {
@@ -65,5 +69,21 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
           ida_relative_tolerance, "must be > 0");
   require(ida_absolute_tolerance > 0., "Time integration/IDA absolute tolerance",
           ida_absolute_tolerance, "must be > 0");
+}
+
+void TimeIntegrationParameters::check_number_of_steps(const double end_time,
+                                                      const std::string& run) const
+{
+  const double steps = std::ceil(end_time / time_step);
+  const double available = physical_memory_bytes();
+  const double max_steps = available > 0. ? available / memory_per_step : 1e18;
+  if (std::isfinite(steps) && steps <= max_steps)
+    return;
+  std::ostringstream allowed;
+  allowed.precision(3);
+  allowed << run << " would take " << steps << " steps; at " << memory_per_step
+          << " bytes per step (the contact-force series) this machine allows at most "
+          << max_steps << " steps";
+  require(false, "Time integration/Time step", time_step, allowed.str());
 }
 } // namespace pantocat

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <memory>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -8,14 +9,21 @@
 namespace pantocat
 {
 /**
- * A minimal streaming JSON writer for summary.json (Debian 12's Boost 1.74
- * has no Boost.JSON, and property_tree writes numbers as strings). Numbers
- * are written with 12 significant digits; non-finite numbers as null.
+ * A JSON writer for summary.json with the shape of a streaming writer: open
+ * objects and arrays, add values under keys (no key inside an array), close
+ * them. The document is built as an nlohmann::ordered_json (keys in the order
+ * given) and written to the stream, indented by two spaces, when the outermost
+ * object or array is closed; every string is escaped by the library, so
+ * names and messages with quotes, backslashes, control characters or bytes
+ * that are not UTF-8 (replaced by U+FFFD) still give valid JSON. Numbers are
+ * rounded to 12 significant digits (integral values below 10^12 are written
+ * without a decimal point); non-finite numbers are written as null.
  */
 class JsonWriter
 {
 public:
   explicit JsonWriter(std::ostream& out);
+  ~JsonWriter();
 
   JsonWriter& begin_object(const std::string& key = "");
   JsonWriter& end_object();
@@ -31,12 +39,13 @@ public:
                         const std::vector<std::pair<double, double>>& list);
 
 private:
-  void separator_and_key(const std::string& key);
-  static std::string quoted(const std::string& text);
-  std::string number(double x) const;
+  /// The document under construction and its open objects and arrays.
+  struct Document;
+
+  /// Closes the innermost object or array; writes the document when it was the outermost.
+  void close();
 
   std::ostream& out;
-  std::vector<bool> first_in_scope;
-  unsigned int depth() const { return first_in_scope.size(); }
+  std::unique_ptr<Document> document;
 };
 } // namespace pantocat

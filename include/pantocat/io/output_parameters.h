@@ -30,5 +30,11 @@ struct OutputParameters
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
+  /**
+   * Checks against the run's time step: a VTU interval in (0, @p time_step)
+   * asks for frames closer than the time points there are (and one of
+   * 1e-300 s would count frames for ever); throws InputError.
+   */
+  void check(double time_step) const;
 };
 } // namespace pantocat

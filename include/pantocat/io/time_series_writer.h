@@ -3,6 +3,7 @@
 #include <pantocat/simulation/time_point.h>
 
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,11 +29,19 @@ public:
   void finish() override;
   /// The number of points seen and the length of the file.
   void save(CheckpointOut& archive) const override;
-  /// Cuts the file to its length at the checkpoint (rows written after it by
-  /// the stopped run go) and appends from there.
+  /**
+   * Reads the file's length at the checkpoint. The file is cut to it (rows
+   * written after it by the stopped run go) and appended to from there only
+   * when the next point comes: a resume refused by a later part of the
+   * checkpoint leaves the file as it was.
+   */
   void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
 private:
+  /// After resume(): cuts the file to its length at the checkpoint and opens it.
+  void reopen_after_resume();
+
+  std::optional<unsigned long> resume_length; ///< set by resume() until reopened
   std::string file_name;
   mutable std::ofstream out; ///< opened by start() or resume()
   SimulationLayout layout;

@@ -30,7 +30,10 @@ namespace pantocat
  *    head at (x_p, w_p1) and each dropper clamp at (x_d, w_w(x_d)), with their
  *    constraint force [N], active flag and id (0: pantograph, j: dropper j).
  * Both VTU files carry the physical time (VTK field TIME). start() removes
- * the frames of an earlier run from vtu/.
+ * the frames of an earlier run from vtu/. An interval below @p time_step is
+ * taken as @p time_step (a frame every time point; OutputParameters::check
+ * refuses such an input): the frame counter then advances at most once per
+ * time step, where a tiny interval made it count for ever.
  */
 class VtuTimeSeriesWriter : public SimulationObserver
 {

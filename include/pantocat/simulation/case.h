@@ -37,5 +37,11 @@ struct Case
    * InputError naming the parameter, the value and what is allowed.
    */
   void check() const;
+
+  /**
+   * What a dynamic run needs beyond check(): unknowns to integrate, and a
+   * number of steps up to end_time() that is finite and fits into memory.
+   */
+  void check_dynamics() const;
 };
 } // namespace pantocat

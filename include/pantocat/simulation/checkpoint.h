@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/base/checkpoint_archive.h>
+#include <pantocat/base/input_error.h>
 #include <pantocat/simulation/checkpoint_parameters.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/time/time_integrator.h>
@@ -9,6 +10,7 @@
 
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,11 +28,12 @@ namespace pantocat
 ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm);
 
 /**
- * Writes checkpoints of a dynamic run: the fingerprint of its
- * parameters, the step counter, the integrator's internal state and each
- * observer's state, in a Boost binary archive. Written to a temporary file
- * in the same directory and renamed over the old checkpoint: a run killed
- * while writing leaves the previous checkpoint intact.
+ * Writes checkpoints of a dynamic run: the fingerprint of its parameters, the
+ * step counter, the integrator's internal state and each observer's state,
+ * in a Boost binary archive (the payload). The file holds a header line, the
+ * payload's length and its CRC-32, then the payload. It is written to a
+ * temporary file in the same directory and renamed over the old checkpoint:
+ * a run killed while writing leaves the previous checkpoint intact.
  */
 class CheckpointWriter
 {
@@ -46,10 +49,18 @@ private:
 };
 
 /**
- * Reads a checkpoint: the constructor checks that it is one and that it was
- * made with @p fingerprint (an InputError names the first parameter that
- * differs, with both values); restore() then loads the integrator (made and
- * initialised for the same system) and the observers, in the order written.
+ * Reads a checkpoint. The constructor reads the whole file and checks,
+ * before deserialising anything, its header, the payload's length and its
+ * CRC-32 (any flipped bit or byte, a file cut short or extended is refused);
+ * then that it was made with @p fingerprint (an InputError names the first
+ * parameter that differs, with both values) and that its step lies inside
+ * the run. restore() then loads the integrator (made and initialised for the
+ * same system) and the observers, in the order written, and checks what it
+ * read: the state's sizes against the system, finite values, the step
+ * counters and the time of that step, and that nothing is left over. Every
+ * refusal is an InputError naming the file and what is wrong; restore()
+ * refuses before any output file is changed (TimeSeriesWriter cuts its file
+ * only when the run goes on).
  */
 class CheckpointReader
 {
@@ -62,9 +73,21 @@ public:
                const std::vector<SimulationObserver*>& observers);
 
 private:
+  /// "Checkpoint/Resume from checkpoint = true: ", which starts each refusal.
+  static std::string refusal();
+  /// The refusal of a damaged checkpoint, saying @p what is wrong.
+  InputError damaged(const std::string& what) const;
+  /// The payload of the file's @p bytes, after the header, length and checksum checks.
+  std::string verified_payload(const std::string& bytes) const;
+  void check_fingerprint(const ParameterFingerprint& saved,
+                         const ParameterFingerprint& fingerprint) const;
+  /// The loaded integrator's step counter and time against the header's step.
+  void check_integrator(const TimeIntegrator& integrator, double t0) const;
+
   std::string file_name;
-  std::ifstream in;
+  std::istringstream payload;
   std::unique_ptr<CheckpointIn> archive;
   unsigned long steps = 0;
+  double time_step = 0.; ///< Time integration/Time step of the fingerprint
 };
 } // namespace pantocat

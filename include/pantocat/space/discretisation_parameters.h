@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/base/physical_memory.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 namespace pantocat
@@ -28,6 +30,18 @@ enum class CarrierElement
   cubic_hermite    ///< as the contact wire: for a carrier with bending stiffness
 };
 
+/**
+ * Memory [bytes] a run needs per interval of the grid, above the program's
+ * fixed 0.2 GB: an upper bound of what was measured (peak resident memory at
+ * N+1 = 5000 and 50000, FEM and FDM): IDA 18.6 kB (its sparse Jacobian and
+ * the Newton matrices), BDF-2 and the static solve 4 kB, the explicit
+ * methods 2.4 kB.
+ */
+constexpr double memory_per_interval = 32e3;
+
+/// The memory a run on @p n_intervals intervals needs, by memory_per_interval.
+double estimated_memory_bytes(unsigned int n_intervals);
+
 struct DiscretisationParameters
 {
   SpaceMethod method = SpaceMethod::fem;
@@ -38,7 +52,14 @@ struct DiscretisationParameters
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
-  /// Checks against the span; throws InputError.
+  /**
+   * Checks against the span, and that a run on this grid fits into the
+   * machine's physical memory (estimated_memory_bytes()): a grid that does
+   * not is refused here, naming the estimate, instead of ending in an
+   * allocation failure; throws InputError.
+   */
   void check(double span) const;
+  /// The memory part of check().
+  void check_memory() const;
 };
 } // namespace pantocat

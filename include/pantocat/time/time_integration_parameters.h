@@ -8,6 +8,13 @@
 
 namespace pantocat
 {
+/**
+ * Memory [bytes] a dynamic run keeps per time step: the contact-force series
+ * (t, x_p, lambda_p and the contact flag of every step, for the zero-phase
+ * low pass at the end) and its room to grow.
+ */
+constexpr double memory_per_step = 64.;
+
 struct TimeIntegrationParameters
 {
   /// Name of the integrator (registered_integrators()): half-explicit, bdf2, ...
@@ -24,5 +31,13 @@ struct TimeIntegrationParameters
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
+  /**
+   * Checks that a run of @p end_time seconds (@p run describes it for the
+   * message) in steps of time_step can be made: its number of steps must be
+   * finite and fit into memory, at memory_per_step bytes each (a dt of
+   * 1e-300 s gave a step count beyond the range of the counter, which then
+   * read 0 steps and reported the run completed); throws InputError.
+   */
+  void check_number_of_steps(double end_time, const std::string& run) const;
 };
 } // namespace pantocat

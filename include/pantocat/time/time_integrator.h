@@ -77,6 +77,21 @@ protected:
   void save_statistics(CheckpointOut& archive) const;
   void load_statistics(CheckpointIn& archive);
 
+  /**
+   * Plausibility of what load() read (a checkpoint of another system, or
+   * one damaged in a way its checksum missed, must not run on): @p x has
+   * @p size entries, all finite; throws an InputError naming @p name.
+   */
+  static void check_loaded(const dealii::Vector<double>& x, unsigned int size,
+                           const std::string& name);
+  /// The same for a state: t finite, q and v of n_dofs() entries, a of
+  /// n_dofs() or none, lambda and the active set of n_constraints().
+  void check_loaded(const DynamicState& state, const std::string& name) const;
+  /// The same for an active set of n_constraints() flags.
+  void check_loaded(const std::vector<bool>& active, const std::string& name) const;
+  /// The counter of steps that load() read equals @p step_number, the method's own.
+  void check_loaded_steps(unsigned long step_number) const;
+
   const SemiDiscreteSystem& system;
   IntegratorStatistics stats;
 };

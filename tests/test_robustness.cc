@@ -1,0 +1,173 @@
+// Input that broke the program's promises: each case is now refused with an
+// InputError before anything runs (or, for a run, stopped with a
+// SimulationError), instead of a crash, a hang or an allocation failure.
+#include <pantocat/time/integrator_registry.h>
+#include <pantocat/app/parameter_input.h>
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/io/external_program.h>
+#include <pantocat/io/output_parameters.h>
+#include <pantocat/io/plots.h>
+#include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/time/time_integrator.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace pantocat;
+
+namespace
+{
+/// The message of the InputError that @p f throws ("" if none).
+template <typename Function>
+std::string input_error_of(const Function& f)
+{
+  try
+  {
+    f();
+  }
+  catch (const InputError& e)
+  {
+    return e.what();
+  }
+  return "";
+}
+} // namespace
+
+TEST(Robustness, EveryIntegratorRefusesASystemWithoutUnknowns)
+{
+  const SemiDiscreteSystem empty;
+  for (const IntegratorEntry& entry : registered_integrators())
+  {
+    TimeIntegrationParameters p;
+    p.integrator = entry.name;
+    const std::string message = input_error_of([&] { create_time_integrator(empty, p); });
+    EXPECT_NE(message.find("the scene has no unknowns"), std::string::npos) << message;
+  }
+}
+
+TEST(Robustness, AScenarioWithoutUnknownsIsRefusedWithItsParameters)
+{
+  dealii::ParameterHandler prm;
+  ProgramParameters::declare_parameters(prm);
+  prm.parse_input_from_string("subsection Scene\n set Carrier = rigid\n"
+                              " set Contact wire = rigid\n set Pantograph = absent\n"
+                              " set Droppers = absent\nend\n");
+  ProgramParameters p;
+  const std::string message = input_error_of([&] { p.parse_parameters(prm); });
+  EXPECT_EQ(message.rfind("Scene/Pantograph = absent: with Carrier = rigid and Contact "
+                          "wire = rigid the scene has no unknowns",
+                          0),
+            0u)
+      << message;
+}
+
+TEST(Robustness, AVtuIntervalBelowTheTimeStepIsRefused)
+{
+  OutputParameters p;
+  p.vtu_interval = 1e-300;
+  EXPECT_EQ(input_error_of([&] { p.check(5e-5); }),
+            "Output/VTU interval = 1e-300: must be 0 (no frames) or at least Time "
+            "integration/Time step = 5e-05 s (a frame every time step)");
+  for (const double ok : {0., 5e-5, 0.01})
+  {
+    p.vtu_interval = ok;
+    EXPECT_NO_THROW(p.check(5e-5));
+  }
+}
+
+TEST(Robustness, AGridThatCannotFitIntoMemoryIsRefusedWithTheEstimate)
+{
+  ASSERT_GT(physical_memory_bytes(), 0.);
+  DiscretisationParameters d;
+  d.n_intervals = 2147483647;
+  const std::string message = input_error_of([&] { d.check(20.); });
+  EXPECT_EQ(message.rfind("Discretisation/Number of intervals = 2147483647: a run on "
+                          "this grid needs about 6.87e+04 GB of memory",
+                          0),
+            0u)
+      << message;
+  d.n_intervals = 8000; // the finest grid of the stress suite: 0.26 GB
+  EXPECT_NO_THROW(d.check(20.));
+}
+
+TEST(Robustness, ParameterFilesThatIncludeThemselvesAreRefused)
+{
+  const std::filesystem::path dir = "test_robustness_includes";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "sub");
+  std::ofstream(dir / "self.prm")
+      << "# a comment\ninclude " << (dir / "self.prm").string() << "\n";
+  std::ofstream(dir / "a.prm") << "include " << (dir / "b.prm").string() << '\n';
+  std::ofstream(dir / "b.prm") << "include " << (dir / "a.prm").string() << " # back\n";
+  std::ofstream(dir / "fine.prm") << "include " << (dir / "leaf.prm").string() << '\n'
+                                  << "include " << (dir / "leaf.prm").string() << '\n';
+  std::ofstream(dir / "leaf.prm") << "subsection Catenary\nend\n";
+  std::ofstream(dir / "subdir.prm") << "include " << (dir / "sub").string() << '\n';
+  for (const char* file : {"self.prm", "a.prm"})
+    EXPECT_NE(input_error_of([&] { check_parameter_file((dir / file).string()); })
+                  .find("include cycle"),
+              std::string::npos)
+        << file;
+  EXPECT_NE(input_error_of([&] { check_parameter_file((dir / "subdir.prm").string()); })
+                .find("this is a directory"),
+            std::string::npos);
+  EXPECT_NE(input_error_of([&] { check_parameter_file((dir / "sub").string()); })
+                .find("this is a directory"),
+            std::string::npos);
+  // The same file twice, but no cycle: fine.
+  EXPECT_NO_THROW(check_parameter_file((dir / "fine.prm").string()));
+}
+
+TEST(Robustness, ExternalProgramsGetTheirArgumentsWithoutAShell)
+{
+  const std::string touch = find_program("touch");
+  ASSERT_FALSE(touch.empty());
+  EXPECT_EQ(touch.front(), '/');
+  EXPECT_TRUE(find_program("no-such-program-pantocat").empty());
+  const std::filesystem::path dir = "test_robustness_spawn";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // One argument, in the working directory: a file of exactly that name.
+  const std::string name = "a'; touch b; echo '$(touch c)";
+  EXPECT_TRUE(run_program(touch, {name}, dir.string()));
+  EXPECT_TRUE(std::filesystem::exists(dir / name));
+  EXPECT_FALSE(std::filesystem::exists(dir / "b") || std::filesystem::exists(dir / "c") ||
+               std::filesystem::exists("b") || std::filesystem::exists("c"));
+  EXPECT_FALSE(run_program(find_program("false"), {}, dir.string()));
+  EXPECT_FALSE(run_program(touch, {"x"}, (dir / "missing").string()));
+}
+
+TEST(Robustness, GnuplotStringsHoldAnyText)
+{
+  EXPECT_EQ(gnuplot_string("it's"), "'it''s'");
+  EXPECT_EQ(gnuplot_string("a\nb\tc"), "'a b c'");
+}
+
+TEST(Robustness, ErrorLinesArePrintable)
+{
+  EXPECT_EQ(printable_line("a\nb\x01"), "a\\x0ab\\x01");
+}
+
+TEST(Robustness, ValuesWithBracesAreCheckedAgainstTheirPatterns)
+{
+  const std::filesystem::path file = "test_robustness_braces.prm";
+  std::ofstream(file) << "subsection Study\n  set Output name = caf\xe9 \xff\nend\n";
+  const auto read = [&](const std::vector<std::string>& overrides)
+  {
+    dealii::ParameterHandler prm;
+    ProgramParameters::declare_parameters(prm);
+    return input_error_of([&] { read_parameter_file(prm, file.string(), overrides); });
+  };
+  // Bytes that are not UTF-8 (in the file) do not upset the check.
+  EXPECT_EQ(read({}), "");
+  EXPECT_EQ(read({"Output/Verbosity={x}"}),
+            "Output/Verbosity = {x}: does not match the pattern [Selection "
+            "quiet|normal|detailed ]");
+  EXPECT_EQ(
+      read({"Catenary/Span={abc}"}).rfind("Catenary/Span = {abc}: does not match", 0),
+      0u);
+  EXPECT_EQ(read({"Output/Output directory=out{1}"}), ""); // a file name may hold '{'
+}
