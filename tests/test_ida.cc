@@ -101,7 +101,8 @@ TEST(Ida, SummaryReportsCountersAndLocatedEvents)
   std::filesystem::remove_all(p.output.directory);
   std::filesystem::create_directories(p.output.directory);
   std::ostringstream screen;
-  run_dynamics(p, screen);
+  RunPhase phase(p.output.directory, false);
+  run_dynamics(p, screen, phase);
   std::ifstream in(p.output.directory + "/summary.json");
   std::stringstream summary;
   summary << in.rdbuf();

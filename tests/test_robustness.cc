@@ -1,18 +1,20 @@
 // Input that broke the program's promises: each case is now refused with an
 // InputError before anything runs (or, for a run, stopped with a
 // SimulationError), instead of a crash, a hang or an allocation failure.
-#include <pantocat/time/integrator_registry.h>
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/external_program.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/io/plots.h>
+#include <pantocat/simulation/case_runner.h>
 #include <pantocat/space/discretisation_parameters.h>
+#include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -170,4 +172,62 @@ TEST(Robustness, ValuesWithBracesAreCheckedAgainstTheirPatterns)
       read({"Catenary/Span={abc}"}).rfind("Catenary/Span = {abc}: does not match", 0),
       0u);
   EXPECT_EQ(read({"Output/Output directory=out{1}"}), ""); // a file name may hold '{'
+}
+
+namespace
+{
+struct LastTimePoint : SimulationObserver
+{
+  void observe(const TimePoint& p) override
+  {
+    last = p;
+    ++count;
+  }
+  TimePoint last;
+  unsigned long count = 0;
+};
+} // namespace
+
+TEST(Robustness, EveryIntegratorEndsExactlyAtTheFinalPosition)
+{
+  // The benchmark at 32 m/s from x_p = 2 to 4.7 m: t_e = 0.084375 s, which
+  // neither dt divides. The last step used to run past the final position
+  // (BDF-2, dt = 0.01 s: 21.2 m for 19.7 m); now the step is t_e / ceil(t_e /
+  // dt), so the last time point is at t_e and x_p = 4.7 m up to rounding.
+  for (const auto& [integrator, dt] :
+       std::vector<std::pair<std::string, double>>{{"half-explicit", 6e-5},
+                                                   {"bdf2", 0.01},
+                                                   {"generalized-alpha", 0.01},
+                                                   {"ida", 1e-3}})
+  {
+    dealii::ParameterHandler prm;
+    read_program_parameters(
+        prm, std::string(PANTOCAT_SOURCE_DIR) + "/prm/benchmark-32.prm",
+        {"Pantograph/Final position=4.7", "Time integration/Integrator=" + integrator,
+         "Time integration/Time step=" + std::to_string(dt)});
+    ProgramParameters p;
+    p.parse_parameters(prm);
+    CaseRunner runner(p.make_case());
+    const unsigned long n = static_cast<unsigned long>(std::ceil(0.084375 / dt));
+    EXPECT_EQ(runner.number_of_steps(), n) << integrator;
+    EXPECT_NEAR(runner.time_step(), 0.084375 / n, 1e-15) << integrator;
+    EXPECT_LE(runner.time_step(), dt) << integrator;
+    LastTimePoint last;
+    runner.run({&last});
+    EXPECT_NEAR(last.last.t, 0.084375, 1e-12) << integrator;
+    ASSERT_EQ(last.last.x_p.size(), 1u);
+    EXPECT_NEAR(last.last.x_p[0], 4.7, 1e-10) << integrator;
+  }
+}
+
+TEST(Robustness, AStepThatDividesTheRunIsKeptBitForBit)
+{
+  // 0.5 s in steps of 5e-5 s: 10000 steps of exactly the step asked for.
+  TimeIntegrationParameters p;
+  p.time_step = 5e-5;
+  EXPECT_EQ(p.number_of_steps(0.5), 10000u);
+  EXPECT_EQ(p.step_for(0.5), 5e-5);
+  p.time_step = 0.3; // the probe's case: 2 steps of 0.25 s, not 0.6 s
+  EXPECT_EQ(p.number_of_steps(0.5), 2u);
+  EXPECT_DOUBLE_EQ(p.step_for(0.5), 0.25);
 }

@@ -3,7 +3,9 @@
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/app/run_modes.h>
+#include <pantocat/app/run_phase.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/atomic_file.h>
 #include <pantocat/studies/convergence_study.h>
 #include <pantocat/studies/work_precision_study.h>
 
@@ -31,19 +33,6 @@ void print_parameters(const std::string& format)
                                                    : dealii::ParameterHandler::PRM);
 }
 
-/// The files a run of some mode writes into its output directory (README).
-const char* const result_files[] = {
-    "parameters.prm",       "summary.json",
-    "time_series.csv",      "contact_force.csv",
-    "contact_force.png",    "dropper_forces.png",
-    "pantograph.png",       "contact_force_statistics.png",
-    "time_series.gp",       "contact_force_statistics.gp",
-    "solution.pvd",         "checkpoint.bin",
-    "checkpoint.bin.tmp",   "static_profile.csv",
-    "static_profile.vtu",   "dropper_forces.csv",
-    "eigenfrequencies.csv", "convergence.txt",
-    "convergence.csv",      "work_precision.csv"};
-
 /// The whole content of @p file, if it is a regular file.
 std::optional<std::string> content_of(const std::filesystem::path& file)
 {
@@ -58,23 +47,18 @@ std::optional<std::string> content_of(const std::filesystem::path& file)
   return text.str();
 }
 
-/// Writes @p text to @p file through a temporary file renamed over it: a
-/// reader (or a crash) never sees it half written.
+/// write_file_atomically(), false instead of an exception.
 bool write_atomically(const std::filesystem::path& file, const std::string& text)
 {
-  const std::filesystem::path temporary = file.string() + ".tmp";
+  try
   {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    out.flush();
-    if (!out)
-      return false;
+    write_file_atomically(file.string(), text);
+    return true;
   }
-  std::error_code error;
-  std::filesystem::rename(temporary, file, error);
-  if (error)
-    std::filesystem::remove(temporary, error);
-  return !error;
+  catch (const SimulationError&)
+  {
+    return false;
+  }
 }
 
 /**
@@ -98,7 +82,7 @@ public:
     if (error || !std::filesystem::is_directory(dir, error))
       throw InputError(what + "cannot create this directory" +
                        (error ? " (" + error.message() + ")" : ""));
-    for (const char* name : result_files)
+    for (const std::string& name : result_files())
       if (std::filesystem::is_directory(std::filesystem::path(dir) / name, error))
         throw InputError(what + (std::filesystem::path(dir) / name).string() +
                          " is a directory; a run writes a file of that name there");
@@ -239,23 +223,25 @@ bool is_study(const RunMode mode)
   return mode == RunMode::convergence_study || mode == RunMode::work_precision;
 }
 
-void run_mode(const ProgramParameters& parameters, std::ostream& out)
+void run_mode(const ProgramParameters& parameters, std::ostream& out, RunPhase& phase)
 {
   switch (parameters.mode)
   {
   case RunMode::eigenfrequencies:
-    run_eigenfrequencies(parameters, out);
+    run_eigenfrequencies(parameters, out, phase);
     break;
   case RunMode::static_equilibrium:
-    run_static_equilibrium(parameters, out);
+    run_static_equilibrium(parameters, out, phase);
     break;
   case RunMode::dynamics:
-    run_dynamics(parameters, out);
+    run_dynamics(parameters, out, phase);
     break;
   case RunMode::convergence_study:
+    phase.begin_study();
     run_convergence_study(parameters.make_study_case(), std::cout);
     break;
   case RunMode::work_precision:
+    phase.begin_study();
     run_work_precision_study(parameters.make_study_case(), std::cout);
     break;
   }
@@ -303,13 +289,26 @@ int run(const CommandLine& cl, int argc, char** argv)
   std::ostream discard(nullptr);
   std::ostream& out =
       parameters.output.verbosity == Verbosity::quiet ? discard : std::cout;
+  // Studies write from rank 0 (their runs are spread over the ranks).
+  const bool writes =
+      !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  RunPhase phase(parameters.output.directory,
+                 parameters.mode == RunMode::dynamics && parameters.checkpoint.resume);
   try
   {
-    run_mode(parameters, out);
+    run_mode(parameters, out, phase);
   }
   catch (const InputError&)
   {
-    output.discard(); // a failed simulation keeps its outputs, marked failed
+    phase.refused();
+    output.discard(); // a refusal leaves the directory as it was
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    if (writes) // a failed run keeps its outputs, marked failed
+      phase.fail(dynamic_cast<const SimulationError*>(&e) ? e.what()
+                                                          : one_line_message(e));
     throw;
   }
   return 0;

@@ -35,22 +35,6 @@ void list_files(std::ostream& out, const std::string& dir)
     out << "    " << name << " (" << size << " bytes)\n";
 }
 
-/**
- * The results of an earlier run in @p dir go before this one starts: a run
- * that fails or is killed must not leave them looking like its own. (A
- * resumed run keeps the stopped run's summary.json, "failed", until it
- * completes.)
- */
-void remove_earlier_results(const std::string& dir, const bool resuming)
-{
-  for (const char* name :
-       {"contact_force.csv", "contact_force.png", "dropper_forces.png", "pantograph.png",
-        "contact_force_statistics.png", "time_series.gp", "contact_force_statistics.gp"})
-    std::filesystem::remove(dir + "/" + name);
-  if (!resuming)
-    std::filesystem::remove(dir + "/summary.json");
-}
-
 /// Names of the plotted columns of time_series.csv, from the layout.
 struct PlottedColumns
 {
@@ -88,7 +72,7 @@ std::vector<std::string> draw_plots(const std::string& dir, const ProgramParamet
 }
 } // namespace
 
-void run_dynamics(const ProgramParameters& p, std::ostream& out)
+void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase)
 {
   dealii::TimerOutput timer(out, dealii::TimerOutput::never,
                             dealii::TimerOutput::wall_times);
@@ -101,16 +85,18 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
   const std::string checkpoint_file = dir + "/checkpoint.bin";
   std::optional<CheckpointReader> resume_from;
   if (p.checkpoint.resume)
-    resume_from.emplace(checkpoint_file, p.fingerprint);
-  else
-    std::filesystem::remove(checkpoint_file);
-  remove_earlier_results(dir, resume_from.has_value());
+    resume_from.emplace(checkpoint_file, p.fingerprint, runner.number_of_steps(),
+                        runner.time_step());
   const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
   timer.leave_subsection();
+  phase.begin("time loop"); // clears the results of an earlier run
   out << "Dynamic run: " << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", "
-      << p.time_integration.integrator << ", dt = " << p.time_integration.time_step
-      << " s, v_p = " << p.pantograph().speed << " m/s, x_p from "
+      << p.time_integration.integrator << ", dt = " << runner.time_step() << " s";
+  if (runner.time_step() != p.time_integration.time_step)
+    out << " (" << p.time_integration.time_step << " s asked, shortened so that "
+        << runner.number_of_steps() << " steps end at the final position)";
+  out << ", v_p = " << p.pantograph().speed << " m/s, x_p from "
       << p.pantograph().initial_position << " to " << p.pantograph().final_position
       << " m\n";
   print_scene(out, runner);
@@ -142,9 +128,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
     observers.push_back(&reference.emplace(moving_load_series(runner.case_data())));
   std::optional<VtuTimeSeriesWriter> vtu;
   if (p.output.vtu_interval > 0.)
-    observers.push_back(&vtu.emplace(
-        dir, p.output.vtu_interval, p.time_integration.time_step,
-        p.output.vtu_subdivisions, runner.discretisation(), runner.system(), &timer));
+    observers.push_back(&vtu.emplace(dir, p.output.vtu_interval, runner.time_step(),
+                                     p.output.vtu_subdivisions, runner.discretisation(),
+                                     runner.system(), &timer));
   std::optional<ProgressMeter> progress;
   if (p.output.verbosity != Verbosity::quiet && stderr_is_terminal())
     observers.push_back(&progress.emplace(std::cerr, runner.case_data().end_time()));
@@ -156,14 +142,13 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                                resume_from ? &*resume_from : nullptr,
                                p.checkpoint.stop_after_steps});
   }
-  catch (const SimulationError& e)
+  catch (const SimulationError&)
   {
     if (progress)
       progress->finish();
-    // Keep what was written (time_series.csv up to the failure) and say so.
-    write_failed_summary(dir + "/summary.json", e.what());
-    throw;
+    throw; // time_series.csv is kept up to the failure; RunPhase says so
   }
+  phase.begin("output");
   timer.enter_subsection("output (summary, plots)");
   RunRecord record{runner,
                    r,
@@ -175,21 +160,20 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out)
                    reference ? &*reference : nullptr};
   for (const auto& c : contacts)
     record.contacts.push_back(c.get());
-  write_run_summary(dir + "/summary.json", record);
   const ContactStatistics* first_contact = record.first_contact();
   if (first_contact)
     write_contact_force(dir + "/contact_force.csv", *first_contact);
-  print_run_report(out, record, p.output.verbosity == Verbosity::detailed);
   std::vector<std::string> drawn;
   if (p.output.plots && first_contact)
-  {
     drawn = draw_plots(dir, p, runner, *first_contact);
-    if (drawn.size() < 4)
-      out << (gnuplot_available()
-                  ? "  (some plots were not drawn: nothing to draw, or gnuplot failed on "
-                    "a .gp script in the directory)\n"
-                  : "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n");
-  }
+  // Last: a summary.json that says completed vouches for every file above.
+  write_run_summary(dir + "/summary.json", record);
+  print_run_report(out, record, p.output.verbosity == Verbosity::detailed);
+  if (p.output.plots && first_contact && drawn.size() < 4)
+    out << (gnuplot_available()
+                ? "  (some plots were not drawn: nothing to draw, or gnuplot failed on "
+                  "a .gp script in the directory)\n"
+                : "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n");
   timer.leave_subsection();
   out << "  wrote time_series.csv" << (first_contact ? ", contact_force.csv" : "")
       << ", summary.json";

@@ -2,14 +2,17 @@
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/atomic_file.h>
+#include <pantocat/io/json_writer.h>
 
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace pantocat
 {
-void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out)
+void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out, RunPhase& phase)
 {
+  phase.begin("eigenvalues"); // clears the results of an earlier run
   std::vector<SubsystemFrequencies> rows;
   out << "Eigenfrequencies of the undamped wires, N+1 = " << p.discretisation.n_intervals
       << " (Table 1)\n"
@@ -40,12 +43,27 @@ void run_eigenfrequencies(const ProgramParameters& p, std::ostream& out)
         << " s  (paper: " << (method == SpaceMethod::fdm ? "6.6e-05" : "5.3e-06")
         << " s)\n";
   }
-  std::ofstream csv(p.output.directory + "/eigenfrequencies.csv");
+  phase.begin("output");
+  std::ostringstream csv;
   csv << "discretisation,subsystem,f_min_hz,f_max_hz\n" << std::setprecision(10);
+  std::ostringstream summary;
+  JsonWriter json(summary);
+  json.begin_object().value("status", "completed").value("mode", "eigenfrequencies");
+  json.begin_array("subsystems");
   for (const auto& f : rows)
+  {
     csv << f.discretisation << ',' << f.subsystem << ',' << f.f_min_hz << ','
         << f.f_max_hz << '\n';
-  if (!csv)
-    throw SimulationError("cannot write " + p.output.directory + "/eigenfrequencies.csv");
+    json.begin_object()
+        .value("discretisation", f.discretisation)
+        .value("subsystem", f.subsystem)
+        .value("f_min_hz", f.f_min_hz)
+        .value("f_max_hz", f.f_max_hz)
+        .end_object();
+  }
+  json.end_array();
+  json.end_object();
+  write_file_atomically(p.output.directory + "/eigenfrequencies.csv", csv.str());
+  write_file_atomically(p.output.directory + "/summary.json", summary.str());
 }
 } // namespace pantocat

@@ -67,6 +67,11 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   fingerprint = critical_parameters(prm);
 
   make_case().check();
+  require(mode != RunMode::convergence_study || !study.all_combinations,
+          "Study/Refinements", "all combinations",
+          "a convergence study pairs N+1 and dt row by row and prints the observed "
+          "order between successive rows; allowed: paired (all combinations is for "
+          "Mode = work precision)");
   if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
     require(scene.pantographs[0].has_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", scene.pantographs[0].model,

@@ -1,27 +1,71 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/atomic_file.h>
+#include <pantocat/io/json_writer.h>
 #include <pantocat/io/wire_output.h>
 #include <pantocat/simulation/case_runner.h>
 
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace pantocat
 {
-void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
+namespace
+{
+/// summary.json of the static mode: the problem, w_w under each pantograph, the droppers.
+void write_static_summary(const std::string& file, const ProgramParameters& p,
+                          const CaseRunner& runner, const StaticEquilibrium& s)
+{
+  std::ostringstream text;
+  JsonWriter json(text);
+  json.begin_object()
+      .value("status", "completed")
+      .value("mode", "static")
+      .value("discretisation", to_string(p.discretisation.method))
+      .value("number_of_intervals",
+             static_cast<unsigned long>(p.discretisation.n_intervals))
+      .value("unknowns", static_cast<unsigned long>(s.q.size()));
+  json.begin_array("pantographs");
+  for (const PantographCase& pantograph : p.scene.pantographs)
+  {
+    const double x = pantograph.parameters.initial_position;
+    json.begin_object()
+        .value("position", x)
+        .value("contact_wire_displacement", runner.contact_wire_displacement(s.q, x))
+        .end_object();
+  }
+  json.end_array();
+  json.begin_array("droppers");
+  const auto& droppers = runner.layout().dropper_indices;
+  for (unsigned int j = 0; j < droppers.size(); ++j)
+    json.begin_object()
+        .value("x", p.catenary.dropper_positions[j])
+        .value("force", s.multipliers[droppers[j]])
+        .value("active", static_cast<bool>(s.active[droppers[j]]))
+        .end_object();
+  json.end_array();
+  json.end_object();
+  write_file_atomically(file, text.str());
+}
+} // namespace
+
+void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
+                            RunPhase& phase)
 {
   require(p.scene.contact_wire == WireModel::elastic, "Scene/Contact wire", "rigid",
           "Mode = static computes the elastic catenary at rest: allowed elastic");
   // The catenary of the case with the pantographs' initial contact forces (or
   // moving forces) at their initial positions, (25) and (33).
   const CaseRunner runner(p.make_case());
+  phase.begin("static solve"); // clears the results of an earlier run
   const StaticEquilibrium s = runner.static_catenary();
+  phase.begin("output");
   const SemiDiscreteSystem& system = runner.system();
 
   const std::string& dir = p.output.directory;
   write_wire_profiles(runner.discretisation(), system, s.q, dir + "/static_profile.csv",
                       dir + "/static_profile.vtu", p.output.vtu_subdivisions);
-  std::ofstream csv(dir + "/dropper_forces.csv");
+  std::ostringstream csv;
   csv << "dropper,x_m,force_n,gap_m,active\n" << std::setprecision(12);
   const auto& droppers = runner.layout().dropper_indices;
   out << "Static equilibrium (" << to_string(p.discretisation.method)
@@ -48,9 +92,10 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out)
         << std::setprecision(6) << s.multipliers[i] << " N"
         << (s.active[i] ? "" : " (slack)") << '\n';
   }
-  if (!csv)
-    throw SimulationError("cannot write " + dir + "/dropper_forces.csv");
-  out << "  wrote static_profile.csv, static_profile.vtu, dropper_forces.csv to " << dir
-      << '\n';
+  write_file_atomically(dir + "/dropper_forces.csv", csv.str());
+  write_static_summary(dir + "/summary.json", p, runner, s);
+  out << "  wrote static_profile.csv, static_profile.vtu, dropper_forces.csv, "
+         "summary.json to "
+      << dir << '\n';
 }
 } // namespace pantocat

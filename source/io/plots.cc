@@ -127,7 +127,8 @@ std::vector<std::string> plot_time_series(const std::string& dir,
   std::vector<Plot> plots{{"contact_force.png", "contact force", "lambda_p [N]", {}},
                           {"dropper_forces.png", "dropper forces", "lambda_d [N]", {}},
                           {"pantograph.png", "pantograph", "w [m]", {}}};
-  const std::vector<std::string>* lists[] = {&contact_forces, &dropper_forces, &coordinates};
+  const std::vector<std::string>* lists[] = {&contact_forces, &dropper_forces,
+                                             &coordinates};
   for (unsigned int i = 0; i < plots.size(); ++i)
     for (const std::string& name : *lists[i])
       if (column_of(columns, name) > 0)

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/atomic_file.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>
@@ -101,7 +102,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   const SemiDiscreteSystem& system = r.runner.system();
   const RunStatistics& stats = r.statistics;
   const auto events = run_events(r);
-  std::ofstream out(file);
+  std::ostringstream out;
   JsonWriter json(out);
   json.begin_object()
       .value("status", "completed")
@@ -183,15 +184,20 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   json.value("stability_limit_explicit", r.result.stability_limit)
       .value("time_loop_seconds", r.result.time_loop_seconds)
       .end_object();
-  if (!out)
-    throw SimulationError("cannot write " + file);
+  write_file_atomically(file, out.str());
 }
 
-void write_failed_summary(const std::string& file, const std::string& reason)
+void write_failed_summary(const std::string& file, const std::string& phase,
+                          const std::string& reason)
 {
-  std::ofstream out(file);
+  std::ostringstream out;
   JsonWriter json(out);
-  json.begin_object().value("status", "failed").value("reason", reason).end_object();
+  json.begin_object()
+      .value("status", "failed")
+      .value("phase", phase)
+      .value("reason", reason)
+      .end_object();
+  write_file_atomically(file, out.str());
 }
 
 namespace

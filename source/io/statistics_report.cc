@@ -1,9 +1,11 @@
+#include <pantocat/io/atomic_file.h>
 #include <pantocat/io/statistics_report.h>
 
 #include <pantocat/base/input_error.h>
 
 #include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace pantocat
 {
@@ -33,13 +35,12 @@ void write_contact_force(const std::string& file, const ContactStatistics& stati
 {
   const ContactForceSeries& s = statistics.series();
   const std::vector<double>& filtered = statistics.filtered_force();
-  std::ofstream csv(file);
+  std::ostringstream csv;
   csv << "t,x_p,lambda_p,lambda_p_filtered\n" << std::setprecision(10);
   for (std::size_t n = 0; n < s.t.size(); ++n)
     csv << s.t[n] << ',' << s.x_p[n] << ',' << s.lambda_p[n] << ',' << filtered[n]
         << '\n';
-  if (!csv)
-    throw SimulationError("cannot write " + file);
+  write_file_atomically(file, csv.str());
 }
 
 void print_statistics(std::ostream& out, const ContactForceStatistics& s)

@@ -50,8 +50,8 @@ void Case::check() const
 
 void Case::check_dynamics() const
 {
-  require(scene.carrier == WireModel::elastic || scene.contact_wire == WireModel::elastic ||
-              scene.has_pantograph_body(),
+  require(scene.carrier == WireModel::elastic ||
+              scene.contact_wire == WireModel::elastic || scene.has_pantograph_body(),
           "Scene/Pantograph", scene.pantographs[0].model,
           "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
           "nothing to integrate in time; make a wire elastic or choose two-mass | "

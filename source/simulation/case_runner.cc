@@ -90,9 +90,12 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
 } // namespace
 
 CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
-    : data(c), space(create_catenary_discretisation(data.catenary, data.discretisation)),
+    : data(c), asked_time_step(c.time_integration.time_step),
+      space(create_catenary_discretisation(data.catenary, data.discretisation)),
       scene(std::make_unique<Scene>())
 {
+  // The run ends exactly at t_e: the step is t_e / ceil(t_e / dt).
+  data.time_integration.time_step = c.time_integration.step_for(c.end_time());
   scene->built = build_scene(data.scene, data.catenary, *space);
   const BuiltScene& built = scene->built;
   layout_ = make_layout(built, measurements);
@@ -112,6 +115,11 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
 }
 
 CaseRunner::~CaseRunner() = default;
+
+unsigned long CaseRunner::number_of_steps() const
+{
+  return data.time_integration.number_of_steps(data.end_time());
+}
 
 const SemiDiscreteSystem& CaseRunner::system() const
 {
@@ -167,11 +175,11 @@ void CaseRunner::check_step_size() const
           << to_string(data.discretisation.method)
           << ", N+1 = " << data.discretisation.n_intervals << ")";
   if (!ti.force_step_size)
-    throw InputError("Time integration/Time step = " + number_to_string(ti.time_step) +
+    throw InputError("Time integration/Time step = " + number_to_string(asked_time_step) +
                      ": " + message.str() +
                      "; choose a smaller step or set Force step size = true");
   if (!warned)
-    std::cerr << "pantocat-fem: warning: time step " << ti.time_step << " s is "
+    std::cerr << "pantocat-fem: warning: time step " << asked_time_step << " s is "
               << message.str() << " (forced)\n";
   warned = true;
 }
@@ -256,8 +264,7 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
   auto integrator = create_time_integrator(system(), ti);
   Result result;
   result.end_time = data.end_time();
-  const auto n_steps =
-      static_cast<unsigned long>(std::ceil(result.end_time / ti.time_step - 1e-9));
+  const unsigned long n_steps = number_of_steps();
 
   // The guards watch each time point after the outputs have it: a run
   // stopped by them keeps its time series up to the failure.

@@ -50,39 +50,6 @@ Integer read_little_endian(const std::string& bytes, const std::size_t at,
   return value;
 }
 
-/// The value of @p name in @p fingerprint as a number; NaN if it is not there.
-double fingerprint_number(const ParameterFingerprint& fingerprint,
-                          const std::string& name)
-{
-  for (const auto& [entry, value] : fingerprint)
-    if (entry == name)
-      try
-      {
-        return dealii::Utilities::string_to_double(value);
-      }
-      catch (...)
-      {
-        break;
-      }
-  return std::nan("");
-}
-
-/**
- * The number of steps of a run with @p fingerprint, as DynamicSimulation::run
- * counts them (ceil(end time / dt)); 0 if the fingerprint lacks an entry.
- */
-unsigned long steps_of_run(const ParameterFingerprint& fingerprint)
-{
-  const double x0 = fingerprint_number(fingerprint, "Pantograph/Initial position"),
-               x1 = fingerprint_number(fingerprint, "Pantograph/Final position"),
-               v = fingerprint_number(fingerprint, "Pantograph/Speed"),
-               dt = fingerprint_number(fingerprint, "Time integration/Time step");
-  const double steps = std::ceil((x1 - x0) / v / dt - 1e-9);
-  return std::isfinite(steps) && steps > 0. && steps < 1e18
-             ? static_cast<unsigned long>(steps)
-             : 0;
-}
-
 bool is_critical(const std::string& name)
 {
   for (const char* prefix : {"Checkpoint/", "Study/", "Eigenfrequencies/"})
@@ -184,8 +151,9 @@ void CheckpointWriter::write(const unsigned long step, const TimeIntegrator& int
 }
 
 CheckpointReader::CheckpointReader(const std::string& file,
-                                   const ParameterFingerprint& fingerprint)
-    : file_name(file)
+                                   const ParameterFingerprint& fingerprint,
+                                   const unsigned long run_steps, const double dt)
+    : file_name(file), time_step(dt)
 {
   std::ifstream in(file, std::ios::binary);
   if (!in)
@@ -207,9 +175,7 @@ CheckpointReader::CheckpointReader(const std::string& file,
     throw damaged(std::string("its parameters cannot be read (") + e.what() + ")");
   }
   check_fingerprint(saved, fingerprint);
-  time_step = fingerprint_number(fingerprint, "Time integration/Time step");
-  const unsigned long run_steps = steps_of_run(fingerprint);
-  if (steps == 0 || (run_steps > 0 && steps >= run_steps))
+  if (steps == 0 || steps >= run_steps)
     throw damaged("it was written after step " + std::to_string(steps) +
                   ", but a checkpoint lies between step 1 and the run's last step " +
                   std::to_string(run_steps));

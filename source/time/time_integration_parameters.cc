@@ -3,6 +3,7 @@
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integration_parameters.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -85,5 +86,19 @@ void TimeIntegrationParameters::check_number_of_steps(const double end_time,
           << " bytes per step (the contact-force series) this machine allows at most "
           << max_steps << " steps";
   require(false, "Time integration/Time step", time_step, allowed.str());
+}
+
+unsigned long TimeIntegrationParameters::number_of_steps(const double end_time) const
+{
+  // 1e-9: a step that divides t_e up to rounding takes no extra step.
+  return static_cast<unsigned long>(std::max(1., std::ceil(end_time / time_step - 1e-9)));
+}
+
+double TimeIntegrationParameters::step_for(const double end_time) const
+{
+  const unsigned long n = number_of_steps(end_time);
+  // Keep the requested step bit for bit when it divides t_e up to rounding.
+  return std::abs(n * time_step - end_time) <= 1e-9 * time_step ? time_step
+                                                                : end_time / n;
 }
 } // namespace pantocat

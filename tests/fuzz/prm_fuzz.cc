@@ -465,7 +465,9 @@ std::string broken_exit_0(const fs::path& out, const std::string& mode)
 {
   const fs::path summary = out / "summary.json";
   if (!fs::exists(summary))
-    return mode == "dynamics" ? "exit 0 without summary.json" : "";
+    return mode == "dynamics" || mode == "static" || mode == "eigenfrequencies"
+               ? "exit 0 without summary.json"
+               : "";
   const auto j = nlohmann::json::parse(fuzz::read_file(summary.string()), nullptr, false);
   if (j.is_discarded())
     return "summary.json is not valid JSON";
@@ -476,23 +478,19 @@ std::string broken_exit_0(const fs::path& out, const std::string& mode)
   return "";
 }
 
-std::string broken_exit_1(const fs::path& out, const std::string& mode,
-                          const std::vector<std::string>& lines)
+std::string broken_exit_1(const fs::path& out, const std::vector<std::string>& lines)
 {
-  // The static and eigenfrequency modes write no summary.json, also not when
-  // they fail (run_modes.cc, which this branch leaves to its redesign):
-  // there, the failure is the last line on stderr.
-  if (mode == "static" || mode == "eigenfrequencies")
-    return !lines.empty() && lines.back().rfind("pantocat-fem: ", 0) == 0
-               ? ""
-               : "exit 1 without a message";
+  // Every mode (the studies too) says a failure in summary.json, with the
+  // phase it happened in, and on stderr.
+  if (lines.empty() || lines.back().rfind("pantocat-fem: ", 0) != 0)
+    return "exit 1 without a message";
   const fs::path summary = out / "summary.json";
   if (!fs::exists(summary))
     return "exit 1 without summary.json";
   const auto j = nlohmann::json::parse(fuzz::read_file(summary.string()), nullptr, false);
   if (j.is_discarded() || j.value("status", "") != "failed" ||
-      j.value("reason", "").empty())
-    return "exit 1, but summary.json does not say failed with a reason";
+      j.value("reason", "").empty() || j.value("phase", "").empty())
+    return "exit 1, but summary.json does not say failed with a phase and a reason";
   return "";
 }
 
@@ -515,7 +513,7 @@ std::string broken_promise(const fuzz::Outcome& o, const fs::path& out)
       return "exit 2 left the output directory behind";
     return "";
   case 1:
-    return broken_exit_1(out, mode_of(out), lines);
+    return broken_exit_1(out, lines);
   case 0:
     return broken_exit_0(out, mode_of(out));
   default:

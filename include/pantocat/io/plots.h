@@ -40,7 +40,8 @@ bool gnuplot_available();
  * any character. Removes the @p outputs first and returns those gnuplot then
  * wrote (non-empty files); none if it is not installed or fails.
  */
-std::vector<std::string> run_gnuplot(const std::string& directory, const std::string& script,
+std::vector<std::string> run_gnuplot(const std::string& directory,
+                                     const std::string& script,
                                      const std::vector<std::string>& outputs);
 
 /**

@@ -33,12 +33,18 @@ struct RunRecord
  * summary.json of a completed run: the case, the scene, per pantograph its
  * contact-force statistics, loss intervals and events ("pantographs"), and
  * pantograph 1's figures also at the top level (the names of version 1),
- * the constraints' events, the integrator's counters, the guards.
+ * the constraints' events, the integrator's counters, the guards. Written
+ * atomically (write_file_atomically()): complete or not at all.
  */
 void write_run_summary(const std::string& file, const RunRecord& record);
 
-/// summary.json of a failed run: "failed" with the reason.
-void write_failed_summary(const std::string& file, const std::string& reason);
+/**
+ * summary.json of a run that did not complete: "failed", the @p phase it was
+ * in (setup, time loop, output, ...) and the @p reason. Written atomically,
+ * as write_run_summary().
+ */
+void write_failed_summary(const std::string& file, const std::string& phase,
+                          const std::string& reason);
 
 /// The effects the scene assembles, those it leaves out, and the problem size.
 void print_scene(std::ostream& out, const CaseRunner& runner);

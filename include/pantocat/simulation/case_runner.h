@@ -87,7 +87,20 @@ public:
    */
   StaticEquilibrium static_catenary() const;
 
+  /**
+   * The case as it runs; its time step is time_step(), which may be shorter
+   * than the one asked for.
+   */
   const Case& case_data() const { return data; }
+  /**
+   * The step the run takes: t_e / n with n = ceil(t_e / dt) for the step dt
+   * asked for, so that the last step ends exactly at the end time (a
+   * pantograph exactly at its final position, Sec. 6). Equals dt when dt
+   * divides t_e; otherwise shorter by less than dt / n.
+   */
+  double time_step() const { return data.time_integration.time_step; }
+  /// The number of steps n of run().
+  unsigned long number_of_steps() const;
   const SemiDiscreteSystem& system() const;
   const SimulationLayout& layout() const { return layout_; }
   const DynamicState& initial_state() const { return initial; }
@@ -111,6 +124,7 @@ private:
   void check_load_resolution() const;
 
   Case data;
+  double asked_time_step; ///< Time integration/Time step as given
   std::unique_ptr<CatenaryDiscretisation> space;
   std::unique_ptr<Scene> scene;
   SimulationLayout layout_;

@@ -65,7 +65,12 @@ private:
 class CheckpointReader
 {
 public:
-  CheckpointReader(const std::string& file, const ParameterFingerprint& fingerprint);
+  /**
+   * Reads @p file for a run of @p run_steps steps of @p time_step seconds
+   * (CaseRunner::number_of_steps(), CaseRunner::time_step()).
+   */
+  CheckpointReader(const std::string& file, const ParameterFingerprint& fingerprint,
+                   unsigned long run_steps, double time_step);
   ~CheckpointReader();
   /// The number of steps done when the checkpoint was written.
   unsigned long step() const { return steps; }
@@ -88,6 +93,6 @@ private:
   std::istringstream payload;
   std::unique_ptr<CheckpointIn> archive;
   unsigned long steps = 0;
-  double time_step = 0.; ///< Time integration/Time step of the fingerprint
+  double time_step = 0.; ///< the step the run takes
 };
 } // namespace pantocat

@@ -39,5 +39,16 @@ struct TimeIntegrationParameters
    * read 0 steps and reported the run completed); throws InputError.
    */
   void check_number_of_steps(double end_time, const std::string& run) const;
+
+  /// The number of steps of a run of @p end_time seconds: ceil(t_e / time_step).
+  unsigned long number_of_steps(double end_time) const;
+
+  /**
+   * The step a run of @p end_time seconds takes: t_e / number_of_steps(), so
+   * that the last step ends exactly at t_e (the pantograph exactly at its
+   * final position). Never larger than time_step; equal to it when it
+   * divides t_e, otherwise shorter by less than time_step / n.
+   */
+  double step_for(double end_time) const;
 };
 } // namespace pantocat

@@ -1,0 +1,56 @@
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/// The files a run of some mode may write into its output directory (README).
+const std::vector<std::string>& result_files();
+
+/**
+ * Where a run is, so that every way it can fail leaves a summary.json that
+ * says "failed", in which phase and why, and nothing of an earlier run that
+ * could pass for its own (doc/output.md):
+ * - it starts in "setup" (assembly, the initial state, checks); a refusal
+ *   there (InputError) leaves the directory as it was;
+ * - begin() of the first later phase clears the earlier run's results
+ *   (resumed: keeps the checkpoint, the time series and the VTU frames the
+ *   run goes on from) and writes summary.json "failed" in that phase, "not
+ *   finished", which the completed summary replaces at the end: a run that is
+ *   killed is never taken for a completed one;
+ * - fail() writes summary.json "failed" with the phase and the reason (in
+ *   "setup" after clearing the earlier results); refused() removes begin()'s
+ *   summary.json again for a refusal.
+ */
+class RunPhase
+{
+public:
+  RunPhase(std::string directory, bool resuming);
+
+  /// Enters @p phase (time loop, output, static solve, ...).
+  void begin(const std::string& phase);
+  /**
+   * Enters the phase "study": a study writes no summary.json when it
+   * completes, so nothing is cleared or written here; fail() still writes one.
+   */
+  void begin_study() { phase = "study"; }
+  /// summary.json "failed" with the current phase and @p reason.
+  void fail(const std::string& reason);
+  /**
+   * Undoes begin()'s summary.json for a refusal after the setup (a damaged
+   * checkpoint is found when the time loop starts): a refusal leaves no result.
+   */
+  void refused();
+  const std::string& name() const { return phase; }
+
+private:
+  void clear_earlier_results();
+
+  std::string directory;
+  bool resuming;
+  std::string phase = "setup";
+  bool cleared = false;
+  bool wrote_summary = false;
+};
+} // namespace pantocat
