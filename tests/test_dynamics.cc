@@ -152,7 +152,8 @@ struct UndampedBilateral
   {
     catenary.gravity = 0.;
     catenary.carrier.damping = catenary.contact_wire.damping = 0.;
-    catenary.clamp_mass = catenary.dropper_mass_per_length = 0.;
+    catenary.clamp_mass = catenary.contact_wire_clamp_mass =
+        catenary.dropper_mass_per_length = 0.;
     DiscretisationParameters d;
     d.method = SpaceMethod::fdm;
     d.n_intervals = 50;

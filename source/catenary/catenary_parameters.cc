@@ -4,6 +4,7 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <climits>
 #include <cmath>
 #include <sstream>
 
@@ -17,9 +18,49 @@ double WireParameters::wave_speed() const
   return std::sqrt(tension / mass_per_length);
 }
 
-double CatenaryParameters::clamp_load(const unsigned int j) const
+double CatenaryParameters::point_mass(const unsigned int j, const bool carrier_side) const
 {
-  return (clamp_mass + 0.5 * dropper_lengths[j] * dropper_mass_per_length) * gravity;
+  return (carrier_side ? clamp_mass : contact_wire_clamp_mass) +
+         0.5 * dropper_lengths[j] * dropper_mass_per_length;
+}
+
+double CatenaryParameters::clamp_load(const unsigned int j, const bool carrier_side) const
+{
+  return point_mass(j, carrier_side) * gravity;
+}
+
+std::vector<double> CatenaryParameters::spans() const
+{
+  return span_lengths.empty() ? std::vector<double>(n_spans, span) : span_lengths;
+}
+
+double CatenaryParameters::length() const
+{
+  double total = 0.;
+  for (const double l : spans())
+    total += l;
+  return total;
+}
+
+std::vector<double> CatenaryParameters::support_positions() const
+{
+  std::vector<double> x{0.};
+  for (const double l : spans())
+    x.push_back(x.back() + l);
+  return x;
+}
+
+std::vector<double> CatenaryParameters::interior_supports() const
+{
+  std::vector<double> x = support_positions();
+  return {x.begin() + 1, x.end() - 1};
+}
+
+double CatenaryParameters::presag_height(const unsigned int k, const double x) const
+{
+  const double start = support_positions()[k], l = spans()[k];
+  const double xi = (x - start) / l;
+  return -4. * presag * xi * (1. - xi);
 }
 
 namespace
@@ -57,14 +98,68 @@ void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire)
 }
 } // namespace
 
+void CatenaryParameters::place_droppers(const std::vector<std::vector<double>>& positions,
+                                        const std::vector<double>& lengths)
+{
+  const std::vector<double> l = spans();
+  const std::vector<double> supports = support_positions();
+  const bool per_span = positions.size() > 1;
+  require(!per_span || positions.size() == l.size(), "Catenary/Droppers/Positions",
+          std::to_string(positions.size()) + " lists",
+          "give one list for every span or one per span (" + std::to_string(l.size()) +
+              " spans), separated by ';'");
+  dropper_positions.clear();
+  dropper_spans.clear();
+  std::vector<double> relative;
+  for (unsigned int k = 0; k < l.size(); ++k)
+  {
+    const std::vector<double>& in_span = positions[per_span ? k : 0];
+    for (unsigned int i = 0; i < in_span.size(); ++i)
+    {
+      const double x = in_span[i];
+      require(x > 0. && x < l[k], "Catenary/Droppers/Positions", x,
+              "positions are measured from the span's first support and must lie "
+              "inside span " +
+                  std::to_string(k + 1) + ", (0, " + number_to_string(l[k]) + ") m");
+      require(i == 0 || x > in_span[i - 1], "Catenary/Droppers/Positions",
+              list_to_string(in_span), "positions in a span must be strictly increasing");
+      dropper_positions.push_back(supports[k] + x);
+      dropper_spans.push_back(k);
+      relative.push_back(i);
+    }
+  }
+  dropper_lengths.clear();
+  const unsigned int n = dropper_positions.size();
+  if (design == DropperDesign::designed)
+  {
+    dropper_lengths.assign(n, support_height); // a start for the design
+    return;
+  }
+  const bool reused = !per_span && lengths.size() == positions[0].size();
+  require(
+      lengths.size() == n || reused, "Catenary/Droppers/Lengths", list_to_string(lengths),
+      "needs one length per dropper of a span (" + std::to_string(positions[0].size()) +
+          ") or of the section (" + std::to_string(n) + "), or Design = designed");
+  for (unsigned int j = 0; j < n; ++j)
+    dropper_lengths.push_back(reused ? lengths[static_cast<unsigned int>(relative[j])]
+                                     : lengths[j]);
+}
+
 void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   const CatenaryParameters d;
   prm.enter_subsection("Catenary");
-  prm.declare_entry("Span", "20", Double(0.), "Length L of the span [m] (Sec. 2.2).");
+  prm.declare_entry("Span", "20", Double(0.),
+                    "Length L of each span [m] (Sec. 2.2: one span of 20 m).");
+  prm.declare_entry("Number of spans", "1", dealii::Patterns::Integer(1, 100000),
+                    "Spans of the tension section, each Span long; both wires are "
+                    "pinned at the section's ends x = 0 and x = n L.");
+  prm.declare_entry("Span lengths", "", List(Double(0.), 0),
+                    "Span lengths [m] first to last; replaces Span and Number of spans "
+                    "when given.");
   prm.declare_entry("Support height", "1", Double(),
-                    "Height l_c of the carrier above the contact wire at x = 0 and x = L "
-                    "[m], boundary condition (3).");
+                    "Encumbrance l_c: height of the carrier above the contact wire at "
+                    "every support [m], boundary condition (3).");
   prm.declare_entry("Gravity", "9.81", Double(0.),
                     "Gravitational acceleration g [m/s^2].");
   prm.enter_subsection("Carrier");
@@ -74,15 +169,57 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   declare_wire(prm, d.contact_wire, true);
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
-  prm.declare_entry(
-      "Positions", list_to_string(d.dropper_positions), List(Double()),
-      "Dropper positions x_d [m], a comma-separated list, each inside (0, L).");
-  prm.declare_entry("Lengths", list_to_string(d.dropper_lengths), List(Double(0.)),
-                    "Dropper lengths l_j [m], one per position.");
+  prm.declare_entry("Positions", list_to_string(d.dropper_positions),
+                    List(List(Double(), 0, UINT_MAX, ","), 1, UINT_MAX, ";"),
+                    "Dropper positions [m] from each span's first support, increasing, "
+                    "inside the span: one list for every span, or one list per span "
+                    "separated by ';'.");
+  prm.declare_entry("Lengths", list_to_string(d.dropper_lengths), List(Double(0.), 0),
+                    "Dropper lengths l_j [m]: one per dropper of a span (reused in every "
+                    "span) or one per dropper of the section; not read with Design = "
+                    "designed.");
+  prm.declare_entry("Design", "given", dealii::Patterns::Selection("given|designed"),
+                    "given: the Lengths; designed: lengths from the static design "
+                    "(form-finding) so that the static contact wire lies on the pre-sag "
+                    "at every dropper (doc/catenaries.md).");
+  prm.declare_entry("Pre-sag", "0", Double(0.),
+                    "Mid-span pre-sag s [m] of the contact wire for Design = designed: "
+                    "targets z = -4 s (x/l)(1 - x/l) at the dropper points.");
   prm.declare_entry("Mass per length", "0.14", Double(0.), "rho_d A_d [kg/m].");
-  prm.declare_entry("Clamp mass", "0.25", Double(0.),
-                    "Mass m_s of a suspension clamp [kg], Eq. (4).");
+  prm.declare_entry("Clamp mass", "0.25", List(Double(0.), 1, 2),
+                    "Mass m_s of a clamp [kg], Eq. (4): one value for both wires, or "
+                    "carrier, contact wire.");
+  prm.declare_entry("Stiffness", "1e5", Double(0.),
+                    "Axial stiffness k_d = EA/l [N/m] of an elastic dropper in tension "
+                    "(Scene/Droppers = elastic); no force when slack.");
   prm.leave_subsection();
+  prm.declare_entry("Point mass inertia", "false", dealii::Patterns::Bool(),
+                    "false: clamp and dropper masses are loads only (Eq. (4), the "
+                    "paper); true: they (and steady-arm masses) are in the mass matrix "
+                    "too.");
+  prm.enter_subsection("Supports");
+  prm.declare_entry("Carrier support", "fixed",
+                    dealii::Patterns::Selection("fixed|spring"),
+                    "The carrier at the supports between spans: fixed at height l_c, or "
+                    "on a vertical spring preloaded to hold it there statically.");
+  prm.declare_entry("Carrier support stiffness", "5e5", Double(0.),
+                    "[N/m], Carrier support = spring.");
+  prm.declare_entry("Steady arm stiffness", "0", Double(0.),
+                    "Vertical stiffness [N/m] of the steady arm holding the contact wire "
+                    "at each support between spans, preloaded so that the static contact "
+                    "wire is at 0 there; 0: no steady arms.");
+  prm.declare_entry("Steady arm mass", "0", Double(0.),
+                    "Mass [kg] of a steady arm, lumped on the contact wire.");
+  prm.leave_subsection();
+  prm.declare_entry("Damping model", "viscous",
+                    dealii::Patterns::Selection("viscous|rayleigh"),
+                    "viscous: beta w_t of each wire (Damping in its subsection, Eq. "
+                    "(2)); rayleigh: C = alpha M + beta K of the catenary, K without the "
+                    "droppers (the form railway codes use).");
+  prm.declare_entry("Rayleigh alpha", "0", Double(0.),
+                    "alpha [1/s] of C = alpha M + beta K.");
+  prm.declare_entry("Rayleigh beta", "0", Double(0.),
+                    "beta [s] of C = alpha M + beta K.");
   prm.leave_subsection();
 }
 
@@ -90,6 +227,9 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Catenary");
   span = prm.get_double("Span");
+  n_spans = prm.get_integer("Number of spans");
+  span_lengths = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("Span lengths")));
   support_height = prm.get_double("Support height");
   gravity = prm.get_double("Gravity");
   prm.enter_subsection("Carrier");
@@ -99,20 +239,45 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   parse_wire(prm, contact_wire);
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
-  dropper_positions = dealii::Utilities::string_to_double(
-      dealii::Utilities::split_string_list(prm.get("Positions")));
-  dropper_lengths = dealii::Utilities::string_to_double(
+  std::vector<std::vector<double>> positions;
+  for (const std::string& group :
+       dealii::Utilities::split_string_list(prm.get("Positions"), ';'))
+    positions.push_back(
+        dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(group)));
+  const std::vector<double> lengths = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Lengths")));
+  design =
+      prm.get("Design") == "designed" ? DropperDesign::designed : DropperDesign::given;
+  presag = prm.get_double("Pre-sag");
   dropper_mass_per_length = prm.get_double("Mass per length");
-  clamp_mass = prm.get_double("Clamp mass");
+  const std::vector<double> clamps = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("Clamp mass")));
+  clamp_mass = clamps.front();
+  contact_wire_clamp_mass = clamps.back();
+  dropper_stiffness = prm.get_double("Stiffness");
   prm.leave_subsection();
+  point_mass_inertia = prm.get_bool("Point mass inertia");
+  prm.enter_subsection("Supports");
+  carrier_support = prm.get("Carrier support") == "spring" ? CarrierSupport::spring
+                                                           : CarrierSupport::fixed;
+  carrier_support_stiffness = prm.get_double("Carrier support stiffness");
+  steady_arm_stiffness = prm.get_double("Steady arm stiffness");
+  steady_arm_mass = prm.get_double("Steady arm mass");
   prm.leave_subsection();
+  damping = prm.get("Damping model") == "rayleigh" ? CatenaryDamping::rayleigh
+                                                   : CatenaryDamping::viscous;
+  rayleigh_alpha = prm.get_double("Rayleigh alpha");
+  rayleigh_beta = prm.get_double("Rayleigh beta");
+  prm.leave_subsection();
+  place_droppers(positions, lengths);
   check();
 }
 
 void CatenaryParameters::check() const
 {
   require(span > 0., "Catenary/Span", span, "must be > 0");
+  for (const double l : span_lengths)
+    require(l > 0., "Catenary/Span lengths", l, "must be > 0");
   require(carrier.mass_per_length > 0., "Catenary/Carrier/Mass per length",
           carrier.mass_per_length, "must be > 0");
   require(carrier.tension > 0., "Catenary/Carrier/Tension", carrier.tension,
@@ -122,6 +287,8 @@ void CatenaryParameters::check() const
   require(contact_wire.tension > 0. || contact_wire.bending_stiffness > 0.,
           "Catenary/Contact wire/Tension", contact_wire.tension,
           "tension and bending stiffness must not both be 0");
+  require(dropper_spans.size() == dropper_positions.size(), "Catenary/Droppers/Positions",
+          list_to_string(dropper_positions), "every dropper needs its span");
   require(dropper_lengths.size() == dropper_positions.size(), "Catenary/Droppers/Lengths",
           list_to_string(dropper_lengths),
           "needs one length per dropper position (" +
@@ -129,9 +296,9 @@ void CatenaryParameters::check() const
   for (unsigned int j = 0; j < dropper_positions.size(); ++j)
   {
     const double x = dropper_positions[j];
-    require(x > 0. && x < span, "Catenary/Droppers/Positions", x,
-            "dropper positions must lie inside (0, Span) = (0, " +
-                number_to_string(span) + ")");
+    require(x > 0. && x < length(), "Catenary/Droppers/Positions", x,
+            "dropper positions must lie inside the section (0, " +
+                number_to_string(length()) + ") m");
     if (j > 0)
       require(x > dropper_positions[j - 1], "Catenary/Droppers/Positions",
               list_to_string(dropper_positions), "positions must be strictly increasing");

@@ -7,7 +7,7 @@ std::string CarrierBody::name() const
   return "carrier";
 }
 
-bool CarrierBody::enabled(const SceneParameters& scene) const
+bool CarrierBody::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return scene.carrier == WireModel::elastic;
 }

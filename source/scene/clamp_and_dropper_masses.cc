@@ -7,7 +7,8 @@ std::string ClampAndDropperMasses::name() const
   return "clamp and dropper masses";
 }
 
-bool ClampAndDropperMasses::enabled(const SceneParameters& scene) const
+bool ClampAndDropperMasses::enabled(const SceneParameters& scene,
+                                    const CatenaryParameters&) const
 {
   return scene.clamp_and_dropper_masses && scene.gravity && scene.has_droppers();
 }
@@ -17,14 +18,19 @@ void ClampAndDropperMasses::add_terms(SceneAssembly& a) const
   const CatenaryParameters& p = a.catenary;
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
     for (const Wire wire : {Wire::carrier, Wire::contact_wire})
-      if (BlockOperator* body = a.body(block_name(wire)))
-        a.space.point_row(wire, p.dropper_positions[j])
-            .add_transpose_to(body->load, -p.clamp_load(j));
+    {
+      const bool carrier_side = wire == Wire::carrier;
+      a.add_point_force(wire, p.dropper_positions[j], -p.clamp_load(j, carrier_side));
+      if (p.point_mass_inertia)
+        a.add_point_mass(wire, p.dropper_positions[j], p.point_mass(j, carrier_side));
+    }
 }
 
 std::string ClampAndDropperMasses::describe(const SceneAssembly& a) const
 {
-  return "clamp and dropper masses: point loads at " +
-         std::to_string(a.catenary.n_droppers()) + " droppers, Eq. (4)";
+  return "clamp and dropper masses: point " +
+         std::string(a.catenary.point_mass_inertia ? "masses (inertia and load)"
+                                                   : "loads, Eq. (4),") +
+         " at " + std::to_string(a.catenary.n_droppers()) + " droppers";
 }
 } // namespace pantocat

@@ -7,7 +7,8 @@ std::string ContactWireBody::name() const
   return "contact wire";
 }
 
-bool ContactWireBody::enabled(const SceneParameters& scene) const
+bool ContactWireBody::enabled(const SceneParameters& scene,
+                              const CatenaryParameters&) const
 {
   return scene.contact_wire == WireModel::elastic;
 }

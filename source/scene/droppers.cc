@@ -31,7 +31,7 @@ std::string Droppers::name() const
   return "droppers";
 }
 
-bool Droppers::enabled(const SceneParameters& scene) const
+bool Droppers::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return scene.has_droppers();
 }

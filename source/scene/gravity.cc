@@ -8,7 +8,7 @@ std::string Gravity::name() const
   return "gravity";
 }
 
-bool Gravity::enabled(const SceneParameters& scene) const
+bool Gravity::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return scene.gravity && (scene.carrier == WireModel::elastic ||
                            scene.contact_wire == WireModel::elastic);

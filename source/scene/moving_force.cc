@@ -33,7 +33,7 @@ std::string MovingForce::name() const
   return "moving force";
 }
 
-bool MovingForce::enabled(const SceneParameters& scene) const
+bool MovingForce::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return scene.has_moving_force();
 }

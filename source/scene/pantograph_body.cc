@@ -7,7 +7,8 @@ std::string PantographBody::name() const
   return "pantograph";
 }
 
-bool PantographBody::enabled(const SceneParameters& scene) const
+bool PantographBody::enabled(const SceneParameters& scene,
+                             const CatenaryParameters&) const
 {
   return scene.has_pantograph_body();
 }

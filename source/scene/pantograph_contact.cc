@@ -8,7 +8,8 @@ std::string PantographContact::name() const
   return "contact";
 }
 
-bool PantographContact::enabled(const SceneParameters& scene) const
+bool PantographContact::enabled(const SceneParameters& scene,
+                                const CatenaryParameters&) const
 {
   return scene.has_pantograph_body();
 }

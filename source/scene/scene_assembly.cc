@@ -67,4 +67,41 @@ SparseRow SceneAssembly::wire_row(const Wire wire, const double x) const
 {
   return wire_point_row(space, system, wire, x);
 }
+
+namespace
+{
+/// M or K += c H^T H on the body's sparsity (the entries of one cell).
+void add_outer_product(dealii::SparseMatrix<double>& matrix, const SparseRow& h,
+                       const double c)
+{
+  for (std::size_t i = 0; i < h.size(); ++i)
+    for (std::size_t j = 0; j < h.size(); ++j)
+      matrix.add(h.index[i], h.index[j], c * h.value[i] * h.value[j]);
+}
+} // namespace
+
+void SceneAssembly::add_point_mass(const Wire wire, const double x, const double m)
+{
+  BlockOperator* b = body(block_name(wire));
+  if (b == nullptr || m == 0.)
+    return;
+  const SparseRow h = space.point_row(wire, x);
+  if (b->mass_is_diagonal)
+    for (std::size_t i = 0; i < h.size(); ++i)
+      b->mass.add(h.index[i], h.index[i], m * h.value[i]);
+  else
+    add_outer_product(b->mass, h, m);
+}
+
+void SceneAssembly::add_point_spring(const Wire wire, const double x, const double k)
+{
+  if (BlockOperator* b = body(block_name(wire)))
+    add_outer_product(b->stiffness, space.point_row(wire, x), k);
+}
+
+void SceneAssembly::add_point_force(const Wire wire, const double x, const double force)
+{
+  if (BlockOperator* b = body(block_name(wire)))
+    space.point_row(wire, x).add_transpose_to(b->load, force);
+}
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/scene/carrier_body.h>
+#include <pantocat/scene/carrier_supports.h>
 #include <pantocat/scene/clamp_and_dropper_masses.h>
 #include <pantocat/scene/contact_wire_body.h>
 #include <pantocat/scene/droppers.h>
@@ -6,7 +7,9 @@
 #include <pantocat/scene/moving_force.h>
 #include <pantocat/scene/pantograph_body.h>
 #include <pantocat/scene/pantograph_contact.h>
+#include <pantocat/scene/rayleigh_damping.h>
 #include <pantocat/scene/scene_builder.h>
+#include <pantocat/scene/steady_arms.h>
 #include <pantocat/scene/viscous_damping.h>
 #include <pantocat/scene/wire_bending.h>
 #include <pantocat/scene/wire_tension.h>
@@ -26,6 +29,10 @@ std::vector<std::unique_ptr<SceneEffect>> registered_scene_effects()
   e.push_back(std::make_unique<Gravity>());
   e.push_back(std::make_unique<ViscousDamping>());
   e.push_back(std::make_unique<ClampAndDropperMasses>());
+  e.push_back(std::make_unique<SteadyArms>());
+  e.push_back(std::make_unique<CarrierSupports>());
+  // After every effect that adds to the wires' M or K.
+  e.push_back(std::make_unique<RayleighDamping>());
   e.push_back(std::make_unique<Droppers>());
   e.push_back(std::make_unique<PantographContact>());
   e.push_back(std::make_unique<MovingForce>());
@@ -66,7 +73,7 @@ BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& c
   BuiltScene built;
   for (const auto& e : registered)
   {
-    if (!e->enabled(scene))
+    if (!e->enabled(scene, catenary))
     {
       built.inactive_effects.push_back(e->name());
       continue;
@@ -88,6 +95,7 @@ BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& c
   built.catenary_only = std::move(static_part.system);
   built.pantographs = std::move(whole.pantographs);
   built.dropper_indices = whole.dropper_indices;
+  built.support_indices = whole.support_indices;
   return built;
 }
 } // namespace pantocat

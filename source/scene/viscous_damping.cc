@@ -8,10 +8,12 @@ std::string ViscousDamping::name() const
   return "damping";
 }
 
-bool ViscousDamping::enabled(const SceneParameters& scene) const
+bool ViscousDamping::enabled(const SceneParameters& scene,
+                             const CatenaryParameters& catenary) const
 {
-  return scene.damping && (scene.carrier == WireModel::elastic ||
-                           scene.contact_wire == WireModel::elastic);
+  return scene.damping && catenary.damping == CatenaryDamping::viscous &&
+         (scene.carrier == WireModel::elastic ||
+          scene.contact_wire == WireModel::elastic);
 }
 
 void ViscousDamping::add_terms(SceneAssembly& a) const

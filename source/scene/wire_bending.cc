@@ -20,7 +20,7 @@ std::string WireBending::name() const
   return "bending";
 }
 
-bool WireBending::enabled(const SceneParameters& scene) const
+bool WireBending::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return carrier_bending(scene) || wire_bending(scene);
 }

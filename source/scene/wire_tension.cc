@@ -19,7 +19,7 @@ std::string WireTension::name() const
   return "tension";
 }
 
-bool WireTension::enabled(const SceneParameters& scene) const
+bool WireTension::enabled(const SceneParameters& scene, const CatenaryParameters&) const
 {
   return carrier_tension(scene) || wire_tension(scene);
 }

@@ -18,7 +18,7 @@ set(negative_dropper_length
 set(negative_dropper_length_expect "-0.95, 0.95 for the entry named Lengths does not match")
 set(dropper_outside_span
     "subsection Catenary\n  subsection Droppers\n    set Positions = 5.5, 25\n  end\nend\n")
-set(dropper_outside_span_expect "Positions = 25: dropper positions must lie inside")
+set(dropper_outside_span_expect "Positions = 25: positions are measured from the span's first support and must lie inside span 1")
 set(epsilon_wider_than_span "subsection Discretisation\n  set Load half-width = 30\nend\n")
 set(epsilon_wider_than_span_expect "Load half-width = 30: must lie in")
 set(speed_not_positive "subsection Pantograph\n  set Speed = -5\nend\n")

@@ -18,42 +18,123 @@ struct WireParameters
   double wave_speed() const;
 };
 
+/// How the droppers' lengths are obtained.
+enum class DropperDesign
+{
+  given,   ///< Catenary/Droppers/Lengths as given (the paper's 0.95 m)
+  designed ///< form-finding: the static contact wire on the pre-sag at every dropper
+};
+
+/// How the carrier is held at the supports between spans.
+enum class CarrierSupport
+{
+  fixed, ///< w_c = l_c there (a bilateral constraint)
+  spring ///< a vertical spring, preloaded so that w_c = l_c in the static state
+};
+
+/// The damping of the catenary's wires.
+enum class CatenaryDamping
+{
+  viscous, ///< beta w_t of each wire, Eq. (2)
+  rayleigh ///< C = alpha M + beta K of the catenary (without droppers and pantographs)
+};
+
 /**
- * The reduced catenary of Sec. 2.2 / Fig. 4: a carrier (string) and a contact
- * wire (Euler-Bernoulli beam) over one span, connected by droppers (Eqs. (2)-(6)).
- * The defaults are the benchmark data of the paper (catenary Re 250).
+ * A tension section of the catenary: n spans end to end, a carrier and a
+ * contact wire over all of them, both pinned at the section's ends (x = 0 and
+ * x = length()), connected by droppers in every span (Eqs. (2)-(6)); at each
+ * support between spans the carrier is held (fixed or by a spring) and the
+ * contact wire by a steady arm (a vertical spring with a lumped mass).
+ *
+ * One span (the default) is the paper's reduced model of Sec. 2.2 / Fig. 4;
+ * the defaults are its benchmark data (catenary Re 250).
+ *
+ * Heights: the carrier at l_c (the encumbrance, Catenary/Support height) and
+ * the contact wire at 0 at every support; a dropper j of length l_j joins the
+ * carrier at height w_c to the contact wire at w_w = w_c - l_j when taut.
  */
 struct CatenaryParameters
 {
-  double span = 20.0;          ///< L [m]: the length of the span (Catenary/Span)
-  double support_height = 1.0; ///< l_c: carrier height at x = 0 and x = L [m], Eq. (3)
-  double gravity = 9.81;       ///< g [m/s^2]
+  double span = 20.0; ///< L [m]: the length of each span (Catenary/Span)
+  /// Span lengths [m] of the section, first to last (empty: n_spans x span).
+  std::vector<double> span_lengths;
+  unsigned int n_spans = 1; ///< number of spans when span_lengths is empty
+  double support_height =
+      1.0; ///< l_c: encumbrance, carrier height at the supports [m], Eq. (3)
+  double gravity = 9.81; ///< g [m/s^2]
   WireParameters carrier = {0.6, 15000., 0., 0.03};
   WireParameters contact_wire = {1.068, 15000., 150., 0.03};
 
-  std::vector<double> dropper_positions = {5.5, 14.5}; ///< x_{d,j} [m]
-  std::vector<double> dropper_lengths = {0.95, 0.95};  ///< l_j [m]
-  double dropper_mass_per_length = 0.14;               ///< rho_d A_d [kg/m]
-  double clamp_mass = 0.25;                            ///< m_s [kg]
+  /// x_{d,j} [m] of every dropper of the section, measured from x = 0, increasing.
+  std::vector<double> dropper_positions = {5.5, 14.5};
+  /// l_j [m] of every dropper (given, or from the design: DropperDesign).
+  std::vector<double> dropper_lengths = {0.95, 0.95};
+  /// The span (0-based) of every dropper.
+  std::vector<unsigned int> dropper_spans = {0, 0};
+  double dropper_mass_per_length = 0.14; ///< rho_d A_d [kg/m]
+  double clamp_mass = 0.25;              ///< m_s [kg] of a clamp on the carrier
+  double contact_wire_clamp_mass = 0.25; ///< m_s [kg] of a clamp on the contact wire
+  double dropper_stiffness = 1e5;        ///< k_d [N/m] of an elastic dropper in tension
+
+  DropperDesign design = DropperDesign::given;
+  /**
+   * Pre-sag s [m] of the contact wire, for the design: at the dropper points
+   * the static contact wire lies on z = -4 s (x/l)(1 - x/l) (x from the span's
+   * first support, l the span length), zero at the supports.
+   */
+  double presag = 0.;
+
+  /// Point masses (clamps, half droppers, steady arms) in the mass matrix too,
+  /// not only as loads (the paper: loads only, Eq. (4)).
+  bool point_mass_inertia = false;
+
+  CarrierSupport carrier_support = CarrierSupport::fixed;
+  double carrier_support_stiffness = 5e5; ///< [N/m], CarrierSupport::spring
+  double steady_arm_stiffness = 0.;       ///< [N/m]; 0: no steady arms
+  double steady_arm_mass = 0.;            ///< [kg], lumped on the contact wire
+  /**
+   * Static forces [N] (upward > 0) of the springs at the interior supports in
+   * the designed static state: carrier supports (CarrierSupport::spring) and
+   * steady arms. Set by the design (design_catenary()); empty: 0.
+   */
+  std::vector<double> carrier_support_preloads, steady_arm_preloads;
+
+  CatenaryDamping damping = CatenaryDamping::viscous;
+  double rayleigh_alpha = 0.; ///< [1/s]
+  double rayleigh_beta = 0.;  ///< [s]
 
   unsigned int n_droppers() const { return dropper_positions.size(); }
+  /// The spans' lengths, first to last.
+  std::vector<double> spans() const;
+  unsigned int number_of_spans() const { return spans().size(); }
 
   /**
-   * The wires' domain is [0, length()]: the spans of the catenary end to end
-   * (one span in the paper's reduced model). Grids, positions and bounds
-   * refer to the domain; span lengths only to the geometry along it.
+   * The wires' domain is [0, length()]: the spans of the section end to end.
+   * Grids, positions and bounds refer to the domain.
    */
-  double length() const { return span; }
-  /// Positions of the supports along the domain: the ends of every span.
-  std::vector<double> support_positions() const { return {0., span}; }
+  double length() const;
+  /// Positions of the supports along the domain: the ends of every span (n + 1).
+  std::vector<double> support_positions() const;
+  /// The supports between spans, where steady arms and carrier supports sit.
+  std::vector<double> interior_supports() const;
 
-  /// Gravity load of clamps and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2) g,
-  /// Eq. (4).
-  double clamp_load(unsigned int j) const;
+  /// Target height of the static contact wire at @p x in span @p k (pre-sag parabola).
+  double presag_height(unsigned int k, double x) const;
+
+  /// Gravity load of a clamp and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2)
+  /// g, Eq. (4), on the carrier (@p carrier_side) or the contact wire.
+  double clamp_load(unsigned int j, bool carrier_side = true) const;
+  /// Mass of a clamp and half a dropper at dropper j on the carrier or the contact wire.
+  double point_mass(unsigned int j, bool carrier_side) const;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
   /// Cross-checks; throws InputError naming the parameter.
   void check() const;
+
+private:
+  /// The section's droppers from the per-span @p positions and the @p lengths given.
+  void place_droppers(const std::vector<std::vector<double>>& positions,
+                      const std::vector<double>& lengths);
 };
 } // namespace pantocat

@@ -12,7 +12,7 @@ class ContactWireBody : public SceneEffect
 {
 public:
   std::string name() const override;
-  bool enabled(const SceneParameters& scene) const override;
+  bool enabled(const SceneParameters& scene, const CatenaryParameters&) const override;
   void add_bodies(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;
 };

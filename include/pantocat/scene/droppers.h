@@ -13,7 +13,7 @@ class Droppers : public SceneEffect
 {
 public:
   std::string name() const override;
-  bool enabled(const SceneParameters& scene) const override;
+  bool enabled(const SceneParameters& scene, const CatenaryParameters&) const override;
   void add_constraints(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;
 };

@@ -13,7 +13,7 @@ class MovingForce : public SceneEffect
 {
 public:
   std::string name() const override;
-  bool enabled(const SceneParameters& scene) const override;
+  bool enabled(const SceneParameters& scene, const CatenaryParameters&) const override;
   bool part_of_catenary() const override { return false; }
   void add_constraints(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;

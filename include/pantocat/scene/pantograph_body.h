@@ -11,7 +11,7 @@ class PantographBody : public SceneEffect
 {
 public:
   std::string name() const override;
-  bool enabled(const SceneParameters& scene) const override;
+  bool enabled(const SceneParameters& scene, const CatenaryParameters&) const override;
   bool part_of_catenary() const override { return false; }
   void add_bodies(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;

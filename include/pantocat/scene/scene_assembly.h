@@ -72,6 +72,7 @@ struct SceneAssembly
   /// Phase 3: the system, its blocks set from the bodies.
   SemiDiscreteSystem system;
   std::vector<unsigned int> dropper_indices;
+  std::vector<unsigned int> support_indices; ///< the fixed carrier supports' constraints
 
   /// The data of @p wire (CatenaryParameters).
   const WireParameters& wire_parameters(Wire wire) const;
@@ -85,5 +86,17 @@ struct SceneAssembly
 
   /// Global row of the displacement of @p wire at @p x (empty if the wire is rigid).
   SparseRow wire_row(Wire wire, double x) const;
+
+  /**
+   * Phase 2: a point mass @p m on @p wire at @p x: m H^T H added to the
+   * wire's mass matrix (H = the wire's point row at x); on a diagonal (FDM)
+   * mass matrix lumped to m H_i on the diagonal, so that it stays diagonal
+   * (H sums to 1). Nothing if the wire is rigid.
+   */
+  void add_point_mass(Wire wire, double x, double m);
+  /// Phase 2: a vertical spring @p k to the ground on @p wire at @p x: k H^T H in K.
+  void add_point_spring(Wire wire, double x, double k);
+  /// Phase 2: a vertical point force @p force (upward > 0) on @p wire at @p x: F H^T.
+  void add_point_force(Wire wire, double x, double force);
 };
 } // namespace pantocat

@@ -26,6 +26,7 @@ struct BuiltScene
   /// Every pantograph with its model, block and contact.
   std::vector<ScenePantograph> pantographs;
   std::vector<unsigned int> dropper_indices;
+  std::vector<unsigned int> support_indices; ///< constraints of fixed carrier supports
   /// One line per active effect (describe()).
   std::vector<std::string> active_effects;
   /// Names of the registered effects the scene leaves out.

@@ -26,7 +26,9 @@ public:
 
   /// Short name, e.g. "gravity".
   virtual std::string name() const = 0;
-  virtual bool enabled(const SceneParameters& scene) const = 0;
+  /// True if @p scene (with the section @p catenary) has this effect.
+  virtual bool enabled(const SceneParameters& scene,
+                       const CatenaryParameters& catenary) const = 0;
   /**
    * False for the pantograph's effects: the static catenary that the initial
    * state starts from (Sec. 2.2) is built without them.

@@ -11,7 +11,8 @@ class ViscousDamping : public SceneEffect
 {
 public:
   std::string name() const override;
-  bool enabled(const SceneParameters& scene) const override;
+  bool enabled(const SceneParameters& scene,
+               const CatenaryParameters& catenary) const override;
   void add_terms(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;
 };
