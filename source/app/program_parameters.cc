@@ -76,7 +76,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
     require(scene.pantographs[0].has_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", scene.pantographs[0].model,
             "studies measure the contact force lambda_p on the elastic wire: allowed "
-            "two-mass | three-mass with Contact wire = elastic");
+            "two-mass | three-mass | mass-chain with Contact wire = elastic");
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,

@@ -8,6 +8,34 @@ namespace pantocat
 {
 using dealii::Patterns::Double;
 
+namespace
+{
+std::string list_to_string(const std::vector<double>& values)
+{
+  std::string s;
+  for (const double v : values)
+    s += (s.empty() ? "" : ", ") + number_to_string(v);
+  return s;
+}
+
+std::vector<double> read_list(dealii::ParameterHandler& prm, const std::string& name)
+{
+  return dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get(name)));
+}
+
+const char* reference_name(const ChainReference r)
+{
+  return r == ChainReference::static_equilibrium ? "static equilibrium"
+                                                 : "relaxed springs";
+}
+
+const char* start_name(const ChainStart s)
+{
+  return s == ChainStart::offset ? "offset" : "static equilibrium";
+}
+} // namespace
+
 void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
                                               const std::string& subsection,
                                               const PantographParameters& defaults)
@@ -58,6 +86,51 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.declare_entry("Uplift force", number_to_string(t.uplift_force), Double(),
                     "Static uplift force F_0 on body 3 [N].");
   prm.leave_subsection();
+  prm.enter_subsection("Mass-chain model");
+  const MassChainPantographParameters& c = defaults.mass_chain;
+  // Unbounded patterns: MassChainPantographParameters::check() refuses bad values
+  // in one line naming the entry, the value and what is allowed.
+  const dealii::Patterns::List numbers(Double(), 1, 1000);
+  prm.declare_entry("Masses", list_to_string(c.masses), numbers,
+                    "m_1, ..., m_n [kg], each > 0: head (body 1) first, frame (body n) "
+                    "last. The number of values is the number of bodies n.");
+  prm.declare_entry("Stiffnesses", list_to_string(c.stiffnesses), numbers,
+                    "k_1, ..., k_n [N/m], each >= 0: k_i joins body i and body i + 1, "
+                    "k_n joins the frame to the ground.");
+  prm.declare_entry("Dampings", list_to_string(c.dampings), numbers,
+                    "c_1, ..., c_n [N s/m], each >= 0, joining the bodies as the "
+                    "stiffnesses. Every link needs k_i > 0 or c_i > 0.");
+  prm.declare_entry("Static force", number_to_string(c.static_force), Double(),
+                    "F_0 [N]: the net static uplift on the force body; the "
+                    "pantograph's weight is part of it (no gravity acts on the "
+                    "pantograph, as in (12)).");
+  prm.declare_entry("Aerodynamic force a", number_to_string(c.aerodynamic_a), Double(),
+                    "a [N] of the aerodynamic uplift F_a = a + b v_p^2, added to F_0 on "
+                    "the force body.");
+  prm.declare_entry("Aerodynamic force b", number_to_string(c.aerodynamic_b), Double(),
+                    "b [N s^2/m^2] of the aerodynamic uplift F_a = a + b v_p^2 (v_p: "
+                    "this pantograph's Speed).");
+  prm.declare_entry("Force body", std::to_string(c.force_body),
+                    dealii::Patterns::Integer(),
+                    "The body (1 = head, ..., n = frame) that carries F_0 + F_a; 0 = "
+                    "the frame, body n.");
+  prm.declare_entry("Reference state", reference_name(c.reference),
+                    dealii::Patterns::Selection("relaxed springs|static equilibrium"),
+                    "What q = 0 means. relaxed springs: every spring at its unloaded "
+                    "length, F_0 + F_a act on the force body (the paper's (12)); "
+                    "static equilibrium: q = 0 is the static equilibrium under F_0 "
+                    "with the head at z = 0 pressed by lambda_p = F_0, so the constant "
+                    "load becomes F_0 on the head (plus F_a on the force body) and the "
+                    "quasi-static contact force is F_0 + F_a - k_n w_pn (needs k_i > 0 "
+                    "between the head and the force body).");
+  prm.declare_entry("Initial configuration", start_name(c.start),
+                    dealii::Patterns::Selection("static equilibrium|offset"),
+                    "The consistent initial state. static equilibrium: the head on the "
+                    "wire with lambda_p(0), bodies 1..n-1 in static balance (Initial "
+                    "offset ignored); offset: the paper's choice (13) as for two-mass "
+                    "and three-mass, w_p2 = w_p1 - Initial offset, the velocity of body "
+                    "2 from the head equation (needs n >= 2 and c_1 > 0).");
+  prm.leave_subsection();
   prm.leave_subsection();
 }
 
@@ -97,7 +170,65 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
   read("Dampings", three_mass.dampings);
   three_mass.uplift_force = prm.get_double("Uplift force");
   prm.leave_subsection();
+  prm.enter_subsection("Mass-chain model");
+  mass_chain.masses = read_list(prm, "Masses");
+  mass_chain.stiffnesses = read_list(prm, "Stiffnesses");
+  mass_chain.dampings = read_list(prm, "Dampings");
+  mass_chain.static_force = prm.get_double("Static force");
+  mass_chain.aerodynamic_a = prm.get_double("Aerodynamic force a");
+  mass_chain.aerodynamic_b = prm.get_double("Aerodynamic force b");
+  mass_chain.force_body = prm.get_integer("Force body");
+  mass_chain.reference = prm.get("Reference state") == "static equilibrium"
+                             ? ChainReference::static_equilibrium
+                             : ChainReference::relaxed_springs;
+  mass_chain.start = prm.get("Initial configuration") == "offset"
+                         ? ChainStart::offset
+                         : ChainStart::static_equilibrium;
   prm.leave_subsection();
+  prm.leave_subsection();
+}
+
+void MassChainPantographParameters::check(const std::string& subsection) const
+{
+  const std::string where = subsection + "/";
+  const unsigned int n = n_bodies();
+  const std::string count = "one value per mass, n = " + std::to_string(n);
+  require(stiffnesses.size() == n, where + "Stiffnesses", list_to_string(stiffnesses),
+          count + " (k_i joins body i and i + 1, k_n the frame and the ground)");
+  require(dampings.size() == n, where + "Dampings", list_to_string(dampings),
+          count + " (c_i joins body i and i + 1, c_n the frame and the ground)");
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    require(masses[i] > 0., where + "Masses", masses[i], "every mass must be > 0");
+    require(stiffnesses[i] >= 0., where + "Stiffnesses", stiffnesses[i],
+            "every stiffness must be >= 0");
+    require(dampings[i] >= 0., where + "Dampings", dampings[i],
+            "every damping must be >= 0");
+  }
+  require(stiffnesses[n - 1] > 0. || dampings[n - 1] > 0., where + "Dampings",
+          list_to_string(dampings),
+          "the chain is not tied to the ground (k_n = c_n = 0): its static state is "
+          "singular; allowed: k_n > 0 or c_n > 0");
+  for (unsigned int i = 0; i + 1 < n; ++i)
+    require(stiffnesses[i] > 0. || dampings[i] > 0., where + "Dampings",
+            list_to_string(dampings),
+            "bodies " + std::to_string(i + 1) + " and " + std::to_string(i + 2) +
+                " are not joined (k_" + std::to_string(i + 1) + " = c_" +
+                std::to_string(i + 1) + " = 0); allowed: k_i > 0 or c_i > 0");
+  require(force_body >= 0 && force_body <= static_cast<int>(n), where + "Force body",
+          force_body,
+          "allowed 0 (the frame) or 1.." + std::to_string(n) + " (body 1 = head)");
+  if (reference == ChainReference::static_equilibrium)
+    for (unsigned int i = 0; i + 1 < uplift_body(); ++i)
+      require(stiffnesses[i] > 0., where + "Reference state", "static equilibrium",
+              "the springs between the head and the force body carry F_0 statically: "
+              "needs k_1..k_" +
+                  std::to_string(uplift_body() - 1) + " > 0, but k_" +
+                  std::to_string(i + 1) + " = 0");
+  if (start == ChainStart::offset)
+    require(n >= 2 && dampings[0] > 0., where + "Initial configuration", "offset",
+            "solves the head equation for the velocity of body 2: needs at least two "
+            "bodies and c_1 > 0; allowed otherwise: static equilibrium");
 }
 
 void PantographParameters::check(const double span, const double eps) const
@@ -120,5 +251,6 @@ void PantographParameters::check(const double span, const double eps) const
   for (unsigned int i = 0; i < 3; ++i)
     require(three_mass.masses[i] > 0., subsection + "/Three-mass model/Masses",
             three_mass.masses[i], "every mass must be > 0");
+  mass_chain.check(subsection + "/Mass-chain model");
 }
 } // namespace pantocat

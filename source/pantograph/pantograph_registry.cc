@@ -1,3 +1,4 @@
+#include <pantocat/pantograph/mass_chain_pantograph.h>
 #include <pantocat/pantograph/pantograph_registry.h>
 #include <pantocat/pantograph/three_mass_pantograph.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
@@ -11,6 +12,8 @@ const std::vector<PantographModelEntry>& registered_pantograph_models()
        { return std::make_unique<TwoMassPantograph>(p.two_mass); }},
       {"three-mass", [](const PantographParameters& p)
        { return std::make_unique<ThreeMassPantograph>(p.three_mass); }},
+      {"mass-chain", [](const PantographParameters& p)
+       { return std::make_unique<MassChainPantograph>(p.mass_chain, p.speed); }},
   };
   return entries;
 }

@@ -96,11 +96,22 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "pantograph k >= 2 is subsection Pantograph k (entries Model, "
                     "Contact, Moving force and those of subsection Pantograph), "
                     "whose entries not given take pantograph 1's values.");
+  prm.declare_entry(
+      "Pantograph spacing", "0", dealii::Patterns::Double(),
+      "s [m], >= 0. 0: every Pantograph k gives its own Initial and Final position "
+      "and Speed. s > 0: pantograph k >= 2 runs (k - 1) s behind pantograph 1 at "
+      "its speed (Initial position x_p1(0) - (k - 1) s, Final position likewise; "
+      "the entries of Pantograph k are then not read); every pantograph must stay "
+      "inside the wires' domain for the whole run. The TSI spaces "
+      "pantographs 200 m apart at >= 250 km/h; the paper's 20 m span holds none.");
   prm.declare_entry("Pantograph", "two-mass", Selection(pantograph_selection()),
                     "Model of pantograph 1. two-mass: the lumped-mass model (12); "
                     "three-mass: a chain of head, upper and lower frame (subsection "
-                    "Pantograph/Three-mass model); moving force: a prescribed constant "
-                    "force (Moving force) moving with v_p; absent: no pantograph.");
+                    "Pantograph/Three-mass model); mass-chain: n bodies in a chain "
+                    "with static and aerodynamic uplift (subsection "
+                    "Pantograph/Mass-chain model, doc/pantographs.md); moving force: "
+                    "a prescribed constant force (Moving force) moving with v_p; "
+                    "absent: no pantograph.");
   prm.declare_entry("Contact", "unilateral", Selection("unilateral|bilateral"),
                     "Pantograph-wire contact (32): unilateral (contact may be lost) or "
                     "bilateral (always in contact, a smooth case).");
@@ -166,6 +177,7 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
              : d == "bilateral" ? DropperModel::bilateral
                                 : DropperModel::unilateral;
   pantographs.assign(prm.get_integer("Number of pantographs"), PantographCase{});
+  pantograph_spacing = prm.get_double("Pantograph spacing");
   pantographs[0].model = prm.get("Pantograph");
   pantographs[0].contact = contact_kind(prm.get("Contact"));
   pantographs[0].moving_force = prm.get_double("Moving force");
@@ -187,7 +199,37 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
     p.contact = contact_kind(prm.get("Contact"));
     p.moving_force = prm.get_double("Moving force");
     prm.leave_subsection();
+    if (pantograph_spacing > 0.)
+    {
+      const PantographParameters& first = pantographs[0].parameters;
+      const double behind = (k - 1) * pantograph_spacing;
+      p.parameters.initial_position = first.initial_position - behind;
+      p.parameters.final_position = first.final_position - behind;
+      p.parameters.speed = first.speed;
+    }
   }
+}
+
+void SceneParameters::check_spacing(const double length, const double margin) const
+{
+  require(pantograph_spacing >= 0., "Scene/Pantograph spacing", pantograph_spacing,
+          "must be >= 0 (0: each pantograph gives its own positions)");
+  if (pantograph_spacing == 0. || pantographs.size() < 2)
+    return;
+  // Every pantograph moves forwards, pantograph k between x_p1(0) - (k - 1) s and
+  // x_p1(t_e) - (k - 1) s: the last one starts furthest back, the first one ends
+  // furthest ahead (PantographParameters::check).
+  const PantographParameters& first = pantographs[0].parameters;
+  const double n = pantographs.size();
+  const double largest = (first.initial_position - margin) / (n - 1.);
+  require(first.initial_position - (n - 1.) * pantograph_spacing > margin,
+          "Scene/Pantograph spacing", pantograph_spacing,
+          "puts pantograph " + std::to_string(pantographs.size()) + " at x_p(0) = " +
+              number_to_string(first.initial_position - (n - 1.) * pantograph_spacing) +
+              " m, outside the wires' domain (" + number_to_string(margin) + ", " +
+              number_to_string(length - margin) + ") m; allowed: 0 <= s < " +
+              number_to_string(largest) + " m with Pantograph/Initial position = " +
+              number_to_string(first.initial_position) + " m");
 }
 
 void SceneParameters::check() const

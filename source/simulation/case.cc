@@ -44,6 +44,7 @@ void Case::check() const
   const double eps = discretisation.load_shape == LoadShape::smoothed_delta
                          ? discretisation.load_half_width
                          : 0.;
+  scene.check_spacing(catenary.length(), eps);
   for (const PantographCase& p : scene.pantographs)
     p.parameters.check(catenary.length(), eps);
 }
@@ -55,7 +56,7 @@ void Case::check_dynamics() const
           "Scene/Pantograph", scene.pantographs[0].model,
           "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
           "nothing to integrate in time; make a wire elastic or choose two-mass | "
-          "three-mass");
+          "three-mass | mass-chain");
   const PantographParameters& p = scene.pantographs[0].parameters;
   std::ostringstream run;
   run << "the run from x_p = " << p.initial_position << " to " << p.final_position

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -33,6 +34,62 @@ struct ThreeMassPantographParameters
   double uplift_force = 70.0;                                  ///< F_0 on body 3 [N]
 };
 
+/// What q = 0 of a mass chain means (MassChainPantograph).
+enum class ChainReference
+{
+  /// Every spring at its unloaded length (the paper's (12)): the constant load is
+  /// F_0 + F_a on the force body.
+  relaxed_springs,
+  /// The static equilibrium under F_0 with the head at z = 0 and pressed by
+  /// lambda_p = F_0 (the S55 data sheet): the constant load is F_0 on the head and
+  /// F_a on the force body.
+  static_equilibrium
+};
+
+/// How a mass chain completes its consistent initial state (MassChainPantograph).
+enum class ChainStart
+{
+  /// Bodies 1..n-1 in static balance under lambda_p(0) with the head on the wire.
+  static_equilibrium,
+  /// The paper's choice (13) for the first two bodies: w_p2 = w_p1 - offset, the
+  /// velocity of body 2 from the head equation; bodies 3..n at rest in balance.
+  offset
+};
+
+/**
+ * Data of the mass-chain pantograph (MassChainPantograph): n bodies from the
+ * head (body 1) to the frame (body n); spring k_i and damper c_i join body i
+ * and body i + 1, k_n and c_n join the frame to the ground. The defaults are
+ * the two-mass data of Sec. 2.2 (Fischer's parameters), so that a chain with
+ * the defaults is the paper's pantograph (12).
+ */
+struct MassChainPantographParameters
+{
+  std::vector<double> masses = {9.0, 17.0};        ///< m_1..m_n [kg], head first
+  std::vector<double> stiffnesses = {7000.0, 0.0}; ///< k_1..k_n [N/m]
+  std::vector<double> dampings = {30.0, 130.0};    ///< c_1..c_n [N s/m]
+  double static_force = 70.0;                      ///< F_0 [N]
+  double aerodynamic_a = 0.;                       ///< a of F_a = a + b v^2 [N]
+  double aerodynamic_b = 0.;                       ///< b of F_a = a + b v^2 [N s^2/m^2]
+  int force_body = 0;                              ///< 1..n; 0 = the frame, body n
+  ChainReference reference = ChainReference::relaxed_springs;
+  ChainStart start = ChainStart::static_equilibrium;
+
+  unsigned int n_bodies() const { return masses.size(); }
+  /// The body (1..n) that carries F_0 + F_a.
+  unsigned int uplift_body() const
+  {
+    return force_body == 0 ? n_bodies() : static_cast<unsigned int>(force_body);
+  }
+  /// F_a = a + b v^2 at speed @p speed [N].
+  double aerodynamic_force(const double speed) const
+  {
+    return aerodynamic_a + aerodynamic_b * speed * speed;
+  }
+  /// Throws InputError naming @p subsection/<entry> for data no chain can have.
+  void check(const std::string& subsection) const;
+};
+
 /**
  * How the pantograph moves along the span and how it starts (Secs. 2.2 and 6):
  * x_p(t) = x_{p,0} + v_p t until x_p reaches the final position.
@@ -46,6 +103,7 @@ struct PantographParameters
   double initial_offset = 0.0;         ///< w_{p,1}(0) - w_{p,2}(0) [m], (13) and Sec. 6
   TwoMassPantographParameters two_mass;
   ThreeMassPantographParameters three_mass;
+  MassChainPantographParameters mass_chain;
 
   /// x_p(t).
   double position(double t) const { return initial_position + speed * t; }

@@ -28,6 +28,6 @@ const std::vector<PantographModelEntry>& registered_pantograph_models();
 /// The model named @p name, or nullptr if no lumped model has that name.
 const PantographModelEntry* find_pantograph_model(const std::string& name);
 
-/// "two-mass|three-mass" for Patterns::Selection.
+/// "two-mass|three-mass|mass-chain" for Patterns::Selection.
 std::string pantograph_model_selection();
 } // namespace pantocat

@@ -74,6 +74,12 @@ struct SceneParameters
   DropperModel droppers = DropperModel::unilateral;
   /// The pantographs, in the order of their blocks and contacts; numbers are data.
   std::vector<PantographCase> pantographs{PantographCase{}};
+  /**
+   * s [m] (Scene/Pantograph spacing): 0, or pantograph k >= 2 runs (k - 1) s
+   * behind pantograph 1 at its speed (initial and final positions derived by
+   * parse_parameters(), not read).
+   */
+  double pantograph_spacing = 0.;
   InitialShape initial_shape = InitialShape::static_equilibrium;
   unsigned int initial_mode = 1;   ///< k of the sine mode
   double initial_amplitude = 0.01; ///< A of the sine mode [m]
@@ -103,7 +109,9 @@ struct SceneParameters
   static void declare_parameters(dealii::ParameterHandler& prm,
                                  unsigned int n_pantographs = 1,
                                  const PantographCase& first = {});
-  /// Reads Scene and every pantograph's subsection.
+  /// Reads Scene and every pantograph's subsection; with a pantograph spacing s > 0
+  /// pantograph k >= 2 gets x_{p,0} - (k - 1) s, x_p(t_e) - (k - 1) s and v_p of
+  /// pantograph 1.
   void parse_parameters(dealii::ParameterHandler& prm);
   /// Declares subsection @p subsection of a pantograph k >= 2 with @p first's values.
   static void declare_further_pantograph(dealii::ParameterHandler& prm,
@@ -114,6 +122,12 @@ struct SceneParameters
   /// Cross-checks (a wire without stiffness, a moving force on a rigid wire, ...);
   /// throws InputError naming the parameter.
   void check() const;
+  /**
+   * Refuses a pantograph spacing < 0, or one that puts a pantograph outside
+   * (@p margin, @p length - @p margin) at some time of the run (the wires'
+   * domain less the load's half-width).
+   */
+  void check_spacing(double length, double margin) const;
 };
 
 } // namespace pantocat
