@@ -47,6 +47,20 @@ void write_static_summary(const std::string& file, const ProgramParameters& p,
   json.end_object();
   write_file_atomically(file, text.str());
 }
+/// dropper_lengths.csv: span, dropper (in its span), x, the designed length.
+void write_dropper_lengths(const std::string& file, const CatenaryParameters& c)
+{
+  std::ostringstream csv;
+  csv << "span,dropper,x,length\n" << std::setprecision(12);
+  unsigned int in_span = 0;
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+  {
+    in_span = j > 0 && c.dropper_spans[j] == c.dropper_spans[j - 1] ? in_span + 1 : 1;
+    csv << c.dropper_spans[j] + 1 << ',' << in_span << ',' << c.dropper_positions[j]
+        << ',' << c.dropper_lengths[j] << '\n';
+  }
+  write_file_atomically(file, csv.str());
+}
 } // namespace
 
 void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
@@ -93,6 +107,14 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
         << (s.active[i] ? "" : " (slack)") << '\n';
   }
   write_file_atomically(dir + "/dropper_forces.csv", csv.str());
+  std::string lengths_file;
+  if (runner.design() && p.catenary.design == DropperDesign::designed)
+  {
+    write_dropper_lengths(dir + "/dropper_lengths.csv", runner.case_data().catenary);
+    lengths_file = ", dropper_lengths.csv";
+    out << "  dropper lengths designed for a pre-sag of " << p.catenary.presag << " m in "
+        << runner.design()->iterations << " iterations (dropper_lengths.csv)\n";
+  }
   write_static_summary(dir + "/summary.json", p, runner, s);
   out << "  wrote static_profile.csv, static_profile.vtu, dropper_forces.csv, "
          "summary.json to "

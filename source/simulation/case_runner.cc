@@ -3,6 +3,7 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/catenary_design.h>
 #include <pantocat/simulation/checkpoint.h>
 #include <pantocat/simulation/initial_state.h>
 #include <pantocat/time/integrator_registry.h>
@@ -96,6 +97,11 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
 {
   // The run ends exactly at t_e: the step is t_e / ceil(t_e / dt).
   data.time_integration.time_step = c.time_integration.step_for(c.end_time());
+  if (needs_design(data.scene, data.catenary))
+  {
+    design_ = design_catenary(data.scene, data.catenary, *space);
+    data.catenary = design_->catenary;
+  }
   scene->built = build_scene(data.scene, data.catenary, *space);
   const BuiltScene& built = scene->built;
   layout_ = make_layout(built, measurements);

@@ -2,6 +2,7 @@
 
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/simulation/case.h>
+#include <pantocat/simulation/catenary_design.h>
 #include <pantocat/simulation/run_guard.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
@@ -9,6 +10,7 @@
 #include <pantocat/time/time_integrator.h>
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,6 +103,8 @@ public:
   double time_step() const { return data.time_integration.time_step; }
   /// The number of steps n of run().
   unsigned long number_of_steps() const;
+  /// The static design of the section, if it needed one (needs_design()).
+  const std::optional<CatenaryDesignResult>& design() const { return design_; }
   const SemiDiscreteSystem& system() const;
   const SimulationLayout& layout() const { return layout_; }
   const DynamicState& initial_state() const { return initial; }
@@ -125,6 +129,7 @@ private:
 
   Case data;
   double asked_time_step; ///< Time integration/Time step as given
+  std::optional<CatenaryDesignResult> design_;
   std::unique_ptr<CatenaryDiscretisation> space;
   std::unique_ptr<Scene> scene;
   SimulationLayout layout_;

@@ -1,0 +1,45 @@
+#pragma once
+
+#include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/scene/scene_parameters.h>
+#include <pantocat/space/catenary_discretisation.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/// What the static design of a section gives (doc/catenaries.md).
+struct CatenaryDesignResult
+{
+  CatenaryParameters catenary; ///< with the designed lengths and the support preloads
+  std::vector<double> dropper_forces; ///< static tension of each dropper [N]
+  unsigned int iterations = 0;        ///< fixed-point iterations on the dropper weights
+};
+
+/**
+ * The static design (form-finding) of a tension section, on the grid of
+ * @p space, for the catenary alone (no pantograph):
+ *
+ *  - Design = designed: the dropper lengths l_j such that, under gravity, the
+ *    clamp masses and the dropper weights, with every dropper taut and the
+ *    supports in place, the static contact wire passes through the pre-sag
+ *    heights z_j = presag_height() at the droppers and through 0 at the steady
+ *    arms, and the carrier through l_c at the supports. Step 1 solves the
+ *    contact wire with these heights as bilateral constraints: their forces
+ *    are the dropper tensions F_j. Step 2 loads the carrier with -F_j at the
+ *    droppers. Then l_j = w_c(x_j) - z_j (less F_j / k_d for an elastic
+ *    dropper). The dropper weights depend on l_j: repeated until l_j changes
+ *    by less than 1e-12 m.
+ *  - Springs at the supports (steady arms, carrier springs): their preloads
+ *    are the reactions of the supports held fixed in that static state, so
+ *    that the sprung catenary is at rest in exactly the same state.
+ *
+ * Throws InputError when the pre-sag asks for a dropper of length <= 0.
+ */
+CatenaryDesignResult design_catenary(const SceneParameters& scene,
+                                     const CatenaryParameters& catenary,
+                                     const CatenaryDiscretisation& space);
+
+/// True if @p catenary needs design_catenary(): designed lengths or preloaded springs.
+bool needs_design(const SceneParameters& scene, const CatenaryParameters& catenary);
+} // namespace pantocat

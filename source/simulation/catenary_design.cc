@@ -1,0 +1,151 @@
+#include <pantocat/analysis/static_equilibrium.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/scene/scene_builder.h>
+#include <pantocat/simulation/catenary_design.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pantocat
+{
+namespace
+{
+/// Removes the constraints with the given indices from @p system.
+void remove_constraints(SemiDiscreteSystem& system, std::vector<unsigned int> indices)
+{
+  std::sort(indices.rbegin(), indices.rend());
+  for (const unsigned int i : indices)
+    system.constraints.erase(system.constraints.begin() + i);
+}
+
+/// Adds w(x) = height on @p wire as a bilateral constraint; returns its index.
+unsigned int hold(SemiDiscreteSystem& system, const CatenaryDiscretisation& space,
+                  Wire wire, double x, double height, const std::string& name)
+{
+  system.add_constraint(
+      std::make_unique<FixedConstraint>(name, Constraint::Kind::bilateral,
+                                        wire_point_row(space, system, wire, x), -height));
+  return system.n_constraints() - 1;
+}
+
+bool has_springs(const SceneParameters& scene, const CatenaryParameters& c)
+{
+  if (c.number_of_spans() < 2)
+    return false;
+  return (scene.contact_wire == WireModel::elastic && c.steady_arm_stiffness > 0.) ||
+         (scene.carrier == WireModel::elastic &&
+          c.carrier_support == CarrierSupport::spring);
+}
+
+/// The static catenary of @p c with every support held fixed, and the indices
+/// of the steady-arm and carrier-spring holds (their multipliers are the preloads).
+struct HeldCatenary
+{
+  SemiDiscreteSystem system;
+  std::vector<unsigned int> steady_arms, carrier_springs, heights;
+};
+
+HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameters& c,
+                           const CatenaryDiscretisation& space, const bool heights)
+{
+  BuiltScene built = build_scene(scene, c, space);
+  HeldCatenary h{std::move(built.catenary_only), {}, {}, {}};
+  if (heights)
+    remove_constraints(h.system, built.dropper_indices);
+  const std::vector<double> supports = c.interior_supports();
+  for (unsigned int k = 0; k < supports.size(); ++k)
+  {
+    if (scene.contact_wire == WireModel::elastic && c.steady_arm_stiffness > 0.)
+      h.steady_arms.push_back(hold(h.system, space, Wire::contact_wire, supports[k], 0.,
+                                   "steady arm " + std::to_string(k + 1)));
+    if (scene.carrier == WireModel::elastic &&
+        c.carrier_support == CarrierSupport::spring)
+      h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
+                                       "carrier support " + std::to_string(k + 1)));
+  }
+  if (heights)
+    for (unsigned int j = 0; j < c.n_droppers(); ++j)
+    {
+      const double x = c.dropper_positions[j];
+      h.heights.push_back(hold(h.system, space, Wire::contact_wire, x,
+                               c.presag_height(c.dropper_spans[j], x),
+                               "height at dropper " + std::to_string(j + 1)));
+    }
+  return h;
+}
+
+std::vector<double> multipliers_of(const StaticEquilibrium& s,
+                                   const std::vector<unsigned int>& indices)
+{
+  std::vector<double> m;
+  for (const unsigned int i : indices)
+    m.push_back(s.multipliers[i]);
+  return m;
+}
+} // namespace
+
+bool needs_design(const SceneParameters& scene, const CatenaryParameters& catenary)
+{
+  return (catenary.design == DropperDesign::designed && scene.has_droppers()) ||
+         has_springs(scene, catenary);
+}
+
+CatenaryDesignResult design_catenary(const SceneParameters& scene,
+                                     const CatenaryParameters& catenary,
+                                     const CatenaryDiscretisation& space)
+{
+  CatenaryDesignResult r{catenary, {}, 0};
+  CatenaryParameters& c = r.catenary;
+  c.steady_arm_preloads.clear(); // the holds carry the preloads during the design
+  c.carrier_support_preloads.clear();
+  const bool designing =
+      catenary.design == DropperDesign::designed && scene.has_droppers();
+  for (unsigned int it = 0; it < 50; ++it)
+  {
+    r.iterations = it + 1;
+    HeldCatenary h = held_catenary(scene, c, space, designing);
+    const dealii::Vector<double> none(h.system.n_dofs());
+    StaticEquilibrium s = solve_static_equilibrium(h.system, none);
+    if (!designing)
+    {
+      r.dropper_forces.clear();
+      c.steady_arm_preloads = multipliers_of(s, h.steady_arms);
+      c.carrier_support_preloads = multipliers_of(s, h.carrier_springs);
+      return r;
+    }
+    // Step 2: the droppers' tensions pull the carrier down.
+    r.dropper_forces = multipliers_of(s, h.heights);
+    dealii::Vector<double> pull(h.system.n_dofs());
+    for (unsigned int j = 0; j < c.n_droppers(); ++j)
+      wire_point_row(space, h.system, Wire::carrier, c.dropper_positions[j])
+          .add_transpose_to(pull, -r.dropper_forces[j]);
+    s = solve_static_equilibrium(h.system, pull);
+    c.steady_arm_preloads = multipliers_of(s, h.steady_arms);
+    c.carrier_support_preloads = multipliers_of(s, h.carrier_springs);
+    double change = 0.;
+    for (unsigned int j = 0; j < c.n_droppers(); ++j)
+    {
+      const double x = c.dropper_positions[j];
+      const double carrier =
+          c.support_height + wire_point_row(space, h.system, Wire::carrier, x).dot(s.q);
+      double length = carrier - c.presag_height(c.dropper_spans[j], x);
+      require(length > 0., "Catenary/Droppers/Pre-sag", c.presag,
+              "the design gives dropper " + std::to_string(j + 1) + " at x = " +
+                  number_to_string(x) + " m the length " + number_to_string(length) +
+                  " m; allowed: a pre-sag the droppers can produce (smaller, or a larger "
+                  "Support height)");
+      require(r.dropper_forces[j] > 0., "Catenary/Droppers/Pre-sag", c.presag,
+              "the design needs dropper " + std::to_string(j + 1) +
+                  " at x = " + number_to_string(x) + " m to push (" +
+                  number_to_string(r.dropper_forces[j]) +
+                  " N); allowed: a pre-sag the droppers can hold in tension");
+      change = std::max(change, std::abs(length - c.dropper_lengths[j]));
+      c.dropper_lengths[j] = length;
+    }
+    if (change < 1e-10) // 0.1 um: round-off of the static solves lies below
+      return r;
+  }
+  throw SimulationError("the dropper design did not converge in 50 iterations");
+}
+} // namespace pantocat

@@ -1,0 +1,100 @@
+// The static design of a tension section (form-finding, doc/catenaries.md):
+// the designed dropper lengths put the static contact wire on the pre-sag.
+#include <pantocat/app/parameter_input.h>
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/simulation/case_runner.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+using namespace pantocat;
+
+namespace
+{
+ProgramParameters fig3(const std::vector<std::string>& overrides)
+{
+  dealii::ParameterHandler prm;
+  std::vector<std::string> all{"Scene/Pantograph=absent"};
+  all.insert(all.end(), overrides.begin(), overrides.end());
+  read_program_parameters(
+      prm, std::string(PANTOCAT_SOURCE_DIR) + "/prm/catenary/paper-fig3.prm", all);
+  ProgramParameters p;
+  p.parse_parameters(prm);
+  return p;
+}
+
+/// Largest |w_w(x_j) - z_j| over the droppers of the static catenary with the designed
+/// lengths.
+double height_error(const CaseRunner& runner)
+{
+  const CatenaryParameters& c = runner.case_data().catenary;
+  const StaticEquilibrium s = runner.static_catenary();
+  double error = 0.;
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+  {
+    const double x = c.dropper_positions[j];
+    error = std::max(error, std::abs(runner.contact_wire_displacement(s.q, x) -
+                                     c.presag_height(c.dropper_spans[j], x)));
+  }
+  return error;
+}
+} // namespace
+
+TEST(CatenaryDesign, DesignedLengthsPutTheStaticContactWireOnThePreSag)
+{
+  // F3 (65 m, 7 droppers) with a pre-sag of 65 mm: a static solve of the
+  // catenary with the designed lengths (droppers unilateral, all taut)
+  // reproduces the target heights; the issue asks 0.1 mm, the design is exact
+  // up to round-off, so 1e-9 m is asserted, for FDM and FEM.
+  for (const std::string method : {"fdm", "fem"})
+  {
+    const ProgramParameters p =
+        fig3({"Discretisation/Method=" + method, "Discretisation/Number of intervals=260",
+              "Catenary/Droppers/Pre-sag=0.065"});
+    const CaseRunner runner(p.make_case());
+    ASSERT_TRUE(runner.design().has_value());
+    EXPECT_LT(height_error(runner), 1e-9) << method;
+    for (const double l : runner.case_data().catenary.dropper_lengths)
+      EXPECT_GT(l, 0.) << method;
+  }
+}
+
+TEST(CatenaryDesign, LengthsConvergeUnderGridRefinement)
+{
+  for (const std::string method : {"fem", "fdm"})
+  {
+    // The designed lengths on N+1 = 130, 260, 520, 1040 intervals: successive
+    // differences shrink. Observed (printed): FEM (Hermite wire) orders 2.7 and
+    // 3.5, asserted >= 2.5; FDM orders 0.18 and 1.07 (pre-asymptotic, then first
+    // order: the FDM's point loads and clamped-beam ends are first-order
+    // accurate here), asserted > 0 and >= 0.9 on the finest pair.
+    std::vector<std::vector<double>> lengths;
+    for (const unsigned int n : {130u, 260u, 520u, 1040u})
+    {
+      const ProgramParameters p =
+          fig3({"Discretisation/Method=" + method,
+                "Discretisation/Number of intervals=" + std::to_string(n),
+                "Catenary/Droppers/Pre-sag=0.065"});
+      lengths.push_back(CaseRunner(p.make_case()).case_data().catenary.dropper_lengths);
+    }
+    std::vector<double> differences;
+    for (unsigned int k = 1; k < lengths.size(); ++k)
+    {
+      double d = 0.;
+      for (unsigned int j = 0; j < lengths[k].size(); ++j)
+        d = std::max(d, std::abs(lengths[k][j] - lengths[k - 1][j]));
+      differences.push_back(d);
+    }
+    for (unsigned int k = 1; k < differences.size(); ++k)
+    {
+      const double order = std::log2(differences[k - 1] / differences[k]);
+      std::cout << "  " << method << ": dropper lengths: max change " << differences[k]
+                << " m, observed order " << order << '\n';
+      if (method == "fem")
+        EXPECT_GE(order, 2.5);
+      else
+        EXPECT_GE(order, k + 1 == differences.size() ? 0.9 : 0.);
+    }
+  }
+}
