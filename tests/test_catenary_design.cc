@@ -4,6 +4,8 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/simulation/case_runner.h>
 
+#include "support/case_files.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -57,6 +59,39 @@ TEST(CatenaryDesign, DesignedLengthsPutTheStaticContactWireOnThePreSag)
     EXPECT_LT(height_error(runner), 1e-9) << method;
     for (const double l : runner.case_data().catenary.dropper_lengths)
       EXPECT_GT(l, 0.) << method;
+  }
+}
+
+TEST(CatenaryDesign, ASectionWithSteadyArmsAndSprungCarrierRestsOnItsDesign)
+{
+  // Three F3 spans with steady arms (2673.58 N/m, 1 kg) and the carrier on
+  // springs (5e5 N/m) at the two interior supports, pre-sag 65 mm: the static
+  // catenary with the designed lengths and preloads lies on the pre-sag at
+  // every dropper, the contact wire at 0 and the carrier at l_c at the
+  // supports. The design is exact up to round-off: 1e-9 m, FDM and FEM.
+  for (const std::string method : {"fdm", "fem"})
+  {
+    const ProgramParameters p =
+        fig3({"Discretisation/Method=" + method, "Discretisation/Number of intervals=780",
+              "Catenary/Number of spans=3", "Catenary/Droppers/Pre-sag=0.065",
+              "Catenary/Supports/Steady arm stiffness=2673.58",
+              "Catenary/Supports/Steady arm mass=1",
+              "Catenary/Supports/Carrier support=spring"});
+    const CaseRunner runner(p.make_case());
+    EXPECT_LT(height_error(runner), 1e-9) << method;
+    const CatenaryParameters& c = runner.case_data().catenary;
+    ASSERT_EQ(c.steady_arm_preloads.size(), 2u);
+    ASSERT_EQ(c.carrier_support_preloads.size(), 2u);
+    const StaticEquilibrium s = runner.static_catenary();
+    const SemiDiscreteSystem& system = runner.system();
+    for (const double x : c.interior_supports())
+    {
+      EXPECT_NEAR(runner.contact_wire_displacement(s.q, x), 0., 1e-9) << method << x;
+      EXPECT_NEAR(
+          wire_point_row(runner.discretisation(), system, Wire::carrier, x).dot(s.q), 0.,
+          1e-9)
+          << method << x;
+    }
   }
 }
 

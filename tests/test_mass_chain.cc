@@ -14,6 +14,8 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/lapack_full_matrix.h>
 
+#include "support/case_files.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -24,21 +26,6 @@ using namespace pantocat;
 
 namespace
 {
-ProgramParameters read_case(const std::string& file,
-                            const std::vector<std::string>& overrides = {})
-{
-  dealii::ParameterHandler prm;
-  read_program_parameters(prm, file, overrides);
-  ProgramParameters p;
-  p.parse_parameters(prm);
-  return p;
-}
-
-std::string source(const std::string& name)
-{
-  return std::string(PANTOCAT_SOURCE_DIR) + "/" + name;
-}
-
 struct Recorder : SimulationObserver
 {
   void observe(const TimePoint& p) override { points.push_back(p); }
@@ -179,8 +166,8 @@ TEST(MassChain, TwoMassChainReproducesTheTwoMassBenchmarkToTheBit)
   auto chain = shorter;
   chain.insert(chain.end(), {"Scene/Pantograph=mass-chain",
                              "Pantograph/Mass-chain model/Initial configuration=offset"});
-  const auto a = run(read_case(source("prm/benchmark-32.prm"), shorter));
-  const auto b = run(read_case(source("prm/benchmark-32.prm"), chain));
+  const auto a = run(read_case(source_file("prm/benchmark-32.prm"), shorter));
+  const auto b = run(read_case(source_file("prm/benchmark-32.prm"), chain));
   ASSERT_EQ(a.size(), b.size());
   ASSERT_GT(a.size(), 100u);
   for (std::size_t n = 0; n < a.size(); ++n)
@@ -203,7 +190,7 @@ TEST(MassChain, SteadyContactForceOnARigidWireIsStaticPlusAerodynamicForce)
   {
     const double a = 10., b = 0.02;
     const ProgramParameters p = read_case(
-        source("prm/scenes/pantograph-rigid-wire.prm"),
+        source_file("prm/scenes/pantograph-rigid-wire.prm"),
         {"Scene/Pantograph=mass-chain", "Pantograph/Speed=" + std::to_string(speed),
          "Pantograph/Mass-chain model/Masses=1, 1",
          "Pantograph/Mass-chain model/Stiffnesses=1e5, 0",
@@ -228,9 +215,9 @@ TEST(MassChain, S55PantographInItsReferenceStateRestsAtZeroWithF0)
   // prm/pantographs/s55-three-mass.prm on a rigid wire at z = 0 with
   // lambda_p(0) = F_0 = 169 N: q = 0 is the static equilibrium, the load is
   // F_0 on the head, and nothing moves. To round-off: 1e-12 N and 1e-15 m.
-  const std::string file =
-      including("mass_chain_s55.prm", {source("prm/scenes/pantograph-rigid-wire.prm"),
-                                       source("prm/pantographs/s55-three-mass.prm")});
+  const std::string file = including("mass_chain_s55.prm",
+                                     {source_file("prm/scenes/pantograph-rigid-wire.prm"),
+                                      source_file("prm/pantographs/s55-three-mass.prm")});
   const ProgramParameters p = read_case(file, {"Pantograph/Final position=6"});
   const MassChainPantographParameters& s55 = p.scene.pantographs[0].parameters.mass_chain;
   ASSERT_EQ(s55.n_bodies(), 3u);
@@ -263,8 +250,8 @@ TEST(MassChain, S55ReferenceStateIsTheRelaxedChainShiftedByItsStaticState)
   // the static states are those of the reference state shifted by one constant
   // x* with K x* = F_0 (e_3 - e_1). Round-off of a 3x3 solve: 1e-9 N, 1e-12 m.
   const std::string file = including("mass_chain_s55_static.prm",
-                                     {source("prm/scenes/pantograph-rigid-wire.prm"),
-                                      source("prm/pantographs/s55-three-mass.prm")});
+                                     {source_file("prm/scenes/pantograph-rigid-wire.prm"),
+                                      source_file("prm/pantographs/s55-three-mass.prm")});
   const ProgramParameters p = read_case(file);
   MassChainPantographParameters reference = p.scene.pantographs[0].parameters.mass_chain;
   MassChainPantographParameters relaxed = reference;
@@ -313,7 +300,7 @@ TEST(MassChain, SpacedPantographsStartExactlyTheSpacingApart)
   // at pantograph 1's speed, and ends 2.5 m behind it. Exact (representable
   // numbers, one subtraction).
   const ProgramParameters p =
-      read_case(source("prm/scenes/two-pantographs.prm"),
+      read_case(source_file("prm/scenes/two-pantographs.prm"),
                 {"Scene/Pantograph spacing=2.5", "Pantograph/Initial position=6",
                  "Pantograph/Final position=7", "Pantograph 2/Speed=20"});
   const auto& first = p.scene.pantographs[0].parameters;
@@ -335,7 +322,7 @@ TEST(MassChain, SpacingThatLeavesTheDomainIsRefused)
   // 0 m, outside (eps, L - eps) = (0.2, 19.8) m: refused naming the spacing.
   try
   {
-    read_case(source("prm/scenes/two-pantographs.prm"),
+    read_case(source_file("prm/scenes/two-pantographs.prm"),
               {"Scene/Number of pantographs=3", "Scene/Pantograph spacing=1"});
     FAIL() << "accepted";
   }

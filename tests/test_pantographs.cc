@@ -5,6 +5,7 @@
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/run_statistics.h>
 
+#include "support/case_files.h"
 #include "support/rigid_wire_response.h"
 
 #include <gtest/gtest.h>
@@ -13,20 +14,10 @@ using namespace pantocat;
 
 namespace
 {
-ProgramParameters read_case(const std::string& file,
-                            const std::vector<std::string>& overrides = {})
-{
-  dealii::ParameterHandler prm;
-  read_program_parameters(prm, file, overrides);
-  ProgramParameters p;
-  p.parse_parameters(prm);
-  return p;
-}
-
 ProgramParameters shipped(const std::string& name,
                           const std::vector<std::string>& overrides = {})
 {
-  return read_case(std::string(PANTOCAT_SOURCE_DIR) + "/prm/" + name, overrides);
+  return read_case(source_file("prm/" + name), overrides);
 }
 
 struct Recorder : SimulationObserver

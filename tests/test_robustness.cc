@@ -12,6 +12,8 @@
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/time_integrator.h>
 
+#include "support/case_files.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>

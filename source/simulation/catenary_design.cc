@@ -1,7 +1,9 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
+#include <pantocat/scene/carrier_supports.h>
 #include <pantocat/scene/scene_builder.h>
+#include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/catenary_design.h>
 
 #include <algorithm>
@@ -29,13 +31,17 @@ unsigned int hold(SemiDiscreteSystem& system, const CatenaryDiscretisation& spac
   return system.n_constraints() - 1;
 }
 
-bool has_springs(const SceneParameters& scene, const CatenaryParameters& c)
+/// True if the scene has steady arms (SteadyArms).
+bool has_steady_arms(const SceneParameters& scene, const CatenaryParameters& c)
 {
-  if (c.number_of_spans() < 2)
-    return false;
-  return (scene.contact_wire == WireModel::elastic && c.steady_arm_stiffness > 0.) ||
-         (scene.carrier == WireModel::elastic &&
-          c.carrier_support == CarrierSupport::spring);
+  return SteadyArms().enabled(scene, c);
+}
+
+/// True if the scene holds the carrier on springs (CarrierSupports, spring).
+bool has_carrier_springs(const SceneParameters& scene, const CatenaryParameters& c)
+{
+  return CarrierSupports().enabled(scene, c) &&
+         c.carrier_support == CarrierSupport::spring;
 }
 
 /// The static catenary of @p c with every support held fixed, and the indices
@@ -54,13 +60,14 @@ HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameter
   if (heights)
     remove_constraints(h.system, built.dropper_indices);
   const std::vector<double> supports = c.interior_supports();
+  const bool steady_arms = has_steady_arms(scene, c);
+  const bool carrier_springs = has_carrier_springs(scene, c);
   for (unsigned int k = 0; k < supports.size(); ++k)
   {
-    if (scene.contact_wire == WireModel::elastic && c.steady_arm_stiffness > 0.)
+    if (steady_arms)
       h.steady_arms.push_back(hold(h.system, space, Wire::contact_wire, supports[k], 0.,
                                    "steady arm " + std::to_string(k + 1)));
-    if (scene.carrier == WireModel::elastic &&
-        c.carrier_support == CarrierSupport::spring)
+    if (carrier_springs)
       h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
                                        "carrier support " + std::to_string(k + 1)));
   }
@@ -88,7 +95,7 @@ std::vector<double> multipliers_of(const StaticEquilibrium& s,
 bool needs_design(const SceneParameters& scene, const CatenaryParameters& catenary)
 {
   return (catenary.design == DropperDesign::designed && scene.has_droppers()) ||
-         has_springs(scene, catenary);
+         has_steady_arms(scene, catenary) || has_carrier_springs(scene, catenary);
 }
 
 CatenaryDesignResult design_catenary(const SceneParameters& scene,
@@ -97,8 +104,11 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
 {
   CatenaryDesignResult r{catenary, {}, 0};
   CatenaryParameters& c = r.catenary;
-  c.steady_arm_preloads.clear(); // the holds carry the preloads during the design
+  // The holds carry the preloads during the design: the catenary is built
+  // without them, and they are set once, at the end.
+  c.steady_arm_preloads.clear();
   c.carrier_support_preloads.clear();
+  std::vector<double> steady_arm_preloads, carrier_support_preloads;
   const bool designing =
       catenary.design == DropperDesign::designed && scene.has_droppers();
   for (unsigned int it = 0; it < 50; ++it)
@@ -121,15 +131,15 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
       wire_point_row(space, h.system, Wire::carrier, c.dropper_positions[j])
           .add_transpose_to(pull, -r.dropper_forces[j]);
     s = solve_static_equilibrium(h.system, pull);
-    c.steady_arm_preloads = multipliers_of(s, h.steady_arms);
-    c.carrier_support_preloads = multipliers_of(s, h.carrier_springs);
+    steady_arm_preloads = multipliers_of(s, h.steady_arms);
+    carrier_support_preloads = multipliers_of(s, h.carrier_springs);
     double change = 0.;
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
     {
       const double x = c.dropper_positions[j];
       const double carrier =
           c.support_height + wire_point_row(space, h.system, Wire::carrier, x).dot(s.q);
-      double length = carrier - c.presag_height(c.dropper_spans[j], x);
+      const double length = carrier - c.presag_height(c.dropper_spans[j], x);
       require(length > 0., "Catenary/Droppers/Pre-sag", c.presag,
               "the design gives dropper " + std::to_string(j + 1) + " at x = " +
                   number_to_string(x) + " m the length " + number_to_string(length) +
@@ -144,7 +154,11 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
       c.dropper_lengths[j] = length;
     }
     if (change < 1e-10) // 0.1 um: round-off of the static solves lies below
+    {
+      c.steady_arm_preloads = steady_arm_preloads;
+      c.carrier_support_preloads = carrier_support_preloads;
       return r;
+    }
   }
   throw SimulationError("the dropper design did not converge in 50 iterations");
 }

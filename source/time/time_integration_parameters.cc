@@ -75,7 +75,7 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
 void TimeIntegrationParameters::check_number_of_steps(const double end_time,
                                                       const std::string& run) const
 {
-  const double steps = std::ceil(end_time / time_step);
+  const double steps = steps_of(end_time);
   const double available = physical_memory_bytes();
   const double max_steps = available > 0. ? available / memory_per_step : 1e18;
   if (std::isfinite(steps) && steps <= max_steps)
@@ -88,10 +88,15 @@ void TimeIntegrationParameters::check_number_of_steps(const double end_time,
   require(false, "Time integration/Time step", time_step, allowed.str());
 }
 
-unsigned long TimeIntegrationParameters::number_of_steps(const double end_time) const
+double TimeIntegrationParameters::steps_of(const double end_time) const
 {
   // 1e-9: a step that divides t_e up to rounding takes no extra step.
-  return static_cast<unsigned long>(std::max(1., std::ceil(end_time / time_step - 1e-9)));
+  return std::max(1., std::ceil(end_time / time_step - 1e-9));
+}
+
+unsigned long TimeIntegrationParameters::number_of_steps(const double end_time) const
+{
+  return static_cast<unsigned long>(steps_of(end_time));
 }
 
 double TimeIntegrationParameters::step_for(const double end_time) const

@@ -50,5 +50,9 @@ struct TimeIntegrationParameters
    * divides t_e, otherwise shorter by less than time_step / n.
    */
   double step_for(double end_time) const;
+
+private:
+  /// ceil(t_e / time_step) as a double (it may exceed any integer type).
+  double steps_of(double end_time) const;
 };
 } // namespace pantocat
