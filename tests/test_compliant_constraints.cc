@@ -9,6 +9,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
+#include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/half_explicit_integrator.h>
@@ -185,6 +186,48 @@ TEST(CompliantConstraint, RefusesNegativeOrRigidDampedLaws)
   EXPECT_EQ(spring.compliant_force(1e-3, -5.), 0.); // slack
   EXPECT_EQ(spring.strain_energy(-1e-3), 0.05);
   EXPECT_EQ(spring.strain_energy(1e-3), 0.);
+}
+
+// The engagement of a compliant constraint is iterated with the active set
+// (implicit methods): engaged iff g < 0 and -k g - c dg/dt > 0 at t_{n+1};
+// never among the rigid active or force indices; a set seen before in the
+// step is a SimulationError naming time, step and the switching constraint.
+TEST(CompliantConstraint, EngagementIsIteratedWithTheActiveSet)
+{
+  SemiDiscreteSystem s = point_masses({1.}, {0.}, {0.});
+  s.add_constraint(std::make_unique<FixedConstraint>(
+      "spring", Constraint::Kind::unilateral, row({{0, 1.}}), 0., Compliance{1e5, 100.}));
+  ActiveSetIteration iteration(s, 20);
+  iteration.start({false});
+  EXPECT_TRUE(iteration.active_indices().empty());
+  // Penetrating and approaching: engage, repeat the step.
+  EXPECT_FALSE(iteration.accept({-1e-3}, {0.}, 0.1, 7, {-0.1}));
+  EXPECT_EQ(iteration.engaged_indices(), (std::vector<unsigned int>{0}));
+  EXPECT_TRUE(iteration.active_indices().empty());
+  EXPECT_TRUE(iteration.force_indices().empty());
+  EXPECT_TRUE(iteration.active()[0]);
+  // Engaged, still penetrating, force 100 - 100 * 0.5 > 0: accepted.
+  EXPECT_TRUE(iteration.accept({-1e-3}, {50.}, 0.1, 7, {0.5}));
+  EXPECT_EQ(iteration.changes_in_step(), 1u);
+  // Penetrating but separating fast (force < 0): released; without rates
+  // (explicit methods) left alone.
+  iteration.start({true});
+  EXPECT_TRUE(iteration.accept({-1e-3}, {-100.}, 0.2, 8));
+  EXPECT_FALSE(iteration.accept({-1e-3}, {-100.}, 0.2, 8, {2.}));
+  EXPECT_TRUE(iteration.engaged_indices().empty());
+  // ... and engaged again: the set {spring} was seen in this step.
+  try
+  {
+    iteration.accept({-1e-3}, {0.}, 0.2, 8, {-0.1});
+    FAIL() << "no cycle reported";
+  }
+  catch (const SimulationError& e)
+  {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cycles at t = 0.2 s (step 8) switching spring"),
+              std::string::npos)
+        << message;
+  }
 }
 
 // The static solver: a spring is an extra stiffness while taut, nothing when
