@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace pantocat
 {
@@ -65,5 +66,21 @@ double compliant_frequency_bound(const SemiDiscreteSystem& system, const double 
       bound += c->compliance().stiffness * GMG;
     }
   return bound;
+}
+
+std::string compliant_stiffness_note(const SemiDiscreteSystem& system)
+{
+  const Constraint* stiffest = nullptr;
+  for (const auto& c : system.constraints)
+    if (c->is_compliant() &&
+        (!stiffest || c->compliance().stiffness > stiffest->compliance().stiffness))
+      stiffest = c.get();
+  if (!stiffest)
+    return "";
+  std::ostringstream s;
+  s << ", including the compliant constraints (stiffest: '" << stiffest->name()
+    << "', k = " << stiffest->compliance().stiffness
+    << " N/m), explicit forces of this method that raise omega_max by k G M^-1 G^T";
+  return s.str();
 }
 } // namespace pantocat

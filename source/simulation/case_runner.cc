@@ -53,27 +53,6 @@ SimulationLayout make_layout(const BuiltScene& built, const Measurements& measur
 }
 
 /// The pantographs in contact at t = 0, for the consistent initial state.
-/**
- * ", including the compliant constraints (stiffest: 'dropper 1', k = ... N/m,
- * explicit forces of the method)" for a system with compliant constraints,
- * whose stiffness raises omega_max (largest_circular_frequency); else "".
- */
-std::string stiffest_compliant_constraint(const SemiDiscreteSystem& system)
-{
-  const Constraint* stiffest = nullptr;
-  for (const auto& c : system.constraints)
-    if (c->is_compliant() &&
-        (!stiffest || c->compliance().stiffness > stiffest->compliance().stiffness))
-      stiffest = c.get();
-  if (!stiffest)
-    return "";
-  std::ostringstream s;
-  s << ", including the compliant constraints (stiffest: '" << stiffest->name()
-    << "', k = " << stiffest->compliance().stiffness
-    << " N/m), explicit forces of this method that raise omega_max by k G M^-1 G^T";
-  return s.str();
-}
-
 std::vector<InitialContact> initial_contacts(const BuiltScene& built)
 {
   std::vector<InitialContact> contacts;
@@ -195,7 +174,7 @@ void CaseRunner::check_step_size() const
           << " s of the " << ti.integrator << " method for this grid ("
           << to_string(data.discretisation.method)
           << ", N+1 = " << data.discretisation.n_intervals << ")"
-          << stiffest_compliant_constraint(system());
+          << compliant_stiffness_note(system());
   if (!ti.force_step_size)
     throw InputError("Time integration/Time step = " + number_to_string(asked_time_step) +
                      ": " + message.str() +

@@ -2,6 +2,8 @@
 
 #include <pantocat/system/semi_discrete_system.h>
 
+#include <string>
+
 namespace pantocat
 {
 /**
@@ -28,4 +30,12 @@ double largest_circular_frequency(const SemiDiscreteSystem& system);
  * without compliant constraints.
  */
 double compliant_frequency_bound(const SemiDiscreteSystem& system, double t = 0.);
+
+/**
+ * For the step-size refusal: ", including the compliant constraints
+ * (stiffest: '<name>', k = <k> N/m), explicit forces of this method that
+ * raise omega_max by k G M^-1 G^T" if @p system has compliant constraints,
+ * else "".
+ */
+std::string compliant_stiffness_note(const SemiDiscreteSystem& system);
 } // namespace pantocat
