@@ -2,9 +2,11 @@
 #include <pantocat/analysis/stability_limit.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/sparse_direct.h>
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace pantocat
 {
@@ -31,6 +33,54 @@ double largest_circular_frequency(const SemiDiscreteSystem& system)
       }
     omega2 = std::max(omega2, largest_generalized_eigenvalue(K, M));
   }
-  return std::sqrt(omega2);
+  return std::sqrt(omega2 + compliant_frequency_bound(system));
+}
+
+double compliant_frequency_bound(const SemiDiscreteSystem& system, const double t)
+{
+  if (!system.has_compliant_constraints())
+    return 0.;
+  dealii::SparseDirectUMFPACK mass_inverse;
+  if (!system.mass_is_diagonal)
+    mass_inverse.initialize(system.mass);
+  double bound = 0.;
+  ConstraintState row;
+  dealii::Vector<double> column(system.n_dofs());
+  for (const auto& c : system.constraints)
+    if (c->is_compliant())
+    {
+      c->evaluate(t, row, 0);
+      // k G M^-1 G^T: the one non-zero eigenvalue of M^-1 k G^T G.
+      double GMG = 0.;
+      if (system.mass_is_diagonal)
+        for (std::size_t e = 0; e < row.G.size(); ++e)
+          GMG +=
+              row.G.value[e] * row.G.value[e] / system.mass.diag_element(row.G.index[e]);
+      else
+      {
+        column = 0.;
+        row.G.add_transpose_to(column, 1.);
+        mass_inverse.solve(column);
+        GMG = row.G.dot(column);
+      }
+      bound += c->compliance().stiffness * GMG;
+    }
+  return bound;
+}
+
+std::string compliant_stiffness_note(const SemiDiscreteSystem& system)
+{
+  const Constraint* stiffest = nullptr;
+  for (const auto& c : system.constraints)
+    if (c->is_compliant() &&
+        (!stiffest || c->compliance().stiffness > stiffest->compliance().stiffness))
+      stiffest = c.get();
+  if (!stiffest)
+    return "";
+  std::ostringstream s;
+  s << ", including the compliant constraints (stiffest: '" << stiffest->name()
+    << "', k = " << stiffest->compliance().stiffness
+    << " N/m), explicit forces of this method that raise omega_max by k G M^-1 G^T";
+  return s.str();
 }
 } // namespace pantocat

@@ -13,6 +13,7 @@ namespace
 {
 /// Solves for the multipliers of the constraints in @p active; fills q and lambda.
 void solve_with_active_set(const dealii::SparseDirectUMFPACK& K_inverse,
+                           const SemiDiscreteSystem& system,
                            const std::vector<ConstraintState>& states,
                            const std::vector<bool>& active,
                            const dealii::Vector<double>& q_free, StaticEquilibrium& out)
@@ -36,6 +37,11 @@ void solve_with_active_set(const dealii::SparseDirectUMFPACK& K_inverse,
   {
     for (unsigned int l = 0; l < m; ++l)
       S(k, l) = states[act[k]].G.dot(X[l]);
+    // An engaged compliant constraint is a spring, lambda = -k g: the row
+    // g + lambda/k = 0, the compliance 1/k on the diagonal of G K^-1 G^T.
+    const Compliance& law = system.constraints[act[k]]->compliance();
+    if (law.stiffness > 0.)
+      S(k, k) += 1. / law.stiffness;
     rhs(k) = -states[act[k]].position_residual(q_free);
   }
   if (m > 0)
@@ -94,7 +100,7 @@ StaticEquilibrium solve_static_equilibrium(const SemiDiscreteSystem& system,
                             std::to_string(iteration - 1) + " iterations");
     try
     {
-      solve_with_active_set(K_inverse, states, out.active, q_free, out);
+      solve_with_active_set(K_inverse, system, states, out.active, q_free, out);
     }
     catch (const dealii::ExceptionBase&)
     {

@@ -3,8 +3,10 @@
 namespace pantocat
 {
 ContactConstraint::ContactConstraint(std::string name, WirePointMarker wire,
-                                     const SparseRow& head, const Kind kind)
-    : Constraint(std::move(name), kind), wire(std::move(wire)), minus_head(head)
+                                     const SparseRow& head, const Kind kind,
+                                     const Compliance compliance)
+    : Constraint(std::move(name), kind, compliance), wire(std::move(wire)),
+      minus_head(head)
 {
   for (double& b : minus_head.value)
     b = -b;

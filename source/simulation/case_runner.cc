@@ -179,7 +179,8 @@ void CaseRunner::check_step_size() const
   message << "above the stability limit 2/omega_max = " << std::setprecision(3) << limit
           << " s of the " << ti.integrator << " method for this grid ("
           << to_string(data.discretisation.method)
-          << ", N+1 = " << data.discretisation.n_intervals << ")";
+          << ", N+1 = " << data.discretisation.n_intervals << ")"
+          << compliant_stiffness_note(system());
   if (!ti.force_step_size)
     throw InputError("Time integration/Time step = " + number_to_string(asked_time_step) +
                      ": " + message.str() +
@@ -227,7 +228,7 @@ TimePoint CaseRunner::time_point(const DynamicState& s) const
   {
     sys.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
     p.gap[i] = rows.position_residual(s.q);
-    if (s.active[i])
+    if (s.active[i] && !sys.constraints[i]->is_compliant()) // springs deflect
     {
       p.position_residual = std::max(p.position_residual, std::abs(p.gap[i]));
       p.velocity_residual =

@@ -37,7 +37,9 @@ void RunGuard::observe_state(const TimePoint& p, const DynamicState& s)
   ++points;
   for (unsigned int i = 0; i < p.gap.size(); ++i)
   {
-    const double drift = p.active[i] ? std::abs(p.gap[i]) : 0.;
+    // A compliant constraint's gap is its spring's deflection, not a drift.
+    const bool rigid_and_active = p.active[i] && !system.constraints[i]->is_compliant();
+    const double drift = rigid_and_active ? std::abs(p.gap[i]) : 0.;
     seen.max_drift = std::max(seen.max_drift, drift);
     if (drift > parameters.drift_tolerance)
     {

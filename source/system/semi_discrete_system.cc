@@ -85,6 +85,23 @@ double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
     load_at(t, f);
     work = f * q;
   }
-  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) - work;
+  double springs = 0.;
+  ConstraintState state;
+  for (const auto& c : constraints)
+    if (c->is_compliant())
+    {
+      c->evaluate(t, state, 0);
+      springs += c->strain_energy(state.position_residual(q));
+    }
+  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) - work +
+         springs;
+}
+
+bool SemiDiscreteSystem::has_compliant_constraints() const
+{
+  for (const auto& c : constraints)
+    if (c->is_compliant())
+      return true;
+  return false;
 }
 } // namespace pantocat

@@ -18,9 +18,10 @@ void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
   at_start = active_at_start;
   current.assign(at_start.size(), Status::inactive);
   for (unsigned int i = 0; i < current.size(); ++i)
-    // Bilateral constraints are always active.
+    // Bilateral constraints are always active (engaged if compliant).
     if (at_start[i] || !system.constraints[i]->is_unilateral())
-      current[i] = Status::active;
+      current[i] =
+          system.constraints[i]->is_compliant() ? Status::engaged : Status::active;
   released.assign(current.size(), false);
   visited.resize(1); // keeps the capacity: no allocation per step
   visited[0] = current;
@@ -31,11 +32,14 @@ void ActiveSetIteration::update_indices()
 {
   indices.clear();
   force.clear();
+  engaged.clear();
   holds.assign(current.size(), false);
   for (unsigned int i = 0; i < current.size(); ++i)
   {
     holds[i] = current[i] != Status::inactive;
-    if (holds[i])
+    if (current[i] == Status::engaged)
+      engaged.push_back(i);
+    else if (holds[i])
       indices.push_back(i);
     if (current[i] == Status::active)
       force.push_back(i);
@@ -51,16 +55,28 @@ std::string ActiveSetIteration::describe(const std::vector<Status>& set) const
     if (set[i] != Status::inactive)
     {
       s << (first ? "" : ", ") << system.constraints[i]->name()
-        << (set[i] == Status::touching ? " (touching)" : "");
+        << (set[i] == Status::touching  ? " (touching)"
+            : set[i] == Status::engaged ? " (engaged spring)"
+                                        : "");
       first = false;
     }
   s << '}';
   return s.str();
 }
 
+ActiveSetIteration::Status ActiveSetIteration::compliant_status(const unsigned int i,
+                                                                const double gap,
+                                                                const double rate) const
+{
+  const Constraint& c = *system.constraints[i];
+  // Engaged iff the law max(0, -k g - c dg/dt) (g < 0) is positive.
+  return gap < 0. && c.trial_force(gap, rate) > 0. ? Status::engaged : Status::inactive;
+}
+
 bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
                                 const std::vector<double>& lambda, const double t,
-                                const unsigned long step)
+                                const unsigned long step,
+                                const std::vector<double>& gap_rates)
 {
   std::vector<Status> next = current;
   bool changed = false;
@@ -68,6 +84,14 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
   {
     if (!system.constraints[i]->is_unilateral())
       continue;
+    if (system.constraints[i]->is_compliant())
+    {
+      if (gap_rates.empty())
+        continue; // an explicit force: the integrator's own business
+      next[i] = compliant_status(i, gaps_next[i], gap_rates[i]);
+      changed = changed || next[i] != current[i];
+      continue;
+    }
     if (current[i] == Status::inactive && gaps_next[i] < 0.)
     {
       // Released in this step for a negative force, yet penetrating without
@@ -86,6 +110,11 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
     return true;
   std::ostringstream where;
   where << "at t = " << t << " s (step " << step << ")";
+  std::string switching;
+  for (unsigned int i = 0; i < next.size(); ++i)
+    if (next[i] != current[i])
+      switching += (switching.empty() ? "" : ", ") + system.constraints[i]->name();
+  where << " switching " << switching;
   if (std::find(visited.begin(), visited.end(), next) != visited.end())
     throw SimulationError("the active set of the unilateral constraints cycles " +
                           where.str() + " between " + describe(current) + " and " +
@@ -106,5 +135,12 @@ unsigned int ActiveSetIteration::changes_in_step() const
   for (unsigned int i = 0; i < holds.size(); ++i)
     n += holds[i] != at_start[i];
   return n;
+}
+
+void clamp_compliant_forces(const SemiDiscreteSystem& system, std::vector<double>& lambda)
+{
+  for (unsigned int i = 0; i < lambda.size(); ++i)
+    if (system.constraints[i]->is_compliant() && system.constraints[i]->is_unilateral())
+      lambda[i] = std::max(lambda[i], 0.);
 }
 } // namespace pantocat

@@ -189,15 +189,24 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   DynamicState x;
   x.t = t1;
   x.lambda.assign(m_all, 0.);
-  std::vector<double> gaps(m_all);
+  std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(active_at_start);
   // Unknowns: lambda of the constraints with force, eta and mu of all that
-  // hold; rows: g and dg/dt of all that hold, d2g/dt2 of those with force
-  // (a touching constraint has g^(II) := lambda = 0, ActiveSetIteration).
+  // hold, lambda of the engaged compliant ones; rows: g and dg/dt of all that
+  // hold, d2g/dt2 of those with force (a touching constraint has
+  // g^(II) := lambda = 0, ActiveSetIteration), and the force law of each
+  // engaged compliant constraint (Constraint::is_compliant) divided by k,
+  //
+  //   lambda_l / k_l + g_l(t_{n+1}) + (c_l / k_l) dg_l/dt(t_{n+1}) = 0,
+  //
+  // whose g and dg/dt are the level-0 and level-1 functionals of the same
+  // columns: the compliance 1/k on the diagonal of the Schur complement
+  // (G S^-1 G^T + C) lambda = ..., the implicit force without touching S.
   struct Entry
   {
     unsigned int constraint, kind_or_level;
   };
+  constexpr unsigned int force_law = 3; // equation kind of an engaged spring
   std::vector<Entry> unknowns, equations;
   std::vector<double> y_lambda(m_all), y_eta(m_all), y_mu(m_all);
   for (;;)
@@ -207,6 +216,8 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     equations.clear();
     for (const unsigned int l : A_force)
       unknowns.push_back({l, lambda}), equations.push_back({l, 2});
+    for (const unsigned int l : active_set.engaged_indices())
+      unknowns.push_back({l, lambda}), equations.push_back({l, force_law});
     for (const unsigned int l : A)
     {
       unknowns.push_back({l, eta});
@@ -221,9 +232,24 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     for (unsigned int r = 0; r < size; ++r)
     {
       const Entry& e = equations[r];
+      const auto entry = [&](const Entry& u, const unsigned int level)
+      { return F[e.constraint * m_all + u.constraint][u.kind_or_level][level]; };
+      if (e.kind_or_level == force_law)
+      {
+        const Compliance& law = system.constraints[e.constraint]->compliance();
+        const double damping = law.damping / law.stiffness;
+        for (unsigned int c = 0; c < size; ++c)
+          small(r, c) = entry(unknowns[c], 0) + damping * entry(unknowns[c], 1) +
+                        (unknowns[c].constraint == e.constraint &&
+                                 unknowns[c].kind_or_level == lambda
+                             ? 1. / law.stiffness
+                             : 0.);
+        small_rhs(r) =
+            -(base_levels[e.constraint][0] + damping * base_levels[e.constraint][1]);
+        continue;
+      }
       for (unsigned int c = 0; c < size; ++c)
-        small(r, c) = F[e.constraint * m_all + unknowns[c].constraint]
-                       [unknowns[c].kind_or_level][e.kind_or_level];
+        small(r, c) = entry(unknowns[c], e.kind_or_level);
       small_rhs(r) = -base_levels[e.constraint][e.kind_or_level];
     }
     solve_multiplier_system(small, small_rhs, small_solution, t1, "BDF step");
@@ -241,16 +267,21 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     for (unsigned int k = 0; k < m_all; ++k)
     {
       gaps[k] = base_levels[k][0];
+      rates[k] = base_levels[k][1];
       for (unsigned int c = 0; c < size; ++c)
-        gaps[k] += small_solution(c) *
-                   F[k * m_all + unknowns[c].constraint][unknowns[c].kind_or_level][0];
+      {
+        const auto& f = F[k * m_all + unknowns[c].constraint][unknowns[c].kind_or_level];
+        gaps[k] += small_solution(c) * f[0];
+        rates[k] += small_solution(c) * f[1];
+      }
     }
-    if (active_set.accept(gaps, x.lambda, t1, step_number + 1))
+    if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
     ++stats.active_set_iterations;
   }
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();
+  clamp_compliant_forces(system, x.lambda);
 
   // The accepted step's vectors:
   //   q = base + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,
@@ -323,6 +354,7 @@ void Bdf2Integrator::richardson_start()
     fine.a.sadd(2., -1., coarse.a);
     for (unsigned int i = 0; i < fine.lambda.size(); ++i)
       fine.lambda[i] = 2. * fine.lambda[i] - coarse.lambda[i];
+    clamp_compliant_forces(system, fine.lambda);
   }
   // else: the active set changed inside the first step; keep the dt/2 result.
   previous = x0;

@@ -90,45 +90,73 @@ void GeneralizedAlphaIntegrator::advance()
   for (const unsigned int l : S.moving)
     compute_columns(l, rows[l]);
 
-  // G_k X_l and the base gaps.
-  std::vector<double> GX(m_all * m_all), base_gap(m_all);
+  // G_k X_l and the base gaps; for the compliant constraints also the rates
+  // dg/dt = G_t q + G v + z_t with v = v^ + c_v (q - q^) (Newmark), i.e.
+  // (G_t + c_v G) X_l per unit lambda_l and the base rate of q0.
+  std::vector<double> GX(m_all * m_all), base_gap(m_all), RX(m_all * m_all),
+      base_rate(m_all);
   for (unsigned int i = 0; i < m_all; ++i)
   {
     base_gap[i] = B.dot(rows[i].G, base_column) + rows[i].z;
     for (unsigned int l = 0; l < m_all; ++l)
       GX[i * m_all + l] = S.S_columns[l].dot(rows[i].G, lambda_column);
+    if (!system.constraints[i]->is_compliant())
+      continue;
+    base_rate[i] = B.dot(rows[i].G_t, base_column) +
+                   c_v * (base_gap[i] - rows[i].z - rows[i].G.dot(q_hat)) +
+                   rows[i].G.dot(v_hat) + rows[i].z_t;
+    for (unsigned int l = 0; l < m_all; ++l)
+      RX[i * m_all + l] =
+          S.S_columns[l].dot(rows[i].G_t, lambda_column) + c_v * GX[i * m_all + l];
   }
 
   DynamicState x;
   x.t = t1;
   x.lambda.assign(m_all, 0.);
-  std::vector<double> gaps(m_all);
+  std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(current.active);
   for (;;)
   {
-    const auto& A = active_set.active_indices();
-    const unsigned int m = A.size();
+    // Unknowns: the multipliers of the active rigid constraints (rows g = 0)
+    // and the forces of the engaged compliant ones, whose rows are their
+    // law divided by k: lambda/k + g + (c/k) dg/dt = 0 at t_{n+1}, i.e.
+    // (G S^-1 G^T + C) lambda = -g0 with the compliance C = diag(1/k) (and the
+    // damping part): implicit in the force, S untouched.
+    unknowns = active_set.active_indices();
+    const auto& E = active_set.engaged_indices();
+    unknowns.insert(unknowns.end(), E.begin(), E.end());
+    const auto& U = unknowns;
+    const unsigned int m = U.size();
     small.reinit(m, m);
     small_rhs.reinit(m);
     small_solution.reinit(m);
     for (unsigned int i = 0; i < m; ++i)
     {
+      const Constraint& c = *system.constraints[U[i]];
+      const double damping =
+          c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
       for (unsigned int l = 0; l < m; ++l)
-        small(i, l) = GX[A[i] * m_all + A[l]];
-      small_rhs(i) = -base_gap[A[i]];
+        small(i, l) = GX[U[i] * m_all + U[l]] + damping * RX[U[i] * m_all + U[l]];
+      if (c.is_compliant())
+        small(i, i) += 1. / c.compliance().stiffness;
+      small_rhs(i) = -(base_gap[U[i]] + damping * base_rate[U[i]]);
     }
     solve_multiplier_system(small, small_rhs, small_solution, t1,
                             "generalized-alpha step");
     std::fill(x.lambda.begin(), x.lambda.end(), 0.);
     for (unsigned int l = 0; l < m; ++l)
-      x.lambda[A[l]] = small_solution(l);
+      x.lambda[U[l]] = small_solution(l);
     for (unsigned int i = 0; i < m_all; ++i)
     {
       gaps[i] = base_gap[i];
+      rates[i] = base_rate[i];
       for (unsigned int l = 0; l < m; ++l)
-        gaps[i] += small_solution(l) * GX[i * m_all + A[l]];
+      {
+        gaps[i] += small_solution(l) * GX[i * m_all + U[l]];
+        rates[i] += small_solution(l) * RX[i * m_all + U[l]];
+      }
     }
-    if (active_set.accept(gaps, x.lambda, t1, step_number + 1))
+    if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
     ++stats.active_set_iterations;
   }
@@ -144,6 +172,7 @@ void GeneralizedAlphaIntegrator::advance()
     if (x.active[l] || l == S.base_owner)
       S.S_columns[l].add_combination({{x.lambda[l], 0., 0., l == S.base_owner ? 1. : 0.}},
                                      x.q);
+  clamp_compliant_forces(system, x.lambda);
   dealii::Vector<double> a_next(x.q);
   a_next.add(-1., q_hat);
   a_next *= 1. / (h * h * k.beta);

@@ -23,6 +23,9 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     c->assign(m, dealii::Vector<double>(n));
   lambda.assign(m, 0.);
   gaps.assign(m, 0.);
+  for (unsigned int i = 0; i < m; ++i)
+    if (system.constraints[i]->is_compliant())
+      compliant.push_back(i);
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   factorize();
   // Diagonal storage of K and D/2.
@@ -263,11 +266,37 @@ void HalfExplicitIntegrator::reset_time_dependent_columns()
     }
 }
 
+void HalfExplicitIntegrator::add_compliant_forces()
+{
+  const auto& sn = at_n.states();
+  for (const unsigned int i : compliant)
+  {
+    // Explicit in the force: g and dg/dt at t_n from q_n and the velocity of
+    // the damping forces of (39), (41), v_{n-1/2} = (v_{n-1} + v_n)/2.
+    const ConstraintState& s = sn[i];
+    const double gap = s.position_residual(q);
+    const double rate = s.G_t.dot(q) + 0.5 * (s.G.dot(v_prev) + s.G.dot(v)) + s.z_t;
+    const Constraint& c = *system.constraints[i];
+    lambda[i] = c.compliant_force(gap, rate);
+    const bool engaged = !c.is_unilateral() || lambda[i] > 0.;
+    // Counted once: a repetition of step 1 in the same step finds it set.
+    stats.active_set_changes += engaged != active_now[i];
+    active_now[i] = engaged;
+    // a += (M + dt/2 D)^-1 G^T lambda_i: a sparse column, computed once.
+    if (lambda[i] != 0.)
+      smoothed_mass_inverse.add_column(s.G, Y[i], lambda[i], a);
+  }
+}
+
 void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A)
 {
   const auto& sn = at_n.states();
   // (M + dt/2 D) a = f - K q_n - D (v_{n-1} + v_n)/2: the smoothing (41).
   compute_forces(); // a <- (M + dt/2 D)^-1 (f - K q_n - D (v_{n-1} + v_n)/2)
+  std::fill(lambda.begin(), lambda.end(), 0.);
+  // + G^T lambda of the compliant constraints, before the rigid multipliers
+  // (whose g^(II) = 0 sees these forces).
+  add_compliant_forces();
 
   const unsigned int m = A.size();
   small.reinit(m, m);
@@ -282,7 +311,6 @@ void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int
     small_rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
   }
   solve_multiplier_system(small, small_rhs, small_solution, t, "acceleration level");
-  std::fill(lambda.begin(), lambda.end(), 0.);
   for (unsigned int k = 0; k < m; ++k)
   {
     lambda[A[k]] = small_solution(k);
@@ -379,6 +407,8 @@ void HalfExplicitIntegrator::advance()
   reported.lambda = lambda;
   reported.active = active_now;
   active_now = active_set.active();
+  for (const unsigned int i : compliant) // explicit: engaged at t_n, not iterated
+    active_now[i] = reported.active[i];
   t += dt;
   ++step_number;
   ++stats.steps;
@@ -392,7 +422,7 @@ void HalfExplicitIntegrator::finish()
   compute_time_dependent_columns();
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)
-    if (active_now[i])
+    if (active_now[i] && !system.constraints[i]->is_compliant())
       A.push_back(i);
   compute_acceleration(A);
   reset_time_dependent_columns();

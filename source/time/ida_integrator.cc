@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/system/pattern_operators.h>
+#include <pantocat/time/active_set.h>
 #include <pantocat/time/ida_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
@@ -204,6 +205,13 @@ struct IdaIntegrator::Sundials
                       SUNMatrix Jac, void* data, N_Vector, N_Vector, N_Vector);
   static int roots(realtype t, N_Vector yy, N_Vector yyp, realtype* gout, void* data);
 
+  /// The Jacobian's columns (CSC, per column the rows and values).
+  using Columns = std::vector<std::vector<std::pair<unsigned int, double>>>;
+  /// The entries of compliant constraint @p k: F_v by lambda, its force law
+  /// (if @p engaged) by q, v and lambda, and mu = 0.
+  void add_compliant_columns(unsigned int k, const ConstraintState& c, bool engaged,
+                             Columns& column) const;
+
   IdaIntegrator& owner;
   SUNContext context = nullptr;
   N_Vector y = nullptr, yp = nullptr, id = nullptr, tolerances = nullptr;
@@ -232,7 +240,20 @@ int IdaIntegrator::Sundials::residual(realtype t, N_Vector yy, N_Vector yyp, N_V
   S.operators.motion(q, v, qp, vp, r, r + n);
   // - G^T mu, - G^T lambda and the constraints.
   for (unsigned int k = 0; k < m; ++k)
-    if (I.active[k])
+    if (I.system.constraints[k]->is_compliant())
+    {
+      // A force: F_v -= G^T lambda, lambda = max(0, -k g - c dg/dt) by its
+      // branch: the linear law while engaged, 0 while not; the roots switch
+      // the branch (roots()), so that IDA integrates a smooth system.
+      double* r_v = r + n;
+      c[k].G.add_transpose_to(r_v, -lambda[k]);
+      r[2 * n + k] = lambda[k];
+      if (I.active[k])
+        r[2 * n + k] -= I.system.constraints[k]->trial_force(
+            c[k].position_residual(q), c[k].velocity_residual(q, v));
+      r[2 * n + m + k] = mu[k];
+    }
+    else if (I.active[k])
     {
       c[k].G.add_transpose_to(r, -mu[k]); // F_q -= G^T mu
       double* r_v = r + n;
@@ -258,7 +279,7 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
   const auto& sys = I.system;
   const auto& c = I.rows.at(t, 1);
   // Columns of J = dF/dy + cj dF/dy' (CSC). M, D, K are symmetric: column j = row j.
-  std::vector<std::vector<std::pair<unsigned int, double>>> column(2 * n + 2 * m);
+  Columns column(2 * n + 2 * m);
   for (unsigned int j = 0; j < n; ++j)
   {
     for (auto it = sys.mass.begin(j); it != sys.mass.end(j); ++it)
@@ -273,7 +294,9 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
       column[j].push_back({n + it->column(), it->value()});
   }
   for (unsigned int k = 0; k < m; ++k)
-    if (I.active[k])
+    if (sys.constraints[k]->is_compliant())
+      S.add_compliant_columns(k, c[k], I.active[k], column);
+    else if (I.active[k])
     {
       for (std::size_t e = 0; e < c[k].G.size(); ++e)
       {
@@ -335,6 +358,45 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
   return 0;
 }
 
+void IdaIntegrator::Sundials::add_compliant_columns(const unsigned int k,
+                                                    const ConstraintState& c,
+                                                    const bool engaged,
+                                                    Columns& column) const
+{
+  const unsigned int n = owner.n, m = owner.m;
+  const Compliance& law = owner.system.constraints[k]->compliance();
+  for (std::size_t e = 0; e < c.G.size(); ++e)
+  {
+    const unsigned int i = c.G.index[e];
+    const double g = c.G.value[e];
+    column[2 * n + k].push_back({n + i, -g}); // F_v by lambda
+    if (engaged)
+    {
+      // lambda + k g + c dg/dt = 0 by q and v.
+      column[i].push_back({2 * n + k, law.stiffness * g});
+      column[n + i].push_back({2 * n + k, law.damping * g});
+    }
+  }
+  if (engaged)
+    for (std::size_t e = 0; e < c.G_t.size(); ++e)
+      column[c.G_t.index[e]].push_back({2 * n + k, law.damping * c.G_t.value[e]});
+  column[2 * n + k].push_back({2 * n + k, 1.});
+  column[2 * n + m + k].push_back({2 * n + m + k, 1.}); // mu = 0
+}
+
+double IdaIntegrator::compliant_root(const unsigned int k, const ConstraintState& c,
+                                     const double* q, const double* v) const
+{
+  // Engaged iff h = max(g, g + (c/k) dg/dt) < 0 (g < 0 and -k g - c dg/dt > 0):
+  // a disengaged spring engages when h falls through 0, an engaged one
+  // releases when -h does.
+  const Compliance& law = system.constraints[k]->compliance();
+  const double g = c.position_residual(q);
+  const double h =
+      std::max(g, g + law.damping / law.stiffness * c.velocity_residual(q, v));
+  return active[k] ? -h : h;
+}
+
 int IdaIntegrator::Sundials::roots(realtype t, N_Vector yy, N_Vector, realtype* gout,
                                    void* data)
 {
@@ -344,6 +406,8 @@ int IdaIntegrator::Sundials::roots(realtype t, N_Vector yy, N_Vector, realtype* 
   for (unsigned int k = 0; k < I.m; ++k)
     if (!I.system.constraints[k]->is_unilateral())
       gout[k] = 1.; // never switches
+    else if (I.system.constraints[k]->is_compliant())
+      gout[k] = I.compliant_root(k, c[k], y, y + I.n);
     else if (I.active[k])
       gout[k] = y[2 * I.n + k]; // lambda: release when it falls through 0
     else
@@ -382,9 +446,9 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
   }
   auto project = [&](dealii::Vector<double>& x, auto residual, const char* what)
   {
-    std::vector<unsigned int> A;
+    std::vector<unsigned int> A; // the rigid constraints that hold
     for (unsigned int k = 0; k < m; ++k)
-      if (set[k])
+      if (set[k] && !system.constraints[k]->is_compliant())
         A.push_back(k);
     dealii::FullMatrix<double> W(A.size(), A.size());
     dealii::Vector<double> rhs(A.size()), sol(A.size());
@@ -410,17 +474,26 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
         q, [&](unsigned int k) { return c[k].position_residual(q); }, "IDA event");
     project(
         v, [&](unsigned int k) { return c[k].velocity_residual(q, v); }, "IDA event");
-    // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0.
+    // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0,
+    // with the forces of the compliant constraints (engaged as in the set:
+    // at a root the toggled branch, the sign of the crossing) in the load.
     system.stiffness.vmult(a, q);
     system.damping.vmult_add(a, v);
     a.sadd(-1., 1., f);
+    std::fill(lambda.begin(), lambda.end(), 0.);
+    for (unsigned int k = 0; k < m; ++k)
+      if (set[k] && system.constraints[k]->is_compliant())
+      {
+        lambda[k] = system.constraints[k]->trial_force(c[k].position_residual(q),
+                                                       c[k].velocity_residual(q, v));
+        c[k].G.add_transpose_to(a, lambda[k]);
+      }
     mass_inverse.apply(a);
     const auto [A, sol] = project(
         a,
         [&](unsigned int k)
         { return c[k].G.dot(a) + 2. * c[k].G_t.dot(v) + c[k].G_tt.dot(q) + c[k].z_tt; },
         "IDA event");
-    std::fill(lambda.begin(), lambda.end(), 0.);
     bool released = false;
     for (unsigned int l = 0; l < A.size(); ++l)
     {
@@ -451,12 +524,24 @@ void IdaIntegrator::initialize(const DynamicState& initial)
 {
   sun = std::make_unique<Sundials>(*this);
   active = initial.active;
+  // The compliant constraints' branch and force from the initial state.
+  std::vector<double> initial_lambda = initial.lambda;
+  const auto& c0 = rows.at(initial.t, 1);
+  for (unsigned int k = 0; k < m; ++k)
+    if (system.constraints[k]->is_compliant())
+    {
+      const Constraint& law = *system.constraints[k];
+      const double g = c0[k].position_residual(initial.q),
+                   rate = c0[k].velocity_residual(initial.q, initial.v);
+      initial_lambda[k] = law.compliant_force(g, rate);
+      active[k] = !law.is_unilateral() || (g < 0. && law.trial_force(g, rate) > 0.);
+    }
   double* y = N_VGetArrayPointer(sun->y);
   double* yp = N_VGetArrayPointer(sun->yp);
   std::copy(initial.q.begin(), initial.q.end(), y);
   std::copy(initial.v.begin(), initial.v.end(), y + n);
   for (unsigned int k = 0; k < m; ++k)
-    y[2 * n + k] = initial.lambda[k], y[2 * n + m + k] = 0.;
+    y[2 * n + k] = initial_lambda[k], y[2 * n + m + k] = 0.;
   std::copy(initial.v.begin(), initial.v.end(), yp);
   std::copy(initial.a.begin(), initial.a.end(), yp + n);
   std::fill(yp + 2 * n, yp + 2 * n + 2 * m, 0.);
@@ -502,6 +587,7 @@ void IdaIntegrator::read_state(const double t)
   std::copy(y + n, y + 2 * n, current.v.begin());
   std::copy(yp + n, yp + 2 * n, current.a.begin());
   current.lambda.assign(y + 2 * n, y + 2 * n + m);
+  clamp_compliant_forces(system, current.lambda);
   current.active = active;
 }
 

@@ -22,9 +22,10 @@ namespace pantocat
 class ContactConstraint : public Constraint
 {
 public:
-  /// @p head is B of the pantograph, already in global numbering.
+  /// @p head is B of the pantograph, already in global numbering; a
+  /// @p compliance with k > 0 makes it penalty contact (Constraint).
   ContactConstraint(std::string name, WirePointMarker wire, const SparseRow& head,
-                    Kind kind);
+                    Kind kind, Compliance compliance = {});
 
   bool depends_on_time() const override { return true; }
   void evaluate(double t, ConstraintState& state,

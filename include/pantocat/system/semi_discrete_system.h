@@ -59,10 +59,16 @@ public:
 
   unsigned int n_dofs() const { return load.size(); }
   unsigned int n_constraints() const { return constraints.size(); }
+  /// True if any constraint is compliant (a force law, Constraint::is_compliant).
+  bool has_compliant_constraints() const;
   const DofBlock& block(const std::string& name) const;
   bool has_block(const std::string& name) const;
 
-  /// Kinetic energy v^T M v / 2 plus strain energy q^T K q / 2 minus f(t)^T q.
+  /**
+   * Kinetic energy v^T M v / 2 plus strain energy q^T K q / 2 minus f(t)^T q,
+   * plus the strain energy of the compliant constraints at @p t:
+   * k/2 min(g, 0)^2 (unilateral) or k/2 g^2 (bilateral), Constraint::strain_energy.
+   */
   double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v,
                 double t = 0.) const;
 

@@ -29,6 +29,17 @@ namespace pantocat
  * level (g^(II)_i := lambda_i = 0). It just holds, without force; the next
  * step starts with it active again.
  *
+ * Compliant constraints (Constraint::is_compliant) are forces, never active:
+ * they are absent from active_indices() and force_indices(). For the implicit
+ * methods their *engagement* (the linear law lambda = -k g - c dg/dt applies,
+ * rather than lambda = 0) is iterated together with the active set: a
+ * compliant unilateral constraint is engaged at t_{n+1} iff g < 0 and
+ * -k g - c dg/dt > 0 there (accept() with the gap rates); a disagreement
+ * toggles it and the step is repeated. Bilateral compliant constraints are
+ * always engaged. Explicit methods (the half-explicit one) compute the force
+ * from the state at t_n themselves and call accept() without rates: their
+ * engagement is then left as start() set it.
+ *
  * All violations are toggled together and the step is repeated; a set seen
  * before in the same step, or more than the allowed number of repetitions,
  * stops the run with a SimulationError that names time, step and constraints.
@@ -44,13 +55,18 @@ public:
 
   /**
    * Checks a trial step; returns true if it is accepted, otherwise updates
-   * the active set for the repetition.
+   * the active set for the repetition. @p gap_rates (dg/dt at t_{n+1} of
+   * every constraint), if given, make the engagement of the compliant
+   * constraints part of the check.
    */
   bool accept(const std::vector<double>& gaps_next, const std::vector<double>& lambda,
-              double t, unsigned long step);
+              double t, unsigned long step, const std::vector<double>& gap_rates = {});
 
-  /// Constraints that hold at t_{n+1} (active or touching): positions, velocities.
+  /// Constraints that hold at t_{n+1} (active or touching) and the engaged
+  /// compliant ones: the flags of DynamicState::active.
   const std::vector<bool>& active() const { return holds; }
+  /// The engaged compliant constraints: forces by the linear law -k g - c dg/dt.
+  const std::vector<unsigned int>& engaged_indices() const { return engaged; }
   /// Their indices: the constraints of g^(0) and g^(I).
   const std::vector<unsigned int>& active_indices() const { return indices; }
   /// The active constraints that carry a force: those of g^(II).
@@ -64,8 +80,11 @@ private:
   {
     inactive,
     active,
-    touching
+    touching,
+    engaged ///< a compliant constraint whose linear force law applies
   };
+  /// The status of compliant constraint @p i at t_{n+1} from its gap and rate.
+  Status compliant_status(unsigned int i, double gap, double rate) const;
   void update_indices();
   std::string describe(const std::vector<Status>& set) const;
 
@@ -74,7 +93,15 @@ private:
   bool allow_touching;
   std::vector<bool> at_start, holds, released;
   std::vector<Status> current;
-  std::vector<unsigned int> indices, force;
+  std::vector<unsigned int> indices, force, engaged;
   std::vector<std::vector<Status>> visited;
 };
+
+/**
+ * Sets the forces of the compliant unilateral constraints in @p lambda to
+ * max(0, lambda): an engaged spring's force solved from its law is positive up
+ * to round-off, and a reported force is never negative.
+ */
+void clamp_compliant_forces(const SemiDiscreteSystem& system,
+                            std::vector<double>& lambda);
 } // namespace pantocat

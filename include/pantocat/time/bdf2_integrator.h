@@ -46,6 +46,14 @@ namespace pantocat
  * multipliers follow from a 3m x 3m dense system on the functionals of the
  * columns (m active constraints), so a trial of the active-set iteration
  * costs no vector operation of length n.
+ *
+ * Compliant constraints (Constraint::is_compliant) are implicit forces at
+ * t_{n+1}: an engaged one adds its lambda (column X^lambda) and the row
+ * lambda/k + g + (c/k) dg/dt = 0 to the multiplier system (the compliance
+ * 1/k on its diagonal, S untouched); a disengaged one has lambda = 0. The
+ * engaged set starts from the previous step's and is iterated with the
+ * active set (ActiveSetIteration): engaged at t_{n+1} iff g < 0 and
+ * -k g - c dg/dt > 0 there.
  */
 class Bdf2Integrator : public TimeIntegrator
 {

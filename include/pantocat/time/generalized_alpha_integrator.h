@@ -41,6 +41,15 @@ namespace pantocat
  * ActiveSetIteration (index 3 has no position-level multiplier besides
  * lambda to hold a constraint without force).
  *
+ * Compliant constraints (Constraint::is_compliant) are implicit forces at
+ * t_{n+1}: with q = q0 + sum_l lambda_l S^-1 G_l^T and
+ * v = v^ + c_v (q - q^), an engaged one adds the row
+ * lambda/k + g + (c/k) dg/dt = 0 to the multiplier system, i.e.
+ * (G S^-1 G^T + C) lambda = ... with the compliance on the diagonal (S is not
+ * refactorised); they take no part in the velocity projection. Their
+ * engagement (g < 0 and -k g - c dg/dt > 0 at t_{n+1}) is iterated with the
+ * active set (ActiveSetIteration).
+ *
  * Linear algebra as in Bdf2Integrator: S = K + gamma/(beta h) D +
  * (1 - alpha_m)/((1 - alpha_f) beta h^2) M is factorised once; a step solves
  * for the base solution and the columns S^-1 G^T, M^-1 G^T of the moving
@@ -90,5 +99,6 @@ private:
   unsigned long step_number = 0;
   dealii::FullMatrix<double> small;
   dealii::Vector<double> small_rhs, small_solution;
+  std::vector<unsigned int> unknowns; ///< active rigid, then engaged compliant
 };
 } // namespace pantocat

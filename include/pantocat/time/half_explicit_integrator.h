@@ -25,6 +25,13 @@ namespace pantocat
  * applications of (M + dt/2 D)^-1 and M^-1: diagonal scalings for FDM,
  * solves with factorisations made once for FEM.
  *
+ * Compliant constraints (Constraint::is_compliant) are explicit forces: in
+ * step 1, lambda_i = max(0, -k g_i - c dg_i/dt) (unilateral, 0 when g_i >= 0)
+ * or -k g_i - c dg_i/dt (bilateral) from q_n and the damping velocity
+ * (v_{n-1} + v_n)/2 of (41), and G_i^T lambda_i joins the force of (39); they
+ * are never in the active set. The method is then stable for dt < 2/omega_max
+ * of K + sum k_i G_i^T G_i (largest_circular_frequency).
+ *
  * The first step needs v_{-1}: v_0 - dt a_0 (one Euler step back; the method
  * stays second order). With D = 0 the map (v_{n-1}, q_n, v_n) -> (v_n,
  * q_{n+1}, v_{n+1}) is reversible: stepping with -dt from (v_{n+1}, q_{n+1},
@@ -60,6 +67,9 @@ public:
   const dealii::Vector<double>& previous_velocities() const { return v_prev; }
 
 private:
+  /// lambda_n of the compliant constraints (their engagement in active_now), a += Y
+  /// lambda.
+  void add_compliant_forces();
   /// Step 1: a_n and lambda_n for the active set.
   void compute_acceleration(const std::vector<unsigned int>& active);
   /// Step 2: q_{n+1}, v_{n+1} for the active set; fills the gaps at t_{n+1}.
@@ -112,6 +122,7 @@ private:
   /// Q = M^-1 G_t(t_{n+1/2})^T, R = M^-1 G(t_{n+1/2})^T.
   std::vector<dealii::Vector<double>> Y, P, Q, R;
   std::vector<double> lambda, gaps;
+  std::vector<unsigned int> compliant; ///< indices of the compliant constraints
   dealii::FullMatrix<double> small;
   dealii::Vector<double> small_rhs, small_solution;
   DynamicState reported;

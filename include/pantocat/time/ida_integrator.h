@@ -41,6 +41,13 @@ enum class IdaLinearSolver
  * are recomputed on acceleration level, constraints with a negative force are
  * released (they separate), and IDA restarts from this consistent state.
  * advance() integrates to the next output time t + dt.
+ *
+ * Compliant constraints (Constraint::is_compliant) are forces: F_v -= G^T
+ * lambda with the algebraic row lambda = -k g - c dg/dt while engaged and
+ * lambda = 0 while not (mu = 0 always): the max() of the force law, whose
+ * branch switches at roots of h = max(g, g + (c/k) dg/dt) (engaged iff
+ * h < 0), located by the same root finding and restart as the rigid events;
+ * they never enter the projections of an event.
  */
 class IdaIntegrator : public TimeIntegrator
 {
@@ -66,6 +73,9 @@ private:
   /// consistent state for the set @p active at time t, written into y, y'.
   void make_consistent(double t, std::vector<bool> active);
   void read_state(double t);
+  /// The root function of compliant unilateral constraint @p k at (q, v).
+  double compliant_root(unsigned int k, const ConstraintState& c, const double* q,
+                        const double* v) const;
   void collect_counters();
 
   double dt;
