@@ -2,6 +2,7 @@
 // the designed dropper lengths put the static contact wire on the pre-sag.
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
+#include <pantocat/base/input_error.h>
 #include <pantocat/simulation/case_runner.h>
 
 #include "support/case_files.h"
@@ -132,4 +133,89 @@ TEST(CatenaryDesign, LengthsConvergeUnderGridRefinement)
         EXPECT_GE(order, k + 1 == differences.size() ? 0.9 : 0.);
     }
   }
+}
+
+TEST(CatenaryDesign, ElasticDroppersAreShorterByTheirStretchAndRestOnTheDesign)
+{
+  // Elastic tension-only droppers (k_d = 1e5 N/m, S55's value) designed on F3
+  // with a 65 mm pre-sag: the static catenary with the elastic droppers lies
+  // on the pre-sag (round-off: 1e-9 m), every dropper is engaged (taut), and
+  // each unstretched length is the distance between the wires less the
+  // stretch lambda_j / k_d (round-off: 1e-9 m). Against the inextensible
+  // design: the dropper weights use the unstretched length, shorter by
+  // F_j / k_d ~ 0.7 mm, so the tensions differ by m_d g F_j / (2 k_d) ~ 5e-4 N
+  // (asserted 1e-3 N) and the lengths by the carrier's response to it, ~1e-6 m
+  // (asserted 1e-5 m, well below the stretch, > 1e-4 m).
+  for (const std::string method : {"fdm", "fem"})
+  {
+    const std::vector<std::string> common{"Discretisation/Method=" + method,
+                                          "Discretisation/Number of intervals=260",
+                                          "Catenary/Droppers/Pre-sag=0.065"};
+    std::vector<std::string> elastic = common;
+    elastic.push_back("Scene/Droppers=elastic");
+    const CaseRunner rigid(fig3(common).make_case());
+    const CaseRunner runner(fig3(elastic).make_case());
+    EXPECT_LT(height_error(runner), 1e-9) << method;
+    const StaticEquilibrium s = runner.static_catenary();
+    const CatenaryParameters& c = runner.case_data().catenary;
+    const std::vector<double>& force = rigid.design()->dropper_forces;
+    for (unsigned int j = 0; j < c.n_droppers(); ++j)
+    {
+      const double x = c.dropper_positions[j];
+      const unsigned int i = runner.layout().dropper_indices[j];
+      EXPECT_TRUE(s.active[i]) << method << " dropper " << j + 1;
+      const double distance =
+          c.support_height +
+          wire_point_row(runner.discretisation(), runner.system(), Wire::carrier, x)
+              .dot(s.q) -
+          runner.contact_wire_displacement(s.q, x);
+      const double stretch = s.multipliers[i] / c.dropper_stiffness;
+      EXPECT_GT(stretch, 1e-4);
+      EXPECT_NEAR(c.dropper_lengths[j], distance - stretch, 1e-9)
+          << method << " dropper " << j + 1;
+      EXPECT_NEAR(s.multipliers[i], force[j], 1e-3) << method << " dropper " << j + 1;
+      EXPECT_NEAR(c.dropper_lengths[j],
+                  rigid.case_data().catenary.dropper_lengths[j] - stretch, 1e-5)
+          << method << " dropper " << j + 1;
+    }
+  }
+}
+
+TEST(CatenaryDesign, SteadyArmsOnlyAtTheSupportsGiven)
+{
+  // Four spans, a steady arm at support 2 only: the design holds the contact
+  // wire at 0 there (1e-9 m, round-off) and leaves supports 1 and 3 free,
+  // where the unsupported wire hangs below the pre-sag's 0.
+  const ProgramParameters p =
+      fig3({"Discretisation/Number of intervals=1040", "Catenary/Number of spans=4",
+            "Catenary/Droppers/Pre-sag=0.065",
+            "Catenary/Supports/Steady arm stiffness=2673.58",
+            "Catenary/Supports/Steady arm supports=2"});
+  const CaseRunner runner(p.make_case());
+  const CatenaryParameters& c = runner.case_data().catenary;
+  ASSERT_EQ(c.steady_arm_preloads.size(), 1u);
+  const StaticEquilibrium s = runner.static_catenary();
+  EXPECT_NEAR(runner.contact_wire_displacement(s.q, 130.), 0., 1e-9);
+  EXPECT_LT(runner.contact_wire_displacement(s.q, 65.), -1e-3);
+  EXPECT_LT(runner.contact_wire_displacement(s.q, 195.), -1e-3);
+}
+
+TEST(CatenaryDesign, ASteadyArmAtASectionAnchorIsRefused)
+{
+  for (const std::string k : {"0", "3", "5"})
+    try
+    {
+      fig3({"Catenary/Number of spans=3", "Catenary/Supports/Steady arm stiffness=1000",
+            "Catenary/Supports/Steady arm supports=" + k});
+      FAIL() << k;
+    }
+    catch (const InputError& e)
+    {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("Catenary/Supports/Steady arm supports"), std::string::npos);
+      EXPECT_NE(what.find("allowed: supports between spans, 1..2"), std::string::npos)
+          << what;
+      if (k != "5")
+        EXPECT_NE(what.find("section anchor"), std::string::npos) << what;
+    }
 }

@@ -1,5 +1,6 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/catenary/wave_speeds.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
 #include <pantocat/io/run_summary.h>
@@ -100,6 +101,9 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
       << p.pantograph().initial_position << " to " << p.pantograph().final_position
       << " m\n";
   print_scene(out, runner);
+  if (p.scene.contact_wire == WireModel::elastic && !p.scene.pantographs[0].is_absent())
+    print_wave_speeds(out,
+                      wave_speeds(runner.case_data().catenary, p.pantograph().speed));
   if (resume_from)
     out << "  resuming from " << checkpoint_file << " after step " << resume_from->step()
         << '\n';

@@ -56,6 +56,17 @@ std::vector<double> CatenaryParameters::interior_supports() const
   return {x.begin() + 1, x.end() - 1};
 }
 
+std::vector<double> CatenaryParameters::steady_arm_positions() const
+{
+  if (steady_arm_supports.empty())
+    return interior_supports();
+  const std::vector<double> x = support_positions();
+  std::vector<double> arms;
+  for (const unsigned int k : steady_arm_supports)
+    arms.push_back(x[k]);
+  return arms;
+}
+
 double CatenaryParameters::presag_height(const unsigned int k, const double x) const
 {
   const double start = support_positions()[k], l = spans()[k];
@@ -208,6 +219,10 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Vertical stiffness [N/m] of the steady arm holding the contact wire "
                     "at each support between spans, preloaded so that the static contact "
                     "wire is at 0 there; 0: no steady arms.");
+  prm.declare_entry("Steady arm supports", "", List(dealii::Patterns::Integer(0), 0),
+                    "Support numbers k (0 = the section's start, n = its end) that hold "
+                    "the contact wire by a steady arm, increasing, each in 1..n-1 (the "
+                    "section ends are anchors); empty: every support between spans.");
   prm.declare_entry("Steady arm mass", "0", Double(0.),
                     "Mass [kg] of a steady arm, lumped on the contact wire.");
   prm.leave_subsection();
@@ -263,6 +278,10 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   carrier_support_stiffness = prm.get_double("Carrier support stiffness");
   steady_arm_stiffness = prm.get_double("Steady arm stiffness");
   steady_arm_mass = prm.get_double("Steady arm mass");
+  steady_arm_supports.clear();
+  for (const int k : dealii::Utilities::string_to_int(
+           dealii::Utilities::split_string_list(prm.get("Steady arm supports"))))
+    steady_arm_supports.push_back(k);
   prm.leave_subsection();
   damping = prm.get("Damping model") == "rayleigh" ? CatenaryDamping::rayleigh
                                                    : CatenaryDamping::viscous;
@@ -304,6 +323,26 @@ void CatenaryParameters::check() const
               list_to_string(dropper_positions), "positions must be strictly increasing");
     require(dropper_lengths[j] > 0., "Catenary/Droppers/Lengths", dropper_lengths[j],
             "must be > 0");
+  }
+  check_steady_arm_supports();
+}
+
+void CatenaryParameters::check_steady_arm_supports() const
+{
+  const unsigned int n = number_of_spans();
+  const std::string parameter = "Catenary/Supports/Steady arm supports";
+  for (unsigned int i = 0; i < steady_arm_supports.size(); ++i)
+  {
+    const unsigned int k = steady_arm_supports[i];
+    require(k >= 1 && k + 1 <= n, parameter, k,
+            (k == 0 || k == n
+                 ? "support " + std::to_string(k) +
+                       " is a section anchor (both wires pinned there)"
+                 : "support " + std::to_string(k) + " does not exist in a section of " +
+                       std::to_string(n) + " spans") +
+                "; allowed: supports between spans, 1.." + std::to_string(n - 1));
+    require(i == 0 || k > steady_arm_supports[i - 1], parameter, k,
+            "support numbers must be strictly increasing");
   }
 }
 } // namespace pantocat

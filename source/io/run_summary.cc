@@ -238,6 +238,11 @@ void print_scene(std::ostream& out, const CaseRunner& runner)
     out << ", contact";
   else if (contacts.size() > 1)
     out << ", " << contacts.size() << " contacts";
+  // The rest are the carrier supports held fixed (CarrierSupports).
+  const std::size_t supports =
+      system.n_constraints() - layout.dropper_indices.size() - contacts.size();
+  if (supports > 0)
+    out << ", " << supports << " carrier supports";
   out << ")\n";
 }
 

@@ -233,17 +233,21 @@ void MassChainPantographParameters::check(const std::string& subsection) const
 
 void PantographParameters::check(const double span, const double eps) const
 {
+  // A smoothed load (eps > 0) must lie wholly inside the wire; a point load may
+  // stand on an anchor (x = 0 or L), where the wire is pinned.
+  const bool point = eps == 0.;
+  const auto inside = [&](const double x)
+  { return point ? x >= 0. && x <= span : x > eps && x < span - eps; };
   const std::string range =
-      "(" + number_to_string(eps) + ", " + number_to_string(span - eps) + ")";
+      point ? "[0, " + number_to_string(span) + "]"
+            : "(" + number_to_string(eps) + ", " + number_to_string(span - eps) + ")";
   require(speed > 0., subsection + "/Speed", speed, "must be > 0");
-  require(initial_position > eps && initial_position < span - eps,
-          subsection + "/Initial position", initial_position,
-          "the contact area must lie inside the span: allowed " + range);
-  require(final_position > initial_position && final_position < span - eps,
+  require(inside(initial_position), subsection + "/Initial position", initial_position,
+          "the contact area must lie inside the section: allowed " + range + " m");
+  require(final_position > initial_position && inside(final_position),
           subsection + "/Final position", final_position,
-          "must lie in (Initial position, L - epsilon) = (" +
-              number_to_string(initial_position) + ", " + number_to_string(span - eps) +
-              ")");
+          "must be > Initial position = " + number_to_string(initial_position) +
+              " m and inside the section " + range + " m");
   require(two_mass.head_mass > 0., subsection + "/Two-mass model/Head mass",
           two_mass.head_mass, "must be > 0");
   require(two_mass.frame_mass > 0., subsection + "/Two-mass model/Frame mass",

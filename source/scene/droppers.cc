@@ -51,6 +51,11 @@ void Droppers::add_constraints(SceneAssembly& a) const
   const Constraint::Kind kind = a.scene.droppers == DropperModel::bilateral
                                     ? Constraint::Kind::bilateral
                                     : Constraint::Kind::unilateral;
+  // An elastic dropper is the compliant unilateral constraint
+  // g + lambda / k_d >= 0, lambda >= 0: force k_d max(-g, 0), the stretch
+  // -g = (w_c + l_c - w_w) - l_j beyond the unstretched length l_j.
+  const Compliance compliance{
+      a.scene.droppers == DropperModel::elastic ? p.dropper_stiffness : 0., 0.};
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
   {
     // Delta = H_w q_w - H_c q_c + (l_j - l_c), with u_c = w_c - l_c, Eq. (31).
@@ -60,16 +65,20 @@ void Droppers::add_constraints(SceneAssembly& a) const
     for (std::size_t k = 0; k < carrier.size(); ++k)
       row.add(carrier.index[k], -carrier.value[k]);
     a.dropper_indices.push_back(a.system.n_constraints());
-    a.system.add_constraint(
-        std::make_unique<FixedConstraint>("dropper " + std::to_string(j + 1), kind, row,
-                                          p.dropper_lengths[j] - p.support_height));
+    a.system.add_constraint(std::make_unique<FixedConstraint>(
+        "dropper " + std::to_string(j + 1), kind, row,
+        p.dropper_lengths[j] - p.support_height, compliance));
   }
 }
 
 std::string Droppers::describe(const SceneAssembly& a) const
 {
-  return std::to_string(a.catenary.n_droppers()) + " droppers, " +
-         (a.scene.droppers == DropperModel::bilateral ? "bilateral (4)"
-                                                      : "unilateral (Sec. 5.3)");
+  const std::string model = a.scene.droppers == DropperModel::bilateral ? "bilateral (4)"
+                            : a.scene.droppers == DropperModel::elastic
+                                ? "elastic, tension only, k_d = " +
+                                      number_to_string(a.catenary.dropper_stiffness) +
+                                      " N/m"
+                                : "unilateral (Sec. 5.3)";
+  return std::to_string(a.catenary.n_droppers()) + " droppers, " + model;
 }
 } // namespace pantocat

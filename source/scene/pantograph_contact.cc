@@ -1,3 +1,4 @@
+#include <pantocat/base/number_format.h>
 #include <pantocat/coupling/contact_constraint.h>
 #include <pantocat/scene/pantograph_contact.h>
 
@@ -29,13 +30,14 @@ void PantographContact::add_constraints(SceneAssembly& a) const
     {
       s.add_constraint(std::make_unique<ContactConstraint>(
           p.contact, WirePointMarker(a.space, s.block("contact wire").first, p.motion),
-          head, kind));
+          head, kind, p.data->contact_compliance));
       continue;
     }
     // A rigid wire at height 0: Delta_p = 0 - b(q_MBS) = -B q_MBS.
     for (double& b : head.value)
       b = -b;
-    s.add_constraint(std::make_unique<FixedConstraint>(p.contact, kind, head, 0.));
+    s.add_constraint(std::make_unique<FixedConstraint>(p.contact, kind, head, 0.,
+                                                       p.data->contact_compliance));
   }
 }
 
@@ -44,11 +46,13 @@ std::string PantographContact::describe(const SceneAssembly& a) const
   std::string line;
   for (const ScenePantograph& p : a.pantographs)
     if (p.model)
-      line +=
-          (line.empty() ? "" : "; ") + p.contact + ": " +
-          (p.data->contact == Constraint::Kind::bilateral ? "bilateral" : "unilateral") +
-          (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
-                                                    : " (32), " + a.load_shape());
+      line += (line.empty() ? "" : "; ") + p.contact + ": " +
+              (p.data->contact_compliance.stiffness > 0.
+                   ? "penalty, k_c = " +
+                         number_to_string(p.data->contact_compliance.stiffness) + " N/m"
+                   : p.data->contact_law()) +
+              (a.scene.contact_wire == WireModel::rigid ? " on a rigid wire"
+                                                        : " (32), " + a.load_shape());
   return line;
 }
 } // namespace pantocat

@@ -10,14 +10,44 @@ using dealii::Patterns::Selection;
 
 namespace
 {
-const char* contact_name(const Constraint::Kind kind)
-{
-  return kind == Constraint::Kind::bilateral ? "bilateral" : "unilateral";
-}
+const char* contact_laws = "unilateral|bilateral|penalty";
 
 Constraint::Kind contact_kind(const std::string& name)
 {
   return name == "bilateral" ? Constraint::Kind::bilateral : Constraint::Kind::unilateral;
+}
+
+/// Declares Contact stiffness and Contact damping (defaults of @p first).
+void declare_contact_law(dealii::ParameterHandler& prm, const PantographCase& first)
+{
+  const bool penalty = first.contact_compliance.stiffness > 0.;
+  prm.declare_entry("Contact stiffness",
+                    number_to_string(penalty ? first.contact_compliance.stiffness : 5e4),
+                    dealii::Patterns::Double(),
+                    "k_c [N/m] of Contact = penalty: lambda_p = k_c x penetration "
+                    "(+ damping), 0 when separated; > 0. 50 kN/m is typical.");
+  prm.declare_entry("Contact damping", number_to_string(first.contact_compliance.damping),
+                    dealii::Patterns::Double(),
+                    "c_c [N s/m] of Contact = penalty: lambda_p = max(0, -k_c g - c_c "
+                    "dg/dt) in contact; >= 0.");
+}
+
+/// The contact law of the current subsection's Contact entries.
+void parse_contact_law(dealii::ParameterHandler& prm, PantographCase& p)
+{
+  const std::string law = prm.get("Contact");
+  p.contact = contact_kind(law);
+  p.contact_compliance = {};
+  if (law != "penalty")
+    return;
+  const std::string where =
+      p.parameters.subsection == "Pantograph" ? "Scene/" : p.parameters.subsection + "/";
+  p.contact_compliance = {prm.get_double("Contact stiffness"),
+                          prm.get_double("Contact damping")};
+  require(p.contact_compliance.stiffness > 0., where + "Contact stiffness",
+          p.contact_compliance.stiffness, "must be > 0 with Contact = penalty");
+  require(p.contact_compliance.damping >= 0., where + "Contact damping",
+          p.contact_compliance.damping, "must be >= 0");
 }
 
 std::string pantograph_selection()
@@ -40,6 +70,13 @@ std::string PantographCase::model_parameter() const
 {
   return parameters.subsection == "Pantograph" ? "Scene/Pantograph"
                                                : parameters.subsection + "/Model";
+}
+
+std::string PantographCase::contact_law() const
+{
+  if (contact_compliance.stiffness > 0.)
+    return "penalty";
+  return contact == Constraint::Kind::bilateral ? "bilateral" : "unilateral";
 }
 
 bool SceneParameters::has_pantograph_body() const
@@ -87,9 +124,13 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.declare_entry("Clamp and dropper masses", "true", Bool(),
                     "Weights of the suspension clamps and half droppers as point loads, "
                     "Eq. (4) (needs Gravity and droppers).");
-  prm.declare_entry("Droppers", "unilateral", Selection("unilateral|bilateral|absent"),
-                    "unilateral: droppers may slacken (Sec. 5.3, the paper's model); "
-                    "bilateral: always taut, Eq. (4); absent: no droppers.");
+  prm.declare_entry("Droppers", "unilateral",
+                    Selection("unilateral|bilateral|elastic|absent"),
+                    "unilateral: inextensible droppers that may slacken (Sec. 5.3, the "
+                    "paper's model); bilateral: always taut, Eq. (4); elastic: "
+                    "tension-only springs of stiffness Catenary/Droppers/Stiffness and "
+                    "unstretched length l_j, no force when slack (a compliant unilateral "
+                    "constraint); absent: no droppers.");
   prm.declare_entry("Number of pantographs", "1", dealii::Patterns::Integer(1, 1000),
                     "Pantographs running on the catenary: pantograph 1 is Pantograph, "
                     "Contact and Moving force here with subsection Pantograph; "
@@ -112,9 +153,12 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "Pantograph/Mass-chain model, doc/pantographs.md); moving force: "
                     "a prescribed constant force (Moving force) moving with v_p; "
                     "absent: no pantograph.");
-  prm.declare_entry("Contact", "unilateral", Selection("unilateral|bilateral"),
-                    "Pantograph-wire contact (32): unilateral (contact may be lost) or "
-                    "bilateral (always in contact, a smooth case).");
+  prm.declare_entry("Contact", "unilateral", Selection(contact_laws),
+                    "Pantograph-wire contact (32): unilateral (a rigid contact that may "
+                    "be lost), bilateral (always in contact, a smooth case) or penalty "
+                    "(a compliant unilateral contact: force k_c x penetration, Contact "
+                    "stiffness and Contact damping).");
+  declare_contact_law(prm, PantographCase{});
   prm.declare_entry("Moving force", "100", dealii::Patterns::Double(),
                     "Magnitude [N] of the upward force for Pantograph = moving force, "
                     "distributed by the load shape of subsection Discretisation.");
@@ -142,9 +186,9 @@ void SceneParameters::declare_further_pantograph(dealii::ParameterHandler& prm,
   prm.enter_subsection(subsection);
   prm.declare_entry("Model", first.model, Selection(pantograph_selection()),
                     "As Scene/Pantograph, for this pantograph.");
-  prm.declare_entry("Contact", contact_name(first.contact),
-                    Selection("unilateral|bilateral"),
+  prm.declare_entry("Contact", first.contact_law(), Selection(contact_laws),
                     "As Scene/Contact, for this pantograph.");
+  declare_contact_law(prm, first);
   prm.declare_entry("Moving force", number_to_string(first.moving_force),
                     dealii::Patterns::Double(),
                     "As Scene/Moving force, for this pantograph.");
@@ -157,6 +201,22 @@ unsigned int SceneParameters::number_of_pantographs(dealii::ParameterHandler& pr
   const unsigned int n = prm.get_integer("Number of pantographs");
   prm.leave_subsection();
   return n;
+}
+
+std::string to_string(const DropperModel model)
+{
+  switch (model)
+  {
+  case DropperModel::unilateral:
+    return "unilateral";
+  case DropperModel::bilateral:
+    return "bilateral";
+  case DropperModel::elastic:
+    return "elastic";
+  case DropperModel::absent:
+    break;
+  }
+  return "absent";
 }
 
 void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -175,11 +235,12 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
   const std::string d = prm.get("Droppers");
   droppers = d == "absent"      ? DropperModel::absent
              : d == "bilateral" ? DropperModel::bilateral
+             : d == "elastic"   ? DropperModel::elastic
                                 : DropperModel::unilateral;
   pantographs.assign(prm.get_integer("Number of pantographs"), PantographCase{});
   pantograph_spacing = prm.get_double("Pantograph spacing");
   pantographs[0].model = prm.get("Pantograph");
-  pantographs[0].contact = contact_kind(prm.get("Contact"));
+  parse_contact_law(prm, pantographs[0]);
   pantographs[0].moving_force = prm.get_double("Moving force");
   const std::string s = prm.get("Initial state");
   initial_shape = s == "rest"        ? InitialShape::rest
@@ -196,7 +257,7 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
     p.parameters.parse_parameters(prm, subsection);
     prm.enter_subsection(subsection);
     p.model = prm.get("Model");
-    p.contact = contact_kind(prm.get("Contact"));
+    parse_contact_law(prm, p);
     p.moving_force = prm.get_double("Moving force");
     prm.leave_subsection();
     if (pantograph_spacing > 0.)
@@ -221,13 +282,18 @@ void SceneParameters::check_spacing(const double length, const double margin) co
   // furthest ahead (PantographParameters::check).
   const PantographParameters& first = pantographs[0].parameters;
   const double n = pantographs.size();
+  const double last = first.initial_position - (n - 1.) * pantograph_spacing;
+  // A point load (margin 0) may start on the anchor x = 0; a smoothed one
+  // must lie wholly inside.
   const double largest = (first.initial_position - margin) / (n - 1.);
-  require(first.initial_position - (n - 1.) * pantograph_spacing > margin,
-          "Scene/Pantograph spacing", pantograph_spacing,
-          "puts pantograph " + std::to_string(pantographs.size()) + " at x_p(0) = " +
-              number_to_string(first.initial_position - (n - 1.) * pantograph_spacing) +
-              " m, outside the wires' domain (" + number_to_string(margin) + ", " +
-              number_to_string(length - margin) + ") m; allowed: 0 <= s < " +
+  require(margin == 0. ? last >= 0. : last > margin, "Scene/Pantograph spacing",
+          pantograph_spacing,
+          "puts pantograph " + std::to_string(pantographs.size()) +
+              " at x_p(0) = " + number_to_string(last) + " m, outside the section " +
+              (margin == 0. ? "[0, " + number_to_string(length) + "]"
+                            : "(" + number_to_string(margin) + ", " +
+                                  number_to_string(length - margin) + ")") +
+              " m; allowed: 0 <= s " + (margin == 0. ? "<= " : "< ") +
               number_to_string(largest) + " m with Pantograph/Initial position = " +
               number_to_string(first.initial_position) + " m");
 }
@@ -250,8 +316,7 @@ void SceneParameters::check() const
             "Contact wire = elastic");
   require(!(carrier == WireModel::rigid && contact_wire == WireModel::rigid &&
             droppers != DropperModel::absent),
-          "Scene/Droppers",
-          droppers == DropperModel::bilateral ? "bilateral" : "unilateral",
+          "Scene/Droppers", to_string(droppers),
           "droppers between a rigid carrier and a rigid contact wire connect nothing; "
           "allowed: absent");
   if (initial_shape != InitialShape::static_equilibrium)

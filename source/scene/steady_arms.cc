@@ -18,7 +18,7 @@ bool SteadyArms::enabled(const SceneParameters& scene,
 void SteadyArms::add_terms(SceneAssembly& a) const
 {
   const CatenaryParameters& c = a.catenary;
-  const std::vector<double> x = c.interior_supports();
+  const std::vector<double> x = c.steady_arm_positions();
   for (unsigned int k = 0; k < x.size(); ++k)
   {
     a.add_point_spring(Wire::contact_wire, x[k], c.steady_arm_stiffness);
@@ -34,7 +34,7 @@ void SteadyArms::add_terms(SceneAssembly& a) const
 std::string SteadyArms::describe(const SceneAssembly& a) const
 {
   const CatenaryParameters& c = a.catenary;
-  return std::to_string(c.interior_supports().size()) +
+  return std::to_string(c.steady_arm_positions().size()) +
          " steady arms: k = " + number_to_string(c.steady_arm_stiffness) +
          " N/m, m = " + number_to_string(c.steady_arm_mass) + " kg, preloaded";
 }

@@ -59,18 +59,14 @@ HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameter
   HeldCatenary h{std::move(built.catenary_only), {}, {}, {}};
   if (heights)
     remove_constraints(h.system, built.dropper_indices);
+  const std::vector<double> arms = c.steady_arm_positions();
+  for (unsigned int k = 0; k < arms.size() && has_steady_arms(scene, c); ++k)
+    h.steady_arms.push_back(hold(h.system, space, Wire::contact_wire, arms[k], 0.,
+                                 "steady arm " + std::to_string(k + 1)));
   const std::vector<double> supports = c.interior_supports();
-  const bool steady_arms = has_steady_arms(scene, c);
-  const bool carrier_springs = has_carrier_springs(scene, c);
-  for (unsigned int k = 0; k < supports.size(); ++k)
-  {
-    if (steady_arms)
-      h.steady_arms.push_back(hold(h.system, space, Wire::contact_wire, supports[k], 0.,
-                                   "steady arm " + std::to_string(k + 1)));
-    if (carrier_springs)
-      h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
-                                       "carrier support " + std::to_string(k + 1)));
-  }
+  for (unsigned int k = 0; k < supports.size() && has_carrier_springs(scene, c); ++k)
+    h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
+                                     "carrier support " + std::to_string(k + 1)));
   if (heights)
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
     {
@@ -139,7 +135,12 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
       const double x = c.dropper_positions[j];
       const double carrier =
           c.support_height + wire_point_row(space, h.system, Wire::carrier, x).dot(s.q);
-      const double length = carrier - c.presag_height(c.dropper_spans[j], x);
+      // An elastic dropper stretches by F_j / k_d under its tension F_j: its
+      // unstretched length is the distance less the stretch.
+      const double stretch = scene.droppers == DropperModel::elastic
+                                 ? r.dropper_forces[j] / c.dropper_stiffness
+                                 : 0.;
+      const double length = carrier - c.presag_height(c.dropper_spans[j], x) - stretch;
       require(length > 0., "Catenary/Droppers/Pre-sag", c.presag,
               "the design gives dropper " + std::to_string(j + 1) + " at x = " +
                   number_to_string(x) + " m the length " + number_to_string(length) +

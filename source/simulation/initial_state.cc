@@ -93,7 +93,11 @@ DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
     // 2. Head position, velocity and acceleration from g = 0, dg/dt = 0,
     //    d2g/dt2 = 0 with the catenary at rest: B x_MBS = (wire part of the rows) q + z.
     coupled.constraints[c.constraint]->evaluate(0., rows);
-    const double head_position = rows.G.dot(s.q) + rows.z; // pantograph entries still 0
+    // A penalty contact carries lambda_p(0) as the penetration -g = lambda_p(0) / k_c.
+    const Compliance& law = coupled.constraints[c.constraint]->compliance();
+    const double penetration = law.stiffness > 0. ? c.force / law.stiffness : 0.;
+    const double head_position =
+        rows.G.dot(s.q) + rows.z + penetration; // pantograph entries still 0
     const double head_velocity = rows.G_t.dot(s.q) + rows.z_t;
     const double head_acceleration = rows.G_tt.dot(s.q) + rows.z_tt;
 

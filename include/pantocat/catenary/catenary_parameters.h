@@ -92,6 +92,9 @@ struct CatenaryParameters
   double carrier_support_stiffness = 5e5; ///< [N/m], CarrierSupport::spring
   double steady_arm_stiffness = 0.;       ///< [N/m]; 0: no steady arms
   double steady_arm_mass = 0.;            ///< [kg], lumped on the contact wire
+  /// Support numbers k (0 = section start .. n = section end) with a steady
+  /// arm, increasing, all in 1..n-1; empty: every support between spans.
+  std::vector<unsigned int> steady_arm_supports;
   /**
    * Static forces [N] (upward > 0) of the springs at the interior supports in
    * the designed static state: carrier supports (CarrierSupport::spring) and
@@ -117,6 +120,8 @@ struct CatenaryParameters
   std::vector<double> support_positions() const;
   /// The supports between spans, where steady arms and carrier supports sit.
   std::vector<double> interior_supports() const;
+  /// Positions of the steady arms (Supports/Steady arm supports), increasing.
+  std::vector<double> steady_arm_positions() const;
 
   /// Target height of the static contact wire at @p x in span @p k (pre-sag parabola).
   double presag_height(unsigned int k, double x) const;
@@ -133,6 +138,8 @@ struct CatenaryParameters
   void check() const;
 
 private:
+  /// Steady arms only between spans, in increasing order (section ends are anchors).
+  void check_steady_arm_supports() const;
   /// The section's droppers from the per-span @p positions and the @p lengths given.
   void place_droppers(const std::vector<std::vector<double>>& positions,
                       const std::vector<double>& lengths);

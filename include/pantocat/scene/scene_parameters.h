@@ -21,8 +21,12 @@ enum class DropperModel
 {
   unilateral, ///< may slacken: Delta_d >= 0, Sec. 5.3
   bilateral,  ///< always taut: Delta_d = 0, Eq. (4)
+  elastic,    ///< tension-only spring: force k_d max(-Delta_d, 0), L0 = l_j (issue 15)
   absent
 };
+
+/// The Scene/Droppers value that selects @p model.
+std::string to_string(DropperModel model);
 
 /**
  * One pantograph of a scene: its model, how it meets the contact wire, and its
@@ -36,6 +40,9 @@ struct PantographCase
   /// force" (a prescribed constant force, no body) or "absent".
   std::string model = "two-mass";
   Constraint::Kind contact = Constraint::Kind::unilateral;
+  /// Contact = penalty: the compliant unilateral law lambda_p = max(0, -k_c g -
+  /// c_c dg/dt) (stiffness > 0); rigid (stiffness 0) otherwise.
+  Compliance contact_compliance;
   double moving_force = 100.; ///< [N], upwards, for model = moving force
   PantographParameters parameters;
 
@@ -45,6 +52,8 @@ struct PantographCase
   bool is_absent() const { return model == "absent"; }
   /// "Scene/Pantograph" for pantograph 1, "Pantograph k/Model" for the others.
   std::string model_parameter() const;
+  /// The Scene/Contact value: unilateral, bilateral or penalty.
+  std::string contact_law() const;
 };
 
 /// How the run starts.

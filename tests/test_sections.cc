@@ -1,0 +1,206 @@
+// Tension sections as shipped (issue 15): the S55 section of the data sheet
+// and the paper's Fig. 3 span, with elastic droppers, steady arms, the
+// penalty contact and the wave-speed check (doc/catenaries.md).
+#include <pantocat/base/input_error.h>
+#include <pantocat/catenary/wave_speeds.h>
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/run_statistics.h>
+
+#include "support/case_files.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+
+using namespace pantocat;
+
+namespace
+{
+/// A shipped case; prm includes are relative to the working directory, the
+/// repository root, as for a user.
+ProgramParameters shipped(const std::string& name,
+                          const std::vector<std::string>& overrides = {})
+{
+  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
+  return read_case(source_file("prm/catenary/" + name), overrides);
+}
+
+struct Recorder : SimulationObserver
+{
+  void observe(const TimePoint& p) override { points.push_back(p); }
+  std::vector<TimePoint> points;
+};
+
+/// Smallest force of any unilateral constraint (droppers, contacts) over a run.
+double smallest_unilateral_force(const CaseRunner& runner,
+                                 const std::vector<TimePoint>& points)
+{
+  double smallest = INFINITY;
+  for (const TimePoint& p : points)
+    for (unsigned int i = 0; i < p.lambda.size(); ++i)
+      if (runner.system().constraints[i]->is_unilateral())
+        smallest = std::min(smallest, p.lambda[i]);
+  return smallest;
+}
+} // namespace
+
+TEST(Sections, S55IsDesignedOntoItsPreSagAndIsSymmetric)
+{
+  // section-s55.prm as shipped (FEM, Hermite wires, N+1 = 2200): 10 spans,
+  // 90 elastic droppers, 9 steady arms. The static catenary with the designed
+  // lengths lies on the parabola z = -4 s (x/l)(1 - x/l), s = 0.055 m, at all
+  // 90 droppers and at 0 at the steady arms (the design is exact up to
+  // round-off: 1e-9 m; the issue asks 0.1 mm). The section and the grid are
+  // symmetric about x = 275 m, so dropper j of span 5 and its mirror in span
+  // 6 have the same length (round-off: 1e-9 m).
+  const CaseRunner runner(shipped("section-s55.prm").make_case());
+  const CatenaryParameters& c = runner.case_data().catenary;
+  ASSERT_EQ(c.number_of_spans(), 10u);
+  ASSERT_EQ(c.n_droppers(), 90u);
+  ASSERT_EQ(c.steady_arm_preloads.size(), 9u);
+  const StaticEquilibrium s = runner.static_catenary();
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+  {
+    const double x = c.dropper_positions[j];
+    const double l = 55., xi = (x - 55. * c.dropper_spans[j]) / l;
+    EXPECT_NEAR(runner.contact_wire_displacement(s.q, x), -4. * 0.055 * xi * (1. - xi),
+                1e-9)
+        << "dropper " << j + 1;
+    EXPECT_GT(c.dropper_lengths[j], 0.);
+    EXPECT_LT(c.dropper_lengths[j], 1.2);
+  }
+  for (const double x : c.steady_arm_positions())
+    EXPECT_NEAR(runner.contact_wire_displacement(s.q, x), 0., 1e-9) << x;
+  for (unsigned int j = 0; j < 9; ++j)
+    EXPECT_NEAR(c.dropper_lengths[36 + j], c.dropper_lengths[53 - j], 1e-9) << j;
+}
+
+TEST(Sections, S55StartsAtRestWithThePenaltyContactPressedIn)
+{
+  // The data sheet's start: static equilibrium with the pantograph pressed on
+  // the wire at x_p = 0 (the anchor) by F0 = 169 N through the penalty contact
+  // k_c = 50 kN/m: the gap is -F0 / k_c = -3.38 mm (round-off, 1e-12 m), the
+  // force after the first step is still ~F0. Then 5 m at 320 km/h (FDM, N+1 = 1100):
+  // no negative unilateral force (elastic droppers, penalty contact) reaches
+  // a time point, and the contact holds (the quasi-static force is ~F0).
+  const ProgramParameters p =
+      shipped("section-s55.prm",
+              {"Discretisation/Method=fdm", "Discretisation/Number of intervals=1100",
+               "Pantograph/Final position=5", "Statistics/Window="});
+  CaseRunner runner(p.make_case());
+  const SimulationLayout& layout = runner.layout();
+  const unsigned int contact = layout.pantographs[0].contact;
+  const TimePoint first = runner.time_point(runner.initial_state());
+  EXPECT_NEAR(first.lambda[contact], 169., 1e-9);
+  EXPECT_NEAR(first.gap[contact], -169. / 5e4, 1e-12);
+
+  Recorder record;
+  RunStatistics stats;
+  runner.run({&record, &stats});
+  // The head starts in the wire by F0 / k_c: the first steps carry ~F0 (a
+  // start at g = 0 would drop to 0 N); measured 169 N after one
+  // step (8 digits: the half-explicit step takes the force law at the step's
+  // start), asserted within 1 N.
+  ASSERT_GT(record.points.size(), 2u);
+  EXPECT_NEAR(record.points[1].lambda[contact], 169., 1.);
+  std::cout << std::setprecision(8)
+            << "  lambda_p after one step: " << record.points[1].lambda[contact]
+            << " N\n";
+  EXPECT_GE(smallest_unilateral_force(runner, record.points), 0.);
+  EXPECT_TRUE(stats.contact_loss_intervals().empty());
+}
+
+TEST(Sections, PaperFig3KeepsContactAt32MetresPerSecond)
+{
+  // The issue's requirement: the designed F3 span at 32 m/s does not lose
+  // contact (over the whole run, 2 -> 63 m), with the paper's inextensible
+  // droppers and with elastic ones (k_d = 1e5 N/m); no negative unilateral
+  // force in any time point.
+  for (const std::string droppers : {"unilateral", "elastic"})
+  {
+    CaseRunner runner(
+        shipped("paper-fig3.prm", {"Scene/Droppers=" + droppers}).make_case());
+    Recorder record;
+    RunStatistics stats;
+    runner.run({&record, &stats});
+    EXPECT_TRUE(stats.contact_loss_intervals().empty()) << droppers;
+    EXPECT_GT(stats.contact_force_min(), 5.) << droppers;
+    EXPECT_GE(smallest_unilateral_force(runner, record.points), 0.) << droppers;
+  }
+}
+
+TEST(Sections, ElasticDroppersAgreeAcrossIntegrators)
+{
+  // F3 with elastic droppers, 2 -> 33 m at 32 m/s: the half-explicit,
+  // BDF-2 and generalized-alpha methods integrate the same compliant
+  // unilateral droppers. Measured over the whole span: std 19.84, 19.81,
+  // 19.83 N, mean 70.186, 70.185, 70.186 N (IDA, by hand: 19.84 N, 70.186 N).
+  // Asserted against the half-explicit run: mean to 0.05 %, std to 1 % (the
+  // methods' O(dt^2) differences at dt = 5e-5 s), the same no-loss.
+  std::vector<double> mean, std;
+  for (const std::string integrator : {"half-explicit", "bdf2", "generalized-alpha"})
+  {
+    CaseRunner runner(shipped("paper-fig3.prm",
+                              {"Scene/Droppers=elastic", "Pantograph/Final position=33",
+                               "Time integration/Integrator=" + integrator})
+                          .make_case());
+    RunStatistics stats;
+    runner.run({&stats});
+    EXPECT_TRUE(stats.contact_loss_intervals().empty()) << integrator;
+    mean.push_back(stats.contact_force_mean());
+    std.push_back(stats.contact_force_std());
+  }
+  for (unsigned int k = 1; k < mean.size(); ++k)
+  {
+    EXPECT_NEAR(mean[k], mean[0], 5e-4 * mean[0]) << k;
+    EXPECT_NEAR(std[k], std[0], 1e-2 * std[0]) << k;
+  }
+}
+
+TEST(Sections, WaveSpeedsAndTheDesignRule)
+{
+  // c = sqrt(T / rho A): S55's contact wire sqrt(22000 / 1.35) = 127.66 m/s,
+  // carrier sqrt(16000 / 1.08) = 121.72 m/s. At 320 km/h v/c = 0.6963 for the
+  // contact wire (below EN 50119's 0.7, no warning), Doppler factor
+  // (c - v)/(c + v) = 0.17903; at 330 km/h v/c = 0.7181 > 0.7: the warning.
+  const CatenaryParameters c = shipped("section-s55.prm").catenary;
+  const CatenaryWaveSpeeds w = wave_speeds(c, 320. / 3.6);
+  EXPECT_NEAR(w.contact_wire.wave_speed, std::sqrt(22000. / 1.35), 1e-12);
+  EXPECT_NEAR(w.carrier.wave_speed, std::sqrt(16000. / 1.08), 1e-12);
+  EXPECT_NEAR(w.contact_wire.speed_ratio, 320. / 3.6 / std::sqrt(22000. / 1.35), 1e-14);
+  EXPECT_NEAR(w.contact_wire.doppler_factor, 0.17903, 1e-5);
+  EXPECT_FALSE(w.exceeds_design_limit());
+  std::ostringstream quiet, warned;
+  print_wave_speeds(quiet, w);
+  print_wave_speeds(warned, wave_speeds(c, 330. / 3.6));
+  EXPECT_EQ(quiet.str().find("warning"), std::string::npos);
+  EXPECT_NE(warned.str().find("warning: v = 0.7181 c of the contact wire exceeds the "
+                              "design limit 0.7 c of EN 50119"),
+            std::string::npos)
+      << warned.str();
+}
+
+TEST(Sections, APantographSpacingOutsideTheSectionIsRefused)
+{
+  // Two S55 pantographs 200 m apart need the leader at x >= 200 m: from 150 m
+  // the second would start at -50 m, outside [0, 550] m.
+  try
+  {
+    shipped("section-s55-two-pantographs.prm", {"Pantograph/Initial position=150"})
+        .make_case();
+    FAIL();
+  }
+  catch (const InputError& e)
+  {
+    EXPECT_NE(
+        std::string(e.what()).find("Scene/Pantograph spacing = 200: puts pantograph 2 "
+                                   "at x_p(0) = -50 m, outside the section [0, 550] "
+                                   "m; allowed: 0 <= s <= 150 m"),
+        std::string::npos)
+        << e.what();
+  }
+}
