@@ -1,6 +1,7 @@
 // Static problems: string and tensioned beam under point and uniform loads
 // against closed forms; the paper's initial catenary (Fig. 5) with droppers.
 #include "support/catenary_system_builder.h"
+#include "support/closed_forms.h"
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
 
@@ -45,20 +46,6 @@ struct SingleWire
   dealii::Vector<double> q;
   Wire wire;
 };
-
-/// Tensioned simply supported beam, EI w'''' - T w'' = P delta(x - a):
-/// w = -M/T + v with M = P((x-a)_+ - x(L-a)/L) and
-/// v = -(P/T) sinh(k x<) sinh(k(L - x>)) / (k sinh(kL)), k^2 = T/EI.
-double beam_point_load(double x, double a, double P, double L, double T, double EI)
-{
-  const double k = std::sqrt(T / EI);
-  const double M = P * (std::max(0., x - a) - x * (L - a) / L);
-  const double lo = std::min(x, a), hi = std::max(x, a);
-  // sinh(k lo) sinh(k (L - hi)) / sinh(k L), evaluated without overflow.
-  const double ratio = 0.5 * (std::exp(k * (lo - hi)) - std::exp(-k * (lo + hi))) *
-                       (1. - std::exp(-2. * k * (L - hi))) / (1. - std::exp(-2. * k * L));
-  return -M / T - P / T * ratio / k;
-}
 
 /// EI w'''' - T w'' = -q0 with simple supports (closed form).
 double beam_uniform_load(double x, double q0, double L, double T, double EI)

@@ -37,6 +37,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
   StudyParameters::declare_parameters(prm);
   CheckpointParameters::declare_parameters(prm);
   GuardParameters::declare_parameters(prm);
+  ElasticityParameters::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -64,6 +65,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   study.parse_parameters(prm);
   checkpoint.parse_parameters(prm);
   guards.parse_parameters(prm);
+  elasticity.parse_parameters(prm);
   fingerprint = critical_parameters(prm);
 
   make_case().check();
@@ -77,6 +79,11 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
             "Scene/Pantograph", scene.pantographs[0].model,
             "studies measure the contact force lambda_p on the elastic wire: allowed "
             "two-mass | three-mass | mass-chain with Contact wire = elastic");
+  elasticity.check(catenary.number_of_spans());
+  require(!elasticity.enabled() || scene.droppers != DropperModel::bilateral,
+          "Elasticity/Span", elasticity.span,
+          "the static check lets the droppers slacken, which Scene/Droppers = "
+          "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral");
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,

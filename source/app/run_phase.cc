@@ -16,7 +16,9 @@ const std::vector<std::string>& result_files()
       "time_series.gp",       "contact_force_statistics.gp",
       "solution.pvd",         "checkpoint.bin",
       "checkpoint.bin.tmp",   "static_profile.csv",
-      "static_profile.vtu",   "dropper_forces.csv",   "dropper_lengths.csv",
+      "static_profile.vtu",   "dropper_forces.csv",
+      "dropper_lengths.csv",  "elasticity.csv",
+      "elasticity.png",       "elasticity.gp",
       "eigenfrequencies.csv", "convergence.txt",
       "convergence.csv",      "work_precision.csv"};
   return files;

@@ -1,20 +1,26 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/atomic_file.h>
+#include <pantocat/io/elasticity_output.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/wire_output.h>
 #include <pantocat/simulation/case_runner.h>
 
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace pantocat
 {
 namespace
 {
-/// summary.json of the static mode: the problem, w_w under each pantograph, the droppers.
+/**
+ * summary.json of the static mode: the problem, w_w under each pantograph, the
+ * droppers, and the static check if there is one.
+ */
 void write_static_summary(const std::string& file, const ProgramParameters& p,
-                          const CaseRunner& runner, const StaticEquilibrium& s)
+                          const CaseRunner& runner, const StaticEquilibrium& s,
+                          const std::optional<StaticElasticity>& elasticity)
 {
   std::ostringstream text;
   JsonWriter json(text);
@@ -44,6 +50,8 @@ void write_static_summary(const std::string& file, const ProgramParameters& p,
         .value("active", static_cast<bool>(s.active[droppers[j]]))
         .end_object();
   json.end_array();
+  if (elasticity)
+    write_elasticity_summary(json, *elasticity);
   json.end_object();
   write_file_atomically(file, text.str());
 }
@@ -61,6 +69,53 @@ void write_dropper_lengths(const std::string& file, const CatenaryParameters& c)
   }
   write_file_atomically(file, csv.str());
 }
+
+/// The droppers' positions of span @p span (1-based) of @p c.
+std::vector<double> droppers_of_span(const CatenaryParameters& c, const unsigned int span)
+{
+  std::vector<double> x;
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+    if (c.dropper_spans[j] + 1 == span)
+      x.push_back(c.dropper_positions[j]);
+  return x;
+}
+
+/**
+ * elasticity.csv, elasticity.png (if plots are asked for) and the figures of
+ * each force on screen; adds the names of the files written to @p written.
+ */
+void write_elasticity(const ProgramParameters& p, const StaticElasticity& e,
+                      std::ostream& out, std::vector<std::string>& written)
+{
+  const std::string& dir = p.output.directory;
+  write_elasticity_csv(dir + "/elasticity.csv", e);
+  written.push_back("elasticity.csv");
+  if (p.output.plots)
+  {
+    const std::string title = std::string(to_string(p.discretisation.method)) +
+                              ", N+1 = " + std::to_string(p.discretisation.n_intervals);
+    if (plot_elasticity(dir, e, droppers_of_span(p.catenary, e.span), title))
+      written.push_back("elasticity.png");
+    written.push_back("elasticity.gp");
+  }
+  out << "  static elasticity of span " << e.span << " (" << e.x.size()
+      << " points from x = " << e.x.front() << " to " << e.x.back()
+      << " m; the catenary alone, droppers free to slacken): " << e.solves << " solves, "
+      << e.active_set_iterations << " active-set iterations, " << std::setprecision(3)
+      << e.seconds << " s\n";
+  for (unsigned int f = 0; f < e.forces.size(); ++f)
+  {
+    const ElasticityFigures g = e.figures(f);
+    unsigned int slack_points = 0;
+    for (const auto& slack : e.slackened[f])
+      slack_points += slack.empty() ? 0 : 1;
+    out << "    F = " << g.force << " N: e_min = " << std::setprecision(4) << g.minimum
+        << ", e_max = " << g.maximum << ", mean = " << g.mean
+        << " mm/N, uniformity (e_max - e_min)/(e_max + e_min) = " << g.uniformity
+        << "; droppers slacken at " << slack_points << " of " << e.x.size()
+        << " points\n";
+  }
+}
 } // namespace
 
 void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
@@ -73,6 +128,9 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
   const CaseRunner runner(p.make_case());
   phase.begin("static solve"); // clears the results of an earlier run
   const StaticEquilibrium s = runner.static_catenary();
+  std::optional<StaticElasticity> elasticity;
+  if (p.elasticity.enabled())
+    elasticity = runner.static_elasticity(p.elasticity);
   phase.begin("output");
   const SemiDiscreteSystem& system = runner.system();
 
@@ -107,17 +165,22 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
         << (s.active[i] ? "" : " (slack)") << '\n';
   }
   write_file_atomically(dir + "/dropper_forces.csv", csv.str());
-  std::string lengths_file;
+  std::vector<std::string> written{"static_profile.csv", "static_profile.vtu",
+                                   "dropper_forces.csv"};
   if (runner.design() && p.catenary.design == DropperDesign::designed)
   {
     write_dropper_lengths(dir + "/dropper_lengths.csv", runner.case_data().catenary);
-    lengths_file = ", dropper_lengths.csv";
+    written.push_back("dropper_lengths.csv");
     out << "  dropper lengths designed for a pre-sag of " << p.catenary.presag << " m in "
         << runner.design()->iterations << " iterations (dropper_lengths.csv)\n";
   }
-  write_static_summary(dir + "/summary.json", p, runner, s);
-  out << "  wrote static_profile.csv, static_profile.vtu, dropper_forces.csv, "
-         "summary.json to "
-      << dir << '\n';
+  if (elasticity)
+    write_elasticity(p, *elasticity, out, written);
+  write_static_summary(dir + "/summary.json", p, runner, s, elasticity);
+  written.push_back("summary.json");
+  out << "  wrote ";
+  for (unsigned int i = 0; i < written.size(); ++i)
+    out << (i > 0 ? ", " : "") << written[i];
+  out << " to " << dir << '\n';
 }
 } // namespace pantocat

@@ -148,6 +148,13 @@ StaticEquilibrium CaseRunner::static_catenary() const
                                    initial_contacts(scene->built));
 }
 
+StaticElasticity
+CaseRunner::static_elasticity(const ElasticityParameters& parameters) const
+{
+  return pantocat::static_elasticity(scene->built.catenary_only, *space,
+                                     scene->built.dropper_indices, parameters);
+}
+
 double CaseRunner::contact_wire_displacement(const dealii::Vector<double>& q,
                                              const double x) const
 {

@@ -52,7 +52,7 @@ Integer read_little_endian(const std::string& bytes, const std::size_t at,
 
 bool is_critical(const std::string& name)
 {
-  for (const char* prefix : {"Checkpoint/", "Study/", "Eigenfrequencies/"})
+  for (const char* prefix : {"Checkpoint/", "Study/", "Eigenfrequencies/", "Elasticity/"})
     if (name.rfind(prefix, 0) == 0)
       return false;
   for (const char* entry : {"Output/Output directory", "Output/Verbosity", "Output/Plots",

@@ -2,6 +2,8 @@
 
 #include <pantocat/system/semi_discrete_system.h>
 
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/vector.h>
 
 #include <vector>
@@ -20,8 +22,9 @@ struct StaticEquilibrium
 };
 
 /**
- * Solves K q = f + f_extra + G^T lambda with the constraints of @p system at
- * time @p t: bilateral ones as g = 0, unilateral ones with the complementarity
+ * The static problem K q = f + f_extra + G^T lambda of a system with the
+ * constraints of @p system at time @p t, prepared once for many loads:
+ * bilateral constraints as g = 0, unilateral ones with the complementarity
  * conditions (5), (6) (an active-set iteration: drop lambda < 0, add g < 0).
  *
  * Compliant constraints (Constraint::is_compliant) are springs: an engaged
@@ -30,10 +33,59 @@ struct StaticEquilibrium
  * force is positive, iterated like the active set (a taut elastic dropper
  * pulls, a slack one does not).
  *
- * K is factorised once by a sparse direct solver (UMFPACK); the few
- * multipliers follow from the small dense Schur complement G K^{-1} G^T.
- * Throws SimulationError if K or the Schur complement is singular or the
- * active set cycles.
+ * The constructor factorises K once by a sparse direct solver (UMFPACK) and
+ * forms X = K^-1 G^T and the Schur complement S = G K^-1 G^T of every
+ * constraint (one back-substitution per constraint); a solve() is then one
+ * back-substitution for its load plus, per active-set iteration, a small dense
+ * solve with the rows and columns of S of the active constraints. K, G and z
+ * do not depend on the load, so any number of loads (the static elasticity:
+ * one per load point and force) share this work.
+ *
+ * Keeps a reference to @p system, which must outlive it.
+ */
+class StaticEquilibriumSolver
+{
+public:
+  /// Throws SimulationError if K is singular.
+  explicit StaticEquilibriumSolver(const SemiDiscreteSystem& system, double t = 0.);
+
+  /**
+   * The equilibrium under f + @p extra_load, the active set iterated from
+   * all constraints active. Throws SimulationError if the active constraints
+   * are linearly dependent or the active set cycles.
+   */
+  StaticEquilibrium solve(const dealii::Vector<double>& extra_load) const;
+
+  /**
+   * As solve(), with the active-set iteration started from @p initial_active
+   * (one flag per constraint), e.g. the active set of a neighbouring load:
+   * the solution is the same, usually after fewer iterations.
+   */
+  StaticEquilibrium solve(const dealii::Vector<double>& extra_load,
+                          const std::vector<bool>& initial_active) const;
+
+  unsigned int n_constraints() const { return states.size(); }
+
+private:
+  /// Solves for the multipliers of the constraints in @p active; fills q and lambda.
+  void solve_with_active_set(const std::vector<bool>& active,
+                             const dealii::Vector<double>& q_free,
+                             StaticEquilibrium& out) const;
+  /// The constraint to switch next (Sec. 5.3), or -1 if @p s is the solution.
+  int constraint_to_switch(const StaticEquilibrium& s) const;
+
+  const SemiDiscreteSystem& system;
+  dealii::SparseDirectUMFPACK K_inverse;
+  std::vector<ConstraintState> states;   ///< G and z of every constraint at t
+  std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i
+  dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
+};
+
+/**
+ * The equilibrium of @p system under f + @p extra_load at time @p t, for a
+ * single load: StaticEquilibriumSolver(system, t).solve(extra_load). Throws
+ * SimulationError if K or the Schur complement is singular or the active set
+ * cycles.
  */
 StaticEquilibrium solve_static_equilibrium(const SemiDiscreteSystem& system,
                                            const dealii::Vector<double>& extra_load,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/analysis/elasticity_parameters.h>
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
@@ -43,6 +44,7 @@ struct ProgramParameters
   StudyParameters study;
   CheckpointParameters checkpoint;
   GuardParameters guards;
+  ElasticityParameters elasticity; ///< the static check (Mode = static)
   /// The parameters a checkpoint of this run must agree with (critical_parameters()).
   ParameterFingerprint fingerprint;
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/analysis/static_elasticity.h>
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/simulation/case.h>
 #include <pantocat/simulation/catenary_design.h>
@@ -88,6 +89,14 @@ public:
    * system() restricted to the catenary.
    */
   StaticEquilibrium static_catenary() const;
+
+  /**
+   * The static check of @p parameters (enabled(), checked): the elasticity
+   * of the catenary alone, without the pantographs and their loads
+   * (static_elasticity() on the catenary's system, the designed one if the
+   * section needed a design).
+   */
+  StaticElasticity static_elasticity(const ElasticityParameters& parameters) const;
 
   /**
    * The case as it runs; its time step is time_step(), which may be shorter
