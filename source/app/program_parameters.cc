@@ -83,7 +83,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   require(!elasticity.enabled() || scene.droppers != DropperModel::bilateral,
           "Elasticity/Span", elasticity.span,
           "the static check lets the droppers slacken, which Scene/Droppers = "
-          "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral");
+          "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral or elastic");
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,
