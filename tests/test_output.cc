@@ -61,45 +61,60 @@ std::pair<double, double> component(const std::vector<double>& y, const double f
 } // namespace
 
 // A 4 s signal sampled at 2 kHz; amplitudes measured over the middle 2 s,
-// where the start-up transient of each pass (decay rate 2 pi f_c/sqrt(2),
-// e^-44 after 0.5 s from either end of the padded signal) has gone: the
-// measured gain must equal the analytic |H(f)|^2 of the bilinear-transform
-// Butterworth to 1e-6 (relative; round-off and the transient are far below).
+// where the start-up transient of each pass (slowest decay rate 2 pi f_c
+// sin(pi/(2n)): 89/s for n = 2, 48/s for n = 4, so below e^-24 after 0.5 s
+// from either end of the padded signal) has gone: the measured gain must
+// equal the analytic |H(f)|^2 = 1/(1 + r^(2n)) of the bilinear-transform
+// Butterworth to 1e-6 (relative; round-off and the transient are far below),
+// for the second order and the fourth (S55's).
 TEST(ButterworthLowPass, ForwardBackwardGainIsTheSquaredAnalyticResponse)
 {
-  const ButterworthLowPass filter(fc, fs);
-  // Pre-warped design: exactly -3.01 dB per pass at the cut-off, -6.02 dB for two.
-  EXPECT_NEAR(filter.gain(fc), 1. / std::sqrt(2.), 1e-15);
-  for (const double f : {2., 10., 20., 40., 100.})
+  for (const unsigned int order : {2u, 4u})
   {
-    const auto y = filter.filter_forward_backward(sine(f, 8000));
-    const auto [amplitude, phase] = component(y, f, 2000, 4000);
-    const double expected = std::pow(filter.gain(f), 2);
-    EXPECT_NEAR(amplitude / expected, 1., 1e-6) << "f = " << f << " Hz";
-    // Zero phase: the forward and backward phase shifts cancel.
-    EXPECT_NEAR(phase, 0., 1e-6) << "f = " << f << " Hz";
+    const ButterworthLowPass filter(fc, fs, order);
+    // Pre-warped design: exactly -3.01 dB per pass at the cut-off, -6.02 dB for two.
+    EXPECT_NEAR(filter.gain(fc), 1. / std::sqrt(2.), 1e-15);
+    for (const double f : {2., 10., 20., 40., 60., 100.})
+    {
+      const auto y = filter.filter_forward_backward(sine(f, 8000));
+      const auto [amplitude, phase] = component(y, f, 2000, 4000);
+      const double expected = std::pow(filter.gain(f), 2);
+      EXPECT_NEAR(amplitude / expected, 1., 1e-6) << "n = " << order << ", f = " << f;
+      // Zero phase: the forward and backward phase shifts cancel.
+      EXPECT_NEAR(phase, 0., 1e-6) << "n = " << order << ", f = " << f << " Hz";
+    }
+    // The figures the field quotes: 0.5 (-6.02 dB) at f_c, passband at 2 Hz
+    // within 1e-4 of 1.
+    EXPECT_NEAR(
+        component(filter.filter_forward_backward(sine(fc, 8000)), fc, 2000, 4000).first,
+        0.5, 1e-6);
+    EXPECT_GT(std::pow(filter.gain(2.), 2), 1. - 1e-4);
   }
-  // The figures the field quotes: 0.5 (-6.02 dB) at f_c, passband at 2 Hz
-  // within 1e-4 of 1, stopband at 100 Hz (5 f_c) below 2e-3 (about -55 dB).
-  EXPECT_NEAR(
-      component(filter.filter_forward_backward(sine(fc, 8000)), fc, 2000, 4000).first,
-      0.5, 1e-6);
-  EXPECT_GT(std::pow(filter.gain(2.), 2), 1. - 1e-4);
-  EXPECT_LT(std::pow(filter.gain(100.), 2), 2e-3);
+  // Stopband at 100 Hz (5 f_c): r = 5.04 (pre-warped), |H|^2 = 1/(1 + r^(2n)):
+  // 1.6e-3 (-56 dB) for n = 2, 2.4e-6 (-112 dB) for n = 4.
+  EXPECT_NEAR(std::pow(ButterworthLowPass(fc, fs, 2).gain(100.), 2), 1.55e-3, 0.05e-3);
+  EXPECT_NEAR(std::pow(ButterworthLowPass(fc, fs, 4).gain(100.), 2), 2.4e-6, 0.1e-6);
 }
 
 TEST(ButterworthLowPass, OnePassHasTheAnalyticGainAndAConstantPassesUnchanged)
 {
-  const ButterworthLowPass filter(fc, fs);
-  // The causal pass: steady-state amplitude = |H(f)| (1e-6, as above).
-  for (const double f : {10., 20., 60.})
-    EXPECT_NEAR(component(filter.filter(sine(f, 8000)), f, 4000, 4000).first /
-                    filter.gain(f),
-                1., 1e-6);
-  // DC gain 1 and a steady-state start: a constant comes through to round-off.
-  for (const double y : filter.filter_forward_backward(std::vector<double>(500, 72.5)))
-    EXPECT_NEAR(y, 72.5, 1e-10);
-  EXPECT_THROW(ButterworthLowPass(1000., fs), std::invalid_argument); // at Nyquist
+  // Every order 1..8 (odd ones with a first-order section): the causal pass
+  // has the steady-state amplitude |H(f)| (1e-6, as above), a constant comes
+  // through to round-off (DC gain 1, a steady-state start).
+  for (unsigned int order = 1; order <= 8; ++order)
+  {
+    const ButterworthLowPass filter(fc, fs, order);
+    for (const double f : {10., 20., 60.})
+      EXPECT_NEAR(component(filter.filter(sine(f, 8000)), f, 4000, 4000).first /
+                      filter.gain(f),
+                  1., 1e-6)
+          << "n = " << order << ", f = " << f << " Hz";
+    for (const double y : filter.filter_forward_backward(std::vector<double>(500, 72.5)))
+      EXPECT_NEAR(y, 72.5, 1e-10) << "n = " << order;
+  }
+  EXPECT_THROW(ButterworthLowPass(1000., fs, 2), std::invalid_argument); // at Nyquist
+  EXPECT_THROW(ButterworthLowPass(fc, fs, 0), std::invalid_argument);
+  EXPECT_THROW(ButterworthLowPass(fc, fs, 9), std::invalid_argument);
 }
 
 namespace
@@ -129,50 +144,53 @@ ContactForceSeries synthetic_series()
 // Exact figures: only round-off of 1000 sums (1e-12 relative).
 TEST(ContactForceStatistics, WholeRunMatchesHandComputedValues)
 {
-  const auto r = evaluate_contact_force(synthetic_series(), StatisticsParameters{});
+  const auto s = evaluate_contact_force(synthetic_series(), StatisticsParameters{},
+                                        EvaluationWindow{});
+  const ForceFigures& r = s.raw;
   const double sigma = std::sqrt(855.);
   EXPECT_NEAR(r.mean, 95., 1e-12 * 95.);
   EXPECT_NEAR(r.std, sigma, 1e-12 * sigma);
-  EXPECT_NEAR(r.mean_minus_3_sigma, 95. - 3. * sigma, 1e-10);
-  EXPECT_NEAR(r.mean_plus_3_sigma, 95. + 3. * sigma, 1e-10);
+  EXPECT_NEAR(r.mean_minus_3std, 95. - 3. * sigma, 1e-10);
+  EXPECT_NEAR(r.mean_plus_3std, 95. + 3. * sigma, 1e-10);
   EXPECT_EQ(r.max, 120.);
   EXPECT_EQ(r.min, 0.);
-  EXPECT_NEAR(r.percent_without_contact, 5., 1e-12);
+  EXPECT_NEAR(r.contact_loss_percent, 5., 1e-12);
   EXPECT_EQ(r.n_points, 1000u);
-  EXPECT_EQ(r.filter_cutoff_hz, 0.);
-  EXPECT_NEAR(r.window_start, 2., 1e-12);
-  EXPECT_NEAR(r.window_end, 11.99, 1e-12);
+  EXPECT_EQ(s.filter_cutoff_hz, 0.);
+  EXPECT_FALSE(s.filtered.has_value()); // no cut-off: no filtered figures
+  EXPECT_NEAR(s.first_position, 2., 1e-12);
+  EXPECT_NEAR(s.last_position, 11.99, 1e-12);
 }
 
 // Window x_p in [3.995, 5.995] m: points 200..399 (x_p = 4.00 .. 5.99 m), in
 // contact throughout: mean 100 N, std 20 N, 0 % without contact.
 TEST(ContactForceStatistics, WindowSelectsThePantographPositions)
 {
-  StatisticsParameters p;
-  p.window = {3.995, 5.995};
-  const auto r = evaluate_contact_force(synthetic_series(), p);
+  const StatisticsParameters p;
+  const auto s = evaluate_contact_force(synthetic_series(), p, {3.995, 5.995});
+  const ForceFigures& r = s.raw;
   EXPECT_EQ(r.n_points, 200u);
   EXPECT_NEAR(r.mean, 100., 1e-12 * 100.);
   EXPECT_NEAR(r.std, 20., 1e-12 * 20.);
-  EXPECT_EQ(r.percent_without_contact, 0.);
-  EXPECT_NEAR(r.window_start, 4., 1e-12);
-  EXPECT_NEAR(r.window_end, 5.99, 1e-12);
+  EXPECT_EQ(r.contact_loss_percent, 0.);
+  EXPECT_NEAR(s.first_position, 4., 1e-12);
+  EXPECT_NEAR(s.last_position, 5.99, 1e-12);
   // A window between two time points (x_p = 4.00, 4.01 m): no point, NaN
   // figures (null in summary.json) instead of a failed run.
-  p.window = {4.002, 4.008};
-  const auto empty = evaluate_contact_force(synthetic_series(), p);
+  const auto empty = evaluate_contact_force(synthetic_series(), p, {4.002, 4.008}).raw;
   EXPECT_EQ(empty.n_points, 0u);
   EXPECT_TRUE(std::isnan(empty.mean) && std::isnan(empty.std) && std::isnan(empty.max));
   // A window with the contact loss inside: 50 of points 50..249 = 25 %.
-  p.window = {2.495, 4.495};
-  EXPECT_NEAR(evaluate_contact_force(synthetic_series(), p).percent_without_contact, 25.,
-              1e-12);
+  EXPECT_NEAR(evaluate_contact_force(synthetic_series(), p, {2.495, 4.495})
+                  .raw.contact_loss_percent,
+              25., 1e-12);
 }
 
 // Filtered statistics: lambda = 100 + 10 sin(2 pi 15 t), 4 s at 2 kHz, cut-off
-// 20 Hz: the mean stays 100 N (DC gain 1) and the std is that of the
-// attenuated sine, 10 |H(15 Hz)|^2 / sqrt(2). The ends of a finite record
-// (odd reflection over 60 integer periods) disturb this by less than 1e-3.
+// 20 Hz, the default order 4: the mean stays 100 N (DC gain 1) and the std is
+// that of the attenuated sine, 10 |H(15 Hz)|^2 / sqrt(2). The ends of a finite
+// record (60 whole periods, odd reflection) disturb this by less than 1e-3;
+// the raw figures are those of the unfiltered sine (round-off, 1e-12).
 TEST(ContactForceStatistics, LowPassAttenuatesTheOscillationAnalytically)
 {
   ContactForceSeries s;
@@ -185,25 +203,29 @@ TEST(ContactForceStatistics, LowPassAttenuatesTheOscillationAnalytically)
   }
   StatisticsParameters p;
   p.low_pass_cutoff = fc;
-  const auto r = evaluate_contact_force(s, p);
+  const auto r = evaluate_contact_force(s, p, EvaluationWindow{});
   const double expected_std =
-      10. * std::pow(ButterworthLowPass(fc, fs).gain(15.), 2) / std::sqrt(2.);
+      10. * std::pow(ButterworthLowPass(fc, fs, 4).gain(15.), 2) / std::sqrt(2.);
   EXPECT_EQ(r.filter_cutoff_hz, fc);
-  EXPECT_NEAR(r.mean, 100., 1e-3);
-  EXPECT_NEAR(r.std / expected_std, 1., 1e-3);
+  EXPECT_EQ(r.filter_order, 4u);
+  ASSERT_TRUE(r.filtered.has_value());
+  EXPECT_NEAR(r.filtered->mean, 100., 1e-3);
+  EXPECT_NEAR(r.filtered->std / expected_std, 1., 1e-3);
+  EXPECT_NEAR(r.raw.std / (10. / std::sqrt(2.)), 1., 1e-12);
 }
 
 TEST(StatisticsParameters, CutOffAboveNyquistAndEmptyWindowAreInputErrors)
 {
   StatisticsParameters p;
-  p.low_pass_cutoff = 1e4; // dt = 5e-5 s: Nyquist 1e4 Hz
-  EXPECT_THROW(p.check(5e-5, 2., 18.), InputError);
+  const std::vector<double> supports{0., 20.}; // the paper's single span
+  p.low_pass_cutoff = 1e4;                     // dt = 5e-5 s: Nyquist 1e4 Hz
+  EXPECT_THROW(p.check(5e-5, 2., 18., supports), InputError);
   p.low_pass_cutoff = 20.;
-  EXPECT_NO_THROW(p.check(5e-5, 2., 18.));
+  EXPECT_NO_THROW(p.check(5e-5, 2., 18., supports));
   p.window = {19., 20.}; // beyond the final position
-  EXPECT_THROW(p.check(5e-5, 2., 18.), InputError);
+  EXPECT_THROW(p.check(5e-5, 2., 18., supports), InputError);
   p.window = {10., 5.};
-  EXPECT_THROW(p.check(5e-5, 2., 18.), InputError);
+  EXPECT_THROW(p.check(5e-5, 2., 18., supports), InputError);
 }
 
 // ---------------------------------------------------------------- VTU time series

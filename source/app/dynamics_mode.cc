@@ -7,6 +7,7 @@
 #include <pantocat/io/statistics_report.h>
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
+#include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/checkpoint.h>
 
@@ -55,11 +56,46 @@ PlottedColumns plotted_columns(const SimulationLayout& layout)
   return c;
 }
 
-/// The PNG plots of a run; returns the names of the files drawn.
-std::vector<std::string> draw_plots(const std::string& dir, const ProgramParameters& p,
-                                    const CaseRunner& runner,
-                                    const ContactStatistics& first)
+/// The columns of contact_force.csv: every pantograph in contact, in layout order.
+std::vector<ContactForceColumns> contact_force_columns(const RunRecord& record)
 {
+  std::vector<ContactForceColumns> columns;
+  const SimulationLayout& layout = record.runner.layout();
+  for (unsigned int k = 0; k < record.contacts.size(); ++k)
+    if (record.contacts[k] != nullptr)
+      columns.push_back({record.contacts[k], layout.pantographs[k].column_suffix});
+  return columns;
+}
+
+/// The plots of the contact force over x_p, one per pantograph in contact.
+std::vector<ForceOverXPlot> force_over_x_plots(const RunRecord& record)
+{
+  const SimulationLayout& layout = record.runner.layout();
+  const bool several = layout.contacts().size() > 1;
+  std::vector<ForceOverXPlot> plots;
+  for (unsigned int k = 0; k < record.contacts.size(); ++k)
+    if (const ContactStatistics* c = record.contacts[k])
+    {
+      const std::string& name = layout.pantographs[k].name;
+      const std::vector<double>& x = c->series().x_p;
+      plots.push_back({contact_force_over_x_file(name, several), name,
+                       layout.pantographs[k].column_suffix, x.front(), x.back(),
+                       &c->result()});
+    }
+  return plots;
+}
+
+/// The PNG files a run draws (asked) and those gnuplot wrote (drawn).
+struct Plots
+{
+  std::vector<std::string> asked, drawn;
+};
+
+/// The PNG plots of a run.
+Plots draw_plots(const std::string& dir, const ProgramParameters& p,
+                 const RunRecord& record)
+{
+  const CaseRunner& runner = record.runner;
   std::ostringstream title;
   title << to_string(p.discretisation.method) << " + " << p.time_integration.integrator
         << ", v_p = " << p.pantograph().speed << " m/s";
@@ -67,9 +103,19 @@ std::vector<std::string> draw_plots(const std::string& dir, const ProgramParamet
   std::vector<std::string> drawn =
       plot_time_series(dir, TimeSeriesWriter::column_names(runner.layout()),
                        c.contact_forces, c.dropper_forces, c.coordinates, title.str());
-  if (plot_contact_force_statistics(dir, first.result(), title.str()))
+  if (plot_contact_force_statistics(dir, record.first_contact()->result(), title.str()))
     drawn.push_back("contact_force_statistics.png");
-  return drawn;
+  const std::vector<ForceOverXPlot> over_x = force_over_x_plots(record);
+  for (const std::string& file : plot_contact_force_over_x(
+           dir, contact_force_column_names(contact_force_columns(record)), over_x,
+           runner.case_data().catenary.support_positions(), title.str()))
+    drawn.push_back(file);
+  Plots plots{{"contact_force.png", "dropper_forces.png", "pantograph.png",
+               "contact_force_statistics.png"},
+              drawn};
+  for (const ForceOverXPlot& plot : over_x)
+    plots.asked.push_back(plot.png);
+  return plots;
 }
 } // namespace
 
@@ -123,7 +169,10 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
       observers.push_back((contacts[k] = std::make_unique<ContactStatistics>(
-                               p.statistics, runner.discretisation(), runner.system(), k))
+                               p.statistics, runner.discretisation(), runner.system(),
+                               SteadyArms::positions(runner.case_data().scene,
+                                                     runner.case_data().catenary),
+                               k))
                               .get());
   if (p.output.energy)
     observers.push_back(&energy);
@@ -166,14 +215,14 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
     record.contacts.push_back(c.get());
   const ContactStatistics* first_contact = record.first_contact();
   if (first_contact)
-    write_contact_force(dir + "/contact_force.csv", *first_contact);
-  std::vector<std::string> drawn;
+    write_contact_force(dir + "/contact_force.csv", contact_force_columns(record));
+  Plots plots;
   if (p.output.plots && first_contact)
-    drawn = draw_plots(dir, p, runner, *first_contact);
+    plots = draw_plots(dir, p, record);
   // Last: a summary.json that says completed vouches for every file above.
   write_run_summary(dir + "/summary.json", record);
   print_run_report(out, record, p.output.verbosity == Verbosity::detailed);
-  if (p.output.plots && first_contact && drawn.size() < 4)
+  if (p.output.plots && first_contact && plots.drawn.size() < plots.asked.size())
     out << (gnuplot_available()
                 ? "  (some plots were not drawn: nothing to draw, or gnuplot failed on "
                   "a .gp script in the directory)\n"
@@ -181,7 +230,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   timer.leave_subsection();
   out << "  wrote time_series.csv" << (first_contact ? ", contact_force.csv" : "")
       << ", summary.json";
-  for (const std::string& file : drawn)
+  for (const std::string& file : plots.drawn)
     out << ", " << file;
   out << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
                     " frames in vtu/"

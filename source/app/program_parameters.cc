@@ -87,7 +87,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,
-                   pantograph().final_position);
+                   pantograph().final_position, catenary.support_positions());
   if (mode == RunMode::dynamics)
     make_case().check_dynamics();
 }

@@ -8,19 +8,32 @@ namespace pantocat
 {
 const std::vector<std::string>& result_files()
 {
-  static const std::vector<std::string> files{
-      "parameters.prm",       "summary.json",
-      "time_series.csv",      "contact_force.csv",
-      "contact_force.png",    "dropper_forces.png",
-      "pantograph.png",       "contact_force_statistics.png",
-      "time_series.gp",       "contact_force_statistics.gp",
-      "solution.pvd",         "checkpoint.bin",
-      "checkpoint.bin.tmp",   "static_profile.csv",
-      "static_profile.vtu",   "dropper_forces.csv",
-      "dropper_lengths.csv",  "elasticity.csv",
-      "elasticity.png",       "elasticity.gp",
-      "eigenfrequencies.csv", "convergence.txt",
-      "convergence.csv",      "work_precision.csv"};
+  static const std::vector<std::string> files{"parameters.prm",
+                                              "summary.json",
+                                              "time_series.csv",
+                                              "contact_force.csv",
+                                              "contact_force.png",
+                                              "dropper_forces.png",
+                                              "pantograph.png",
+                                              "contact_force_statistics.png",
+                                              "time_series.gp",
+                                              "contact_force_statistics.gp",
+                                              "contact_force_over_x.png",
+                                              "contact_force_over_x.gp",
+                                              "solution.pvd",
+                                              "checkpoint.bin",
+                                              "checkpoint.bin.tmp",
+                                              "static_profile.csv",
+                                              "static_profile.vtu",
+                                              "dropper_forces.csv",
+                                              "dropper_lengths.csv",
+                                              "elasticity.gp",
+                                              "elasticity.png",
+                                              "elasticity.csv",
+                                              "eigenfrequencies.csv",
+                                              "convergence.txt",
+                                              "convergence.csv",
+                                              "work_precision.csv"};
   return files;
 }
 
@@ -45,6 +58,13 @@ void RunPhase::clear_earlier_results()
   for (const std::string& name : result_files())
     if (std::find(kept.begin(), kept.end(), name) == kept.end())
       fs::remove(fs::path(directory) / name, error);
+  // With several pantographs: contact_force_over_x_pantograph_k.png.
+  for (const auto& entry : fs::directory_iterator(directory, error))
+  {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("contact_force_over_x_", 0) == 0 && entry.path().extension() == ".png")
+      fs::remove(entry.path(), error);
+  }
   const fs::path frames = fs::path(directory) / "vtu";
   if (!resuming && fs::is_directory(frames, error))
     for (const auto& entry : fs::directory_iterator(frames, error))

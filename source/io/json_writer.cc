@@ -124,6 +124,12 @@ JsonWriter& JsonWriter::value(const std::string& key, const unsigned long n)
   return *this;
 }
 
+JsonWriter& JsonWriter::null(const std::string& key)
+{
+  document->add(key, nullptr);
+  return *this;
+}
+
 JsonWriter& JsonWriter::intervals(const std::string& key,
                                   const std::vector<std::pair<double, double>>& list)
 {

@@ -1,15 +1,27 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/io/external_program.h>
 #include <pantocat/io/plots.h>
 
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
 namespace pantocat
 {
+namespace
+{
+/// 1-based column of @p name in @p columns, or 0.
+std::size_t column_of(const std::vector<std::string>& columns, const std::string& name)
+{
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  return it == columns.end() ? 0 : it - columns.begin() + 1;
+}
+} // namespace
+
 bool gnuplot_available()
 {
   return !find_program("gnuplot").empty();
@@ -52,6 +64,8 @@ bool plot_contact_force_statistics(const std::string& dir,
                                    const std::string& title)
 {
   const std::string script = "contact_force_statistics.gp";
+  // The lines of the figures the run reports first: filtered if filtered.
+  const ForceFigures& f = s.filtered ? *s.filtered : s.raw;
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
@@ -63,22 +77,22 @@ bool plot_contact_force_statistics(const std::string& dir,
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
        << "set title " << gnuplot_string(title + ": contact force and its statistics")
        << '\n';
-    const bool window = s.n_points > 0; // else: no statistics to draw
+    const bool window = f.n_points > 0; // else: no statistics to draw
     if (window)
-      for (const double x : {s.window_start, s.window_end})
+      for (const double x : {s.first_position, s.last_position})
         gp << "set arrow from " << x << ", graph 0 to " << x
            << ", graph 1 nohead dashtype 3\n";
     gp << "plot 'contact_force.csv' using 2:3 with lines lc rgb '#b0b0b0' title "
           "'lambda_p'";
-    if (s.filter_cutoff_hz > 0.)
+    if (s.filtered)
       gp << ", 'contact_force.csv' using 2:4 with lines lc rgb '#0060c0' title 'low pass "
          << s.filter_cutoff_hz << " Hz'";
     if (window)
-      gp << ", " << s.mean << " with lines lc rgb 'black' title 'mean'"
-         << ", " << s.mean_plus_3_sigma
-         << " with lines dashtype 2 lc rgb '#c00000' title 'mean + 3 sigma'"
-         << ", " << s.mean_minus_3_sigma
-         << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 sigma'";
+      gp << ", " << f.mean << " with lines lc rgb 'black' title 'mean'"
+         << ", " << f.mean_plus_3std
+         << " with lines dashtype 2 lc rgb '#c00000' title 'mean + 3 std'"
+         << ", " << f.mean_minus_3std
+         << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 std'";
     gp << '\n';
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
@@ -86,14 +100,105 @@ bool plot_contact_force_statistics(const std::string& dir,
   return !run_gnuplot(dir, script, {"contact_force_statistics.png"}).empty();
 }
 
+std::string contact_force_over_x_file(const std::string& name, const bool several)
+{
+  if (!several)
+    return "contact_force_over_x.png";
+  std::string file = "contact_force_over_x_";
+  for (const char c : name)
+    file += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  return file + ".png";
+}
+
 namespace
 {
-/// 1-based column of @p name in @p columns, or 0.
-std::size_t column_of(const std::vector<std::string>& columns, const std::string& name)
+/// Dashed lines at the supports inside [x0, x1] and the spans' numbers between them.
+void mark_supports(std::ostream& gp, const std::vector<double>& supports, const double x0,
+                   const double x1)
 {
-  const auto it = std::find(columns.begin(), columns.end(), name);
-  return it == columns.end() ? 0 : it - columns.begin() + 1;
+  for (std::size_t k = 0; k < supports.size(); ++k)
+  {
+    if (supports[k] >= x0 && supports[k] <= x1)
+      gp << "set arrow from first " << supports[k] << ", graph 0 to first " << supports[k]
+         << ", graph 1 nohead dashtype 2 lc rgb '#707070'\n";
+    const double middle =
+        k + 1 < supports.size() ? 0.5 * (supports[k] + supports[k + 1]) : x1 + 1.;
+    if (middle > x0 && middle < x1)
+      gp << "set label 'span " << k + 1 << "' at first " << middle
+         << ", graph 0.96 center tc rgb '#505050'\n";
+  }
 }
+
+/// The evaluation window, clipped to [x0, x1], as a shaded band behind the curves.
+void shade_window(std::ostream& gp, const EvaluationWindow& w, const double x0,
+                  const double x1)
+{
+  if (w.whole_run())
+    return;
+  const double a = std::max(w.start, x0), b = std::min(w.end, x1);
+  if (a < b)
+    gp << "set object rectangle from first " << a << ", graph 0 to first " << b
+       << ", graph 1 behind fillcolor rgb '#e4ecf8' fillstyle solid 1.0 noborder\n";
+}
+
+/// One pantograph's page of contact_force_over_x.gp.
+void plot_over_x(std::ostream& gp, const ForceOverXPlot& p,
+                 const std::vector<std::string>& columns,
+                 const std::vector<double>& supports, const std::string& title)
+{
+  const ContactForceStatistics& s = *p.statistics;
+  gp << "unset arrow\nunset label\nunset object\n"
+     << "set output " << gnuplot_string(p.png) << '\n'
+     << "set title "
+     << gnuplot_string(title + ": contact force over x_p, " + p.name + ", window " +
+                       s.window.describe())
+     << '\n'
+     << "set xrange [" << p.x_begin << ':' << p.x_end << "]\n";
+  mark_supports(gp, supports, p.x_begin, p.x_end);
+  shade_window(gp, s.window, p.x_begin, p.x_end);
+  const auto column = [&](const std::string& name)
+  { return column_of(columns, name + p.suffix); };
+  gp << "plot 'contact_force.csv' using " << column("x_p") << ':' << column("lambda_p")
+     << " with lines lc rgb '#a0a0a0' title 'lambda_p (raw)'";
+  if (s.filtered)
+    gp << ", 'contact_force.csv' using " << column("x_p") << ':'
+       << column("lambda_p_filtered") << " with lines lw 1.5 lc rgb '#0060c0' title "
+       << gnuplot_string("low pass " + number_to_string(s.filter_cutoff_hz, 4) +
+                         " Hz (order " + std::to_string(s.filter_order) + ")");
+  gp << '\n';
+}
+} // namespace
+
+std::vector<std::string>
+plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>& columns,
+                          const std::vector<ForceOverXPlot>& plots,
+                          const std::vector<double>& supports, const std::string& title)
+{
+  if (plots.empty())
+    return {};
+  std::vector<std::string> pngs;
+  for (const ForceOverXPlot& p : plots)
+    pngs.push_back(p.png);
+  const std::string script = "contact_force_over_x.gp";
+  {
+    std::ofstream gp(dir + "/" + script);
+    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
+       << "# Shaded: the evaluation window; dashed: the supports.\n"
+       << "set datafile separator ','\n"
+       << "set terminal pngcairo size 1200,500 noenhanced\n"
+       << "set grid ytics\nset key below horizontal\nset offsets 0, 0, graph 0.08, graph "
+          "0.05\n"
+       << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n";
+    for (const ForceOverXPlot& p : plots)
+      plot_over_x(gp, p, columns, supports, title);
+    if (!gp)
+      throw SimulationError("cannot write " + dir + "/" + script);
+  }
+  return run_gnuplot(dir, script, pngs);
+}
+
+namespace
+{
 
 /// "plot 'time_series.csv' using 1:c title 'name', ..." for the @p names that exist.
 void plot_columns(std::ostream& gp, const std::vector<std::string>& columns,

@@ -31,6 +31,13 @@ void write_force(JsonWriter& json, const RunStatistics::ForceStatistics& f)
       .end_object();
 }
 
+/// The droppers' slack events that begin while the pantograph of @p s is in its window.
+DropperSlackEvents slack_in_window(const RunStatistics& run,
+                                   const ContactForceStatistics& s)
+{
+  return run.dropper_slack_events(s.first_time, s.last_time);
+}
+
 /// Kind of a switch of constraint @p i: a dropper's or a contact's.
 std::string event_kind(const SimulationLayout& layout, const unsigned int i,
                        const bool closes)
@@ -86,7 +93,8 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
     {
       write_force(json, r.statistics.contact_force(k));
       if (r.contacts[k] != nullptr)
-        write_statistics(json, r.contacts[k]->result());
+        write_statistics(json, r.contacts[k]->result(),
+                         slack_in_window(r.statistics, r.contacts[k]->result()));
       json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
       write_events(json, events, layout.constraint_names[p.contact]);
     }
@@ -123,7 +131,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   if (const ContactStatistics* first = r.first_contact())
   {
     write_force(json, stats.first_contact_force());
-    write_statistics(json, first->result());
+    write_statistics(json, first->result(), slack_in_window(stats, first->result()));
   }
   if (r.energy != nullptr && r.energy->count > 0)
     json.begin_object("energy")
@@ -149,6 +157,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   for (const auto& list : stats.dropper_slack_intervals())
     json.intervals("", list);
   json.end_array();
+  write_slack_events(json, "dropper_slack_events", stats.dropper_slack_events());
   if (r.runner.layout().has_contact())
     json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
   json.value("max_droppers_slack_at_once",
@@ -280,8 +289,13 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
         << " J, max |E - E(0)| / |E(0)| = " << std::setprecision(3)
         << r.energy->relative_variation() << '\n';
   const auto slack = stats.dropper_slack_intervals();
+  // Only the droppers that went slack: a section has dozens of droppers.
   for (unsigned int j = 0; j < slack.size(); ++j)
-    out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
+    if (!slack[j].empty())
+      out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
+  if (!slack.empty())
+    out << "  dropper slack events in the run: "
+        << describe_slack_events(stats.dropper_slack_events()) << '\n';
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
       out << "  " << (several ? layout.pantographs[k].name + ": " : "")
@@ -298,7 +312,8 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
     {
       if (several)
         out << "  " << layout.pantographs[k].name << ":\n";
-      print_statistics(out, r.contacts[k]->result());
+      print_statistics(out, r.contacts[k]->result(),
+                       slack_in_window(stats, r.contacts[k]->result()));
     }
 }
 } // namespace pantocat

@@ -2,74 +2,233 @@
 #include <pantocat/io/statistics_report.h>
 
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 
 namespace pantocat
 {
-void write_statistics(JsonWriter& json, const ContactForceStatistics& s)
+namespace
 {
-  json.begin_object("statistics")
-      .value("mean", s.mean)
-      .value("std", s.std)
-      .value("mean_minus_3_sigma", s.mean_minus_3_sigma)
-      .value("mean_plus_3_sigma", s.mean_plus_3_sigma)
-      .value("max", s.max)
-      .value("min", s.min)
-      .value("percent_without_contact", s.percent_without_contact);
+/// Opens the object @p key (raw or filtered) with one set of figures; the caller closes
+/// it.
+JsonWriter& write_figures(JsonWriter& json, const std::string& key, const ForceFigures& f)
+{
+  return json.begin_object(key)
+      .value("mean", f.mean)
+      .value("std", f.std)
+      .value("max", f.max)
+      .value("min", f.min)
+      .value("mean_plus_3std", f.mean_plus_3std)
+      .value("mean_minus_3std", f.mean_minus_3std)
+      .value("contact_loss_percent", f.contact_loss_percent);
+}
+
+void write_window(JsonWriter& json, const ContactForceStatistics& s)
+{
+  const EvaluationWindow& w = s.window;
+  json.begin_object("window").begin_array("x");
+  json.value("", w.whole_run() ? s.first_position : w.start)
+      .value("", w.whole_run() ? s.last_position : w.end)
+      .end_array();
+  if (w.given_by_spans())
+    json.begin_array("spans")
+        .value("", static_cast<unsigned long>(w.first_span))
+        .value("", static_cast<unsigned long>(w.last_span))
+        .end_array();
+  else
+    json.null("spans");
+  json.value("n_points", s.raw.n_points).end_object();
+}
+
+void write_steady_arms(JsonWriter& json, const ContactForceStatistics& s)
+{
+  if (const auto largest = s.max_steady_arm_uplift())
+    json.value("max_steady_arm_uplift_m", *largest);
+  else
+    json.null("max_steady_arm_uplift_m");
+  json.begin_array("steady_arms");
+  for (const SteadyArmUplift& arm : s.steady_arms)
+    json.begin_object()
+        .value("x", arm.x)
+        .value("max_uplift_m", arm.max_uplift)
+        .end_object();
+  json.end_array();
+}
+} // namespace
+
+void write_slack_events(JsonWriter& json, const std::string& key,
+                        const DropperSlackEvents& events)
+{
+  json.begin_object(key).value("total", events.total).begin_array("per_dropper");
+  for (const unsigned long n : events.per_dropper)
+    json.value("", n);
+  json.end_array().end_object();
+}
+
+void write_statistics(JsonWriter& json, const ContactForceStatistics& s,
+                      const DropperSlackEvents& slack_in_window)
+{
+  json.begin_object("statistics");
+  write_window(json, s);
+  write_figures(json, "raw", s.raw).end_object();
+  if (s.filtered)
+    write_figures(json, "filtered", *s.filtered)
+        .value("cutoff_hz", s.filter_cutoff_hz)
+        .value("order", static_cast<unsigned long>(s.filter_order))
+        .end_object();
+  else
+    json.null("filtered");
+  write_steady_arms(json, s);
   json.begin_array("max_uplift_at_droppers");
   for (const double uplift : s.max_uplift_at_droppers)
     json.value("", uplift);
   json.end_array();
-  json.value("filter_cutoff_hz", s.filter_cutoff_hz);
-  json.begin_array("window")
-      .value("", s.window_start)
-      .value("", s.window_end)
-      .end_array();
+  write_slack_events(json, "dropper_slack_events_in_window", slack_in_window);
   json.end_object();
 }
 
-void write_contact_force(const std::string& file, const ContactStatistics& statistics)
+std::vector<std::string>
+contact_force_column_names(const std::vector<ContactForceColumns>& pantographs)
 {
-  const ContactForceSeries& s = statistics.series();
-  const std::vector<double>& filtered = statistics.filtered_force();
+  std::vector<std::string> names{"t"};
+  for (const ContactForceColumns& p : pantographs)
+    for (const std::string name : {"x_p", "lambda_p", "lambda_p_filtered"})
+      names.push_back(name + p.suffix);
+  return names;
+}
+
+void write_contact_force(const std::string& file,
+                         const std::vector<ContactForceColumns>& pantographs)
+{
   std::ostringstream csv;
-  csv << "t,x_p,lambda_p,lambda_p_filtered\n" << std::setprecision(10);
-  for (std::size_t n = 0; n < s.t.size(); ++n)
-    csv << s.t[n] << ',' << s.x_p[n] << ',' << s.lambda_p[n] << ',' << filtered[n]
-        << '\n';
+  const std::vector<std::string> names = contact_force_column_names(pantographs);
+  for (std::size_t c = 0; c < names.size(); ++c)
+    csv << (c ? "," : "") << names[c];
+  csv << '\n' << std::setprecision(10);
+  const std::size_t n_points =
+      pantographs.empty() ? 0 : pantographs.front().statistics->series().t.size();
+  for (std::size_t n = 0; n < n_points; ++n)
+  {
+    csv << pantographs.front().statistics->series().t[n];
+    for (const ContactForceColumns& p : pantographs)
+      csv << ',' << p.statistics->series().x_p[n] << ','
+          << p.statistics->series().lambda_p[n] << ','
+          << p.statistics->filtered_force()[n];
+    csv << '\n';
+  }
   write_file_atomically(file, csv.str());
 }
 
-void print_statistics(std::ostream& out, const ContactForceStatistics& s)
+std::string describe_slack_events(const DropperSlackEvents& events)
 {
-  if (s.n_points == 0)
+  if (events.total == 0)
+    return "none";
+  std::ostringstream s;
+  s << "total " << events.total << " (";
+  bool first = true;
+  for (std::size_t j = 0; j < events.per_dropper.size(); ++j)
+    if (events.per_dropper[j] > 0)
+    {
+      s << (first ? "" : ", ") << "dropper " << j + 1 << ": " << events.per_dropper[j];
+      first = false;
+    }
+  s << ')';
+  return s.str();
+}
+
+namespace
+{
+/// Up to this many droppers, the screen lists the uplift of each.
+constexpr std::size_t max_droppers_listed = 10;
+
+/// One row of the side-by-side table: a label, the raw and the filtered figure.
+void print_row(std::ostream& out, const std::string& label, const double raw,
+               const std::optional<double>& filtered)
+{
+  out << "    " << std::left << std::setw(18) << label << std::right << std::setw(10)
+      << raw;
+  if (filtered)
+    out << std::setw(20) << *filtered;
+  out << '\n';
+}
+
+void print_figures(std::ostream& out, const ContactForceStatistics& s)
+{
+  out << "    " << std::setw(18) << "" << std::setw(10) << "raw";
+  if (s.filtered)
+    out << std::setw(20)
+        << ("low pass " + number_to_string(s.filter_cutoff_hz, 4) + " Hz");
+  out << '\n' << std::fixed << std::setprecision(2);
+  using Field = double ForceFigures::*;
+  const std::pair<const char*, Field> rows[] = {
+      {"mean [N]", &ForceFigures::mean},
+      {"std [N]", &ForceFigures::std},
+      {"max [N]", &ForceFigures::max},
+      {"min [N]", &ForceFigures::min},
+      {"mean + 3 std [N]", &ForceFigures::mean_plus_3std},
+      {"mean - 3 std [N]", &ForceFigures::mean_minus_3std},
+      {"contact loss [%]", &ForceFigures::contact_loss_percent}};
+  for (const auto& [label, field] : rows)
+    print_row(out, label, s.raw.*field,
+              s.filtered ? std::optional<double>((*s.filtered).*field) : std::nullopt);
+}
+
+void print_uplift(std::ostream& out, const ContactForceStatistics& s)
+{
+  out << std::fixed << std::setprecision(2);
+  if (const auto largest = s.max_steady_arm_uplift())
   {
-    out << "  contact-force statistics: no time point in the window\n";
-    return;
+    out << "    max uplift at the steady arms in the window: " << 1000. * *largest
+        << " mm (";
+    for (std::size_t k = 0; k < s.steady_arms.size(); ++k)
+      out << (k ? ", " : "") << "x = " << std::setprecision(6) << std::defaultfloat
+          << s.steady_arms[k].x << " m: " << std::fixed << std::setprecision(2)
+          << 1000. * s.steady_arms[k].max_uplift << " mm";
+    out << ")\n";
   }
+  const std::vector<double>& droppers = s.max_uplift_at_droppers;
+  if (droppers.empty()) // no droppers on an elastic wire
+    return;
+  out << "    max uplift of the contact wire at the droppers:";
+  if (droppers.size() <= max_droppers_listed)
+    for (std::size_t j = 0; j < droppers.size(); ++j)
+      out << (j ? "," : "") << " " << 1000. * droppers[j] << " mm";
+  else // a section: the largest (every dropper's in summary.json)
+  {
+    const auto largest = std::max_element(droppers.begin(), droppers.end());
+    out << " largest " << 1000. * *largest << " mm at dropper "
+        << largest - droppers.begin() + 1 << " of " << droppers.size();
+  }
+  out << '\n';
+}
+} // namespace
+
+void print_statistics(std::ostream& out, const ContactForceStatistics& s,
+                      const DropperSlackEvents& slack_in_window)
+{
   const auto flags = out.flags();
   const auto precision = out.precision();
-  out << "  contact-force statistics ("
-      << (s.filter_cutoff_hz > 0. ? "low pass " : "unfiltered");
-  if (s.filter_cutoff_hz > 0.)
-    out << s.filter_cutoff_hz << " Hz";
-  out << ", x_p in [" << std::setprecision(4) << s.window_start << ", " << s.window_end
-      << "] m):\n"
-      << std::fixed << std::setprecision(2) << "    mean " << s.mean << " N, std "
-      << s.std << " N, mean - 3 sigma " << s.mean_minus_3_sigma << " N, mean + 3 sigma "
-      << s.mean_plus_3_sigma << " N\n"
-      << "    max " << s.max << " N, min " << s.min << " N, without contact "
-      << s.percent_without_contact << " % of the time\n";
-  if (!s.max_uplift_at_droppers.empty()) // a scene with droppers on an elastic wire
+  out << "  contact-force statistics, " << s.window.describe() << ": ";
+  if (s.raw.n_points == 0)
+    out << "no time point in the window\n";
+  else
   {
-    out << "    max uplift of the contact wire at the droppers:" << std::setprecision(2);
-    for (std::size_t j = 0; j < s.max_uplift_at_droppers.size(); ++j)
-      out << (j ? "," : "") << " " << 1000. * s.max_uplift_at_droppers[j] << " mm";
+    out << s.raw.n_points << " time points";
+    if (s.filtered)
+      out << "; low pass: Butterworth order " << s.filter_order
+          << ", forward and backward";
     out << '\n';
+    print_figures(out, s);
   }
+  print_uplift(out, s);
+  if (!slack_in_window.per_dropper.empty())
+    out << "    dropper slack events with the pantograph in the window: "
+        << describe_slack_events(slack_in_window) << '\n';
   out.flags(flags);
   out.precision(precision);
 }

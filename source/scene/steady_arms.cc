@@ -15,6 +15,13 @@ bool SteadyArms::enabled(const SceneParameters& scene,
          catenary.steady_arm_stiffness > 0.;
 }
 
+std::vector<double> SteadyArms::positions(const SceneParameters& scene,
+                                          const CatenaryParameters& catenary)
+{
+  return SteadyArms().enabled(scene, catenary) ? catenary.interior_supports()
+                                               : std::vector<double>{};
+}
+
 void SteadyArms::add_terms(SceneAssembly& a) const
 {
   const CatenaryParameters& c = a.catenary;

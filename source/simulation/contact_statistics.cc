@@ -1,4 +1,5 @@
 #include <pantocat/analysis/butterworth_low_pass.h>
+#include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/space/catenary_discretisation.h>
@@ -9,81 +10,136 @@
 
 namespace pantocat
 {
-ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
-                                              const StatisticsParameters& p,
-                                              std::vector<double>* filtered)
+namespace
 {
-  ContactForceStatistics r;
-  std::vector<double> force = s.lambda_p;
-  if (p.low_pass_cutoff > 0. && s.t.size() > 2)
+/// Steady arms at a window's end count as inside: a nanometre of tolerance
+/// for positions summed from span lengths against a window typed in metres.
+constexpr double position_tolerance = 1e-9;
+
+/// The indices of the time points whose x_p lies in @p window.
+std::vector<std::size_t> points_in(const std::vector<double>& x_p,
+                                   const EvaluationWindow& window)
+{
+  std::vector<std::size_t> points;
+  for (std::size_t n = 0; n < x_p.size(); ++n)
+    if (window.contains(x_p[n]))
+      points.push_back(n);
+  return points;
+}
+
+/// lambda_p through the zero-phase low pass; sample rate from the time points.
+std::vector<double> low_passed(const ContactForceSeries& s, const StatisticsParameters& p)
+{
+  const double sample_rate = (s.t.size() - 1) / (s.t.back() - s.t.front());
+  return ButterworthLowPass(p.low_pass_cutoff, sample_rate, p.low_pass_order)
+      .filter_forward_backward(s.lambda_p);
+}
+} // namespace
+
+ForceFigures force_figures(const std::vector<double>& force,
+                           const std::vector<std::size_t>& points)
+{
+  ForceFigures r;
+  r.n_points = points.size();
+  if (points.empty()) // a window narrower than one step: nothing to report
   {
-    const double sample_rate = (s.t.size() - 1) / (s.t.back() - s.t.front());
-    force =
-        ButterworthLowPass(p.low_pass_cutoff, sample_rate).filter_forward_backward(force);
-    r.filter_cutoff_hz = p.low_pass_cutoff;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    r.mean = r.std = r.max = r.min = r.mean_plus_3std = r.mean_minus_3std = nan;
+    r.contact_loss_percent = nan;
+    return r;
   }
-  if (filtered)
-    *filtered = force;
-  const double x0 =
-      p.window.empty() ? -std::numeric_limits<double>::infinity() : p.window[0];
-  const double x1 =
-      p.window.empty() ? std::numeric_limits<double>::infinity() : p.window[1];
-  double sum = 0., sum_sq = 0.;
-  unsigned long without_contact = 0;
+  double sum = 0.;
+  unsigned long without_force = 0;
   r.max = -std::numeric_limits<double>::infinity();
   r.min = std::numeric_limits<double>::infinity();
-  for (std::size_t n = 0; n < force.size(); ++n)
+  for (const std::size_t n : points)
   {
-    if (s.x_p[n] < x0 || s.x_p[n] > x1)
-      continue;
-    if (r.n_points == 0)
-      r.window_start = s.x_p[n];
-    r.window_end = s.x_p[n];
-    ++r.n_points;
     sum += force[n];
     r.max = std::max(r.max, force[n]);
     r.min = std::min(r.min, force[n]);
-    without_contact += s.in_contact[n] ? 0 : 1;
-  }
-  if (r.n_points == 0) // a window narrower than one step: nothing to report
-  {
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    r.mean = r.std = r.mean_minus_3_sigma = r.mean_plus_3_sigma = nan;
-    r.max = r.min = r.percent_without_contact = r.window_start = r.window_end = nan;
-    return r;
+    without_force += force[n] <= 0. ? 1 : 0;
   }
   r.mean = sum / r.n_points;
-  // Two passes over the window: no cancellation in the variance.
-  for (std::size_t n = 0; n < force.size(); ++n)
-    if (s.x_p[n] >= x0 && s.x_p[n] <= x1)
-      sum_sq += (force[n] - r.mean) * (force[n] - r.mean);
+  double sum_sq = 0.;
+  for (const std::size_t n : points)
+    sum_sq += (force[n] - r.mean) * (force[n] - r.mean);
   r.std = std::sqrt(sum_sq / r.n_points);
-  r.mean_minus_3_sigma = r.mean - 3. * r.std;
-  r.mean_plus_3_sigma = r.mean + 3. * r.std;
-  r.percent_without_contact = 100. * without_contact / r.n_points;
+  r.mean_plus_3std = r.mean + 3. * r.std;
+  r.mean_minus_3std = r.mean - 3. * r.std;
+  r.contact_loss_percent = 100. * without_force / r.n_points;
+  return r;
+}
+
+std::optional<double> ContactForceStatistics::max_steady_arm_uplift() const
+{
+  if (steady_arms.empty())
+    return std::nullopt;
+  double largest = -std::numeric_limits<double>::infinity();
+  for (const SteadyArmUplift& s : steady_arms)
+    largest = std::max(largest, s.max_uplift);
+  return largest;
+}
+
+ContactForceStatistics evaluate_contact_force(const ContactForceSeries& s,
+                                              const StatisticsParameters& p,
+                                              const EvaluationWindow& window,
+                                              std::vector<double>* filtered)
+{
+  ContactForceStatistics r;
+  r.window = window;
+  const std::vector<std::size_t> points = points_in(s.x_p, window);
+  r.raw = force_figures(s.lambda_p, points);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  r.first_position = points.empty() ? nan : s.x_p[points.front()];
+  r.last_position = points.empty() ? nan : s.x_p[points.back()];
+  r.first_time = points.empty() ? nan : s.t[points.front()];
+  r.last_time = points.empty() ? nan : s.t[points.back()];
+  std::vector<double> force = s.lambda_p;
+  if (p.low_pass_cutoff > 0. && s.t.size() > 2)
+  {
+    force = low_passed(s, p);
+    r.filter_cutoff_hz = p.low_pass_cutoff;
+    r.filter_order = p.low_pass_order;
+    r.filtered = force_figures(force, points);
+  }
+  if (filtered)
+    *filtered = std::move(force);
   return r;
 }
 
 ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
                                      const CatenaryDiscretisation& d,
                                      const SemiDiscreteSystem& system,
+                                     const std::vector<double>& steady_arm_positions,
                                      const unsigned int pantograph)
-    : parameters(parameters), pantograph(pantograph)
+    : parameters(parameters),
+      window(parameters.evaluation_window(d.catenary_parameters().support_positions())),
+      pantograph(pantograph)
 {
   if (!system.has_block("contact wire")) // a rigid wire: no uplift to measure
     return;
   for (const double x : d.catenary_parameters().dropper_positions)
-    dropper_rows.push_back(wire_point_row(d, system, Wire::contact_wire, x));
+    wire_rows.push_back(wire_point_row(d, system, Wire::contact_wire, x));
+  n_droppers = wire_rows.size();
+  for (const double x : steady_arm_positions)
+    if (window.contains(x, position_tolerance))
+    {
+      steady_arms.push_back(x);
+      wire_rows.push_back(wire_point_row(d, system, Wire::contact_wire, x));
+    }
 }
 
 void ContactStatistics::start(const SimulationLayout& layout)
 {
   contact_index = layout.pantographs.at(pantograph).contact;
-  if (layout.dropper_indices.empty()) // a scene without droppers
-    dropper_rows.clear();
+  if (layout.dropper_indices.empty() && n_droppers > 0) // a scene without droppers
+  {
+    wire_rows.erase(wire_rows.begin(), wire_rows.begin() + n_droppers);
+    n_droppers = 0;
+  }
   recorded = {};
   initial_height.clear();
-  max_uplift.assign(dropper_rows.size(), -std::numeric_limits<double>::infinity());
+  max_uplift.assign(wire_rows.size(), -std::numeric_limits<double>::infinity());
 }
 
 void ContactStatistics::observe_state(const TimePoint& point, const DynamicState& state)
@@ -93,9 +149,9 @@ void ContactStatistics::observe_state(const TimePoint& point, const DynamicState
   recorded.lambda_p.push_back(point.lambda[contact_index]);
   recorded.in_contact.push_back(point.active[contact_index]);
   const bool first = initial_height.empty();
-  for (std::size_t j = 0; j < dropper_rows.size(); ++j)
+  for (std::size_t j = 0; j < wire_rows.size(); ++j)
   {
-    const double w = dropper_rows[j].dot(state.q);
+    const double w = wire_rows[j].dot(state.q);
     if (first)
       initial_height.push_back(w);
     max_uplift[j] = std::max(max_uplift[j], w - initial_height[j]);
@@ -104,8 +160,11 @@ void ContactStatistics::observe_state(const TimePoint& point, const DynamicState
 
 void ContactStatistics::finish()
 {
-  statistics = evaluate_contact_force(recorded, parameters, &filtered);
-  statistics.max_uplift_at_droppers = max_uplift;
+  statistics = evaluate_contact_force(recorded, parameters, window, &filtered);
+  statistics.max_uplift_at_droppers.assign(max_uplift.begin(),
+                                           max_uplift.begin() + n_droppers);
+  for (std::size_t k = 0; k < steady_arms.size(); ++k)
+    statistics.steady_arms.push_back({steady_arms[k], max_uplift[n_droppers + k]});
 }
 
 void ContactStatistics::save(CheckpointOut& archive) const
@@ -117,8 +176,13 @@ void ContactStatistics::save(CheckpointOut& archive) const
 
 void ContactStatistics::resume(const SimulationLayout& layout, CheckpointIn& archive)
 {
-  contact_index = layout.pantographs.at(pantograph).contact;
+  start(layout);
   archive >> recorded.t >> recorded.x_p >> recorded.lambda_p >> recorded.in_contact >>
       initial_height >> max_uplift;
+  if (max_uplift.size() != wire_rows.size())
+    throw SimulationError("the checkpoint holds the contact wire at " +
+                          std::to_string(max_uplift.size()) + " points, this run at " +
+                          std::to_string(wire_rows.size()) +
+                          " (droppers and steady arms in the window): start afresh");
 }
 } // namespace pantocat

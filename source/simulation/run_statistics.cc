@@ -82,6 +82,21 @@ std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() cons
   return result;
 }
 
+DropperSlackEvents RunStatistics::dropper_slack_events(const double from,
+                                                       const double to) const
+{
+  DropperSlackEvents events;
+  for (const unsigned int i : layout.dropper_indices)
+  {
+    const auto begins_inside = [&](const Interval& slack)
+    { return slack.first >= from && slack.first <= to; };
+    events.per_dropper.push_back(
+        std::count_if(intervals[i].begin(), intervals[i].end(), begins_inside));
+    events.total += events.per_dropper.back();
+  }
+  return events;
+}
+
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
   const auto contacts = layout.contacts();

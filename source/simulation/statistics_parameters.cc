@@ -6,19 +6,56 @@
 
 namespace pantocat
 {
+namespace
+{
+/// "a, b" as the prm file has it.
+template <typename Number>
+std::string list_text(const std::vector<Number>& values)
+{
+  std::string text;
+  for (const Number x : values)
+    text += (text.empty() ? "" : ", ") + number_to_string(x);
+  return text;
+}
+} // namespace
+
+std::string EvaluationWindow::describe() const
+{
+  if (whole_run())
+    return "the whole run";
+  std::string text =
+      "x_p in [" + number_to_string(start, 6) + ", " + number_to_string(end, 6) + "] m";
+  if (given_by_spans())
+    text += first_span == last_span ? " (span " + std::to_string(first_span) + ")"
+                                    : " (spans " + std::to_string(first_span) + "-" +
+                                          std::to_string(last_span) + ")";
+  return text;
+}
+
 void StatisticsParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Statistics");
   prm.declare_entry("Low-pass cut-off", "0", dealii::Patterns::Double(0.),
-                    "Cut-off frequency f_c [Hz] of the zero-phase low pass (2nd-order "
-                    "Butterworth, forward and backward: -6 dB at f_c) applied to the "
-                    "contact force before its statistics; 0: unfiltered. The railway "
-                    "standards use 20 Hz.");
+                    "Cut-off frequency f_c [Hz] of the zero-phase low pass (Butterworth "
+                    "of Low-pass order, run forward and backward: -6 dB at f_c) applied "
+                    "to the contact force of the whole run before the window is taken; "
+                    "0: unfiltered (only the raw statistics). The railway standards use "
+                    "20 Hz.");
+  prm.declare_entry("Low-pass order", "4", dealii::Patterns::Integer(1, 8),
+                    "Order n of the Butterworth low pass; forward and backward its gain "
+                    "is 1/(1 + (f/f_c)^(2n)) (pre-warped: f -> tan(pi f/f_s)), 40 n "
+                    "dB/decade. The reference section S55 asks for 4.");
   prm.declare_entry("Window", "",
                     dealii::Patterns::List(dealii::Patterns::Double(), 0, 2),
-                    "Pantograph positions x0, x1 [m] between which the contact-force "
-                    "statistics are taken (after filtering the whole run); empty: the "
-                    "whole run.");
+                    "Pantograph positions x0, x1 [m] (inside the section) between which "
+                    "the contact-force statistics are taken; empty: Window spans, or the "
+                    "whole run. Not together with Window spans.");
+  prm.declare_entry("Window spans", "",
+                    dealii::Patterns::List(dealii::Patterns::Integer()),
+                    "The evaluation window as span numbers first, last (1-based; one "
+                    "number: that span): the pantograph from the support before span "
+                    "first to the support after span last, e.g. 5, 6 = [220, 330] m on "
+                    "S55; empty: Window, or the whole run. Not together with Window.");
   prm.leave_subsection();
 }
 
@@ -26,28 +63,90 @@ void StatisticsParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Statistics");
   low_pass_cutoff = prm.get_double("Low-pass cut-off");
+  low_pass_order = prm.get_integer("Low-pass order");
   window = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Window")));
+  window_spans.clear();
+  for (const std::string& s :
+       dealii::Utilities::split_string_list(prm.get("Window spans")))
+    window_spans.push_back(std::stol(s));
   prm.leave_subsection();
 }
 
 void StatisticsParameters::check(const double time_step, const double x_begin,
-                                 const double x_end) const
+                                 const double x_end,
+                                 const std::vector<double>& supports) const
 {
   const double nyquist = 0.5 / time_step;
   require(low_pass_cutoff < nyquist, "Statistics/Low-pass cut-off", low_pass_cutoff,
           "must lie below the Nyquist frequency 1/(2 dt) = " + number_to_string(nyquist) +
               " Hz (or be 0: no filter)");
+  require(window.empty() || window_spans.empty(), "Statistics/Window spans",
+          list_text(window_spans),
+          "not together with Statistics/Window = " + list_text(window) +
+              ": give the evaluation window either by span numbers or in metres");
+  if (window.empty() && window_spans.empty())
+    return;
+  check_spans(supports);
+  check_metres(supports);
+  const EvaluationWindow w = evaluation_window(supports);
+  const bool by_spans = !window_spans.empty();
+  require(w.end >= x_begin && w.start <= x_end,
+          by_spans ? "Statistics/Window spans" : "Statistics/Window",
+          by_spans ? list_text(window_spans) : list_text(window),
+          (by_spans ? "the window x = " + number_to_string(w.start) + " to " +
+                          number_to_string(w.end) + " m must"
+                    : "must be two positions x0 < x1 [m] that") +
+              " overlap the run from x_p = " + number_to_string(x_begin) + " to " +
+              number_to_string(x_end) + " m (or be empty: the whole run)");
+}
+
+void StatisticsParameters::check_spans(const std::vector<double>& supports) const
+{
+  if (window_spans.empty())
+    return;
+  const long n = static_cast<long>(supports.size()) - 1;
+  const std::string text = list_text(window_spans);
+  require(window_spans.size() <= 2, "Statistics/Window spans", text,
+          "one span number, or two: the first and the last span of the window");
+  for (const long k : window_spans)
+    require(k >= 1 && k <= n, "Statistics/Window spans", text,
+            "span numbers run from 1 to " + std::to_string(n) + " (the section has " +
+                std::to_string(n) + (n == 1 ? " span)" : " spans)"));
+  require(window_spans.front() <= window_spans.back(), "Statistics/Window spans", text,
+          "first, last with first <= last (1 <= first <= last <= " + std::to_string(n) +
+              ")");
+}
+
+void StatisticsParameters::check_metres(const std::vector<double>& supports) const
+{
   if (window.empty())
     return;
-  std::string text;
-  for (const double x : window)
-    text += (text.empty() ? "" : ", ") + number_to_string(x);
-  require(window.size() == 2 && window[0] < window[1] && window[1] >= x_begin &&
-              window[0] <= x_end,
+  const std::string text = list_text(window);
+  require(window.size() == 2 && window[0] < window[1], "Statistics/Window", text,
+          "must be two positions x0 < x1 [m] (or be empty: the whole run)");
+  require(window[0] >= supports.front() && window[1] <= supports.back(),
           "Statistics/Window", text,
-          "must be two positions x0 < x1 [m] that overlap the run from x_p = " +
-              number_to_string(x_begin) + " to " + number_to_string(x_end) +
-              " m (or be empty: the whole run)");
+          "must lie inside the section, from x = " + number_to_string(supports.front()) +
+              " to " + number_to_string(supports.back()) + " m");
+}
+
+EvaluationWindow
+StatisticsParameters::evaluation_window(const std::vector<double>& supports) const
+{
+  EvaluationWindow w;
+  if (!window.empty())
+  {
+    w.start = window[0];
+    w.end = window[1];
+  }
+  else if (!window_spans.empty())
+  {
+    w.first_span = window_spans.front();
+    w.last_span = window_spans.back();
+    w.start = supports.at(w.first_span - 1);
+    w.end = supports.at(w.last_span);
+  }
+  return w;
 }
 } // namespace pantocat

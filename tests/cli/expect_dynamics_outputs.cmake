@@ -13,6 +13,7 @@ endif()
 foreach(f parameters.prm time_series.csv summary.json contact_force.png dropper_forces.png
           pantograph.png time_series.gp solution.pvd vtu/wires-00002.vtu
           contact_force.csv contact_force_statistics.png contact_force_statistics.gp
+          contact_force_over_x.png contact_force_over_x.gp
           vtu/pantograph-droppers-00002.vtu)
   if(NOT EXISTS ${OUTDIR}/${f})
     message(FATAL_ERROR "missing output ${f}")
@@ -21,7 +22,8 @@ endforeach()
 # The plots (gnuplot is installed by scripts/install-dependencies.sh): real PNG files.
 find_program(GNUPLOT gnuplot)
 if(GNUPLOT)
-  foreach(f contact_force.png dropper_forces.png pantograph.png contact_force_statistics.png)
+  foreach(f contact_force.png dropper_forces.png pantograph.png contact_force_statistics.png
+            contact_force_over_x.png)
     file(SIZE ${OUTDIR}/${f} size)
     file(READ ${OUTDIR}/${f} magic LIMIT 4 HEX)
     if(size LESS 1000 OR NOT magic STREQUAL "89504e47")
@@ -53,11 +55,18 @@ endif()
 file(READ ${OUTDIR}/summary.json summary)
 foreach(key status contact_force max min mean std dropper_slack_intervals events event_resolution
             contact_loss_intervals steps active_set_changes max_constraint_residual
-            position velocity time_loop_seconds statistics mean_minus_3_sigma
-            mean_plus_3_sigma percent_without_contact max_uplift_at_droppers
-            filter_cutoff_hz window)
+            position velocity time_loop_seconds statistics window raw filtered
+            mean_plus_3std mean_minus_3std contact_loss_percent max_steady_arm_uplift_m
+            steady_arms max_uplift_at_droppers dropper_slack_events
+            dropper_slack_events_in_window)
   if(NOT summary MATCHES "\"${key}\":")
     message(FATAL_ERROR "summary.json lacks \"${key}\":\n${summary}")
+  endif()
+endforeach()
+# One name per thing: the names before issue 15 are gone.
+foreach(old mean_minus_3_sigma mean_plus_3_sigma percent_without_contact filter_cutoff_hz)
+  if(summary MATCHES "\"${old}\":")
+    message(FATAL_ERROR "summary.json still has the old key \"${old}\":\n${summary}")
   endif()
 endforeach()
 if(NOT summary MATCHES "\"status\": \"completed\"" OR NOT summary MATCHES "\"steps\": 200")

@@ -25,7 +25,7 @@ foreach(index 0 1)
   endif()
   if(GNUPLOT)
     foreach(png contact_force.png dropper_forces.png pantograph.png
-                contact_force_statistics.png)
+                contact_force_statistics.png contact_force_over_x.png)
       if(NOT EXISTS "${WORKDIR}/${dir}/${png}")
         message(FATAL_ERROR "gnuplot did not draw ${png} in \"${dir}\":\n${out}")
       endif()

@@ -34,6 +34,8 @@ public:
   JsonWriter& value(const std::string& key, const char* text);
   JsonWriter& value(const std::string& key, bool flag);
   JsonWriter& value(const std::string& key, unsigned long number);
+  /// null under @p key: a value that does not exist (e.g. no filter, no steady arm).
+  JsonWriter& null(const std::string& key);
   /// [[t0, t1], ...]
   JsonWriter& intervals(const std::string& key,
                         const std::vector<std::pair<double, double>>& list);

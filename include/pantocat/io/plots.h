@@ -31,6 +31,34 @@ bool plot_contact_force_statistics(const std::string& directory,
                                    const ContactForceStatistics& statistics,
                                    const std::string& title);
 
+/// One pantograph's plot of contact_force_over_x.gp.
+struct ForceOverXPlot
+{
+  std::string png;       ///< the file to draw (contact_force_over_x_file())
+  std::string name;      ///< the pantograph's name, for the title
+  std::string suffix;    ///< its column suffix in contact_force.csv
+  double x_begin, x_end; ///< x_p [m] of its first and last time point
+  const ContactForceStatistics* statistics;
+};
+
+/// "contact_force_over_x.png", or with @p several pantographs
+/// "contact_force_over_x_pantograph_2.png" for pantograph @p name "pantograph 2".
+std::string contact_force_over_x_file(const std::string& name, bool several);
+
+/**
+ * contact_force_over_x.png (one per pantograph, contact_force_over_x_file()):
+ * lambda_p over x_p from contact_force.csv, whose header is @p columns (found
+ * by name with the pantograph's suffix), raw and (with a cut-off) low-passed,
+ * dashed vertical lines at the supports @p supports with the spans numbered,
+ * and the evaluation window shaded. Script: contact_force_over_x.gp. Returns the
+ * PNG files gnuplot wrote.
+ */
+std::vector<std::string>
+plot_contact_force_over_x(const std::string& directory,
+                          const std::vector<std::string>& columns,
+                          const std::vector<ForceOverXPlot>& plots,
+                          const std::vector<double>& supports, const std::string& title);
+
 /// True if gnuplot is on the PATH (looked up without a shell: find_program()).
 bool gnuplot_available();
 

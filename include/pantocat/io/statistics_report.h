@@ -2,26 +2,58 @@
 
 #include <pantocat/io/json_writer.h>
 #include <pantocat/simulation/contact_statistics.h>
+#include <pantocat/simulation/run_statistics.h>
 
 #include <ostream>
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
 /**
- * The "statistics" object of summary.json: mean, std, mean_minus_3_sigma,
- * mean_plus_3_sigma, max, min [N], percent_without_contact,
- * max_uplift_at_droppers [m], filter_cutoff_hz (0: unfiltered) and window
- * [x0, x1] (x_p of the first and last time point used) [m].
+ * The "statistics" object of summary.json (doc/output.md): "window" (x
+ * [x0, x1] m, spans [first, last] or null, n_points), "raw" and "filtered"
+ * (null without a cut-off; else with cutoff_hz and order) each with mean,
+ * std, max, min, mean_plus_3std, mean_minus_3std [N] and
+ * contact_loss_percent, max_steady_arm_uplift_m (null without a steady arm in
+ * the window), "steady_arms" ([{x, max_uplift_m}]), max_uplift_at_droppers
+ * [m], and @p slack_in_window as dropper_slack_events_in_window.
  */
-void write_statistics(JsonWriter& json, const ContactForceStatistics& statistics);
+void write_statistics(JsonWriter& json, const ContactForceStatistics& statistics,
+                      const DropperSlackEvents& slack_in_window);
+
+/// {"total": n, "per_dropper": [n_1, ...]} under @p key.
+void write_slack_events(JsonWriter& json, const std::string& key,
+                        const DropperSlackEvents& events);
+
+/// A pantograph's columns in contact_force.csv.
+struct ContactForceColumns
+{
+  const ContactStatistics* statistics;
+  std::string suffix; ///< PantographLayout::column_suffix: "" with one pantograph
+};
+
+/// The header of contact_force.csv for @p pantographs (write_contact_force()).
+std::vector<std::string>
+contact_force_column_names(const std::vector<ContactForceColumns>& pantographs);
 
 /**
- * contact_force.csv: t, x_p, lambda_p and lambda_p_filtered (after the low
- * pass; equal to lambda_p without one) at every time point of the run.
+ * contact_force.csv: t, then per pantograph in contact x_p, lambda_p and
+ * lambda_p_filtered (after the low pass; equal to lambda_p without one), each
+ * with the pantograph's column suffix ("" with one, "[k]" with several), at
+ * every time point of the run.
  */
-void write_contact_force(const std::string& file, const ContactStatistics& statistics);
+void write_contact_force(const std::string& file,
+                         const std::vector<ContactForceColumns>& pantographs);
 
-/// The same figures as a few lines of text (the end of a run's screen output).
-void print_statistics(std::ostream& out, const ContactForceStatistics& statistics);
+/**
+ * The figures as a few lines of text (the end of a run's screen output): the
+ * window in metres and spans, raw and filtered figures side by side, the
+ * uplift at the steady arms and at the droppers, and @p slack_in_window.
+ */
+void print_statistics(std::ostream& out, const ContactForceStatistics& statistics,
+                      const DropperSlackEvents& slack_in_window);
+
+/// "total 3 (dropper 41: 1, dropper 42: 2)", or "none".
+std::string describe_slack_events(const DropperSlackEvents& events);
 } // namespace pantocat

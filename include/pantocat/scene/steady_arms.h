@@ -2,6 +2,8 @@
 
 #include <pantocat/scene/scene_effect.h>
 
+#include <vector>
+
 namespace pantocat
 {
 /**
@@ -19,5 +21,10 @@ public:
                const CatenaryParameters& catenary) const override;
   void add_terms(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;
+
+  /// The positions x [m] of the steady arms of @p scene: the interior
+  /// supports if it has them (enabled()), none otherwise.
+  static std::vector<double> positions(const SceneParameters& scene,
+                                       const CatenaryParameters& catenary);
 };
 } // namespace pantocat

@@ -6,6 +6,7 @@
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/system/sparse_row.h>
 
+#include <optional>
 #include <vector>
 
 namespace pantocat
@@ -18,49 +19,93 @@ struct ContactForceSeries
 };
 
 /**
- * Contact-force statistics as the railway field reports them (EN 50318,
- * EN 50367): mean F_m, standard deviation sigma, F_m -/+ 3 sigma, the actual
- * maximum and minimum, and the share of time without contact; all in a
- * window of pantograph positions, optionally after a zero-phase low pass.
+ * The figures of one contact-force series in the evaluation window, as the
+ * railway field reports them (EN 50318, EN 50367): mean F_m, population
+ * standard deviation sigma, F_m +/- 3 sigma, the actual maximum and minimum
+ * [N], and the share of time with force <= 0. NaN without a time point.
  */
-struct ContactForceStatistics
+struct ForceFigures
 {
   double mean = 0.;
   double std = 0.; ///< population standard deviation over the window's time points
-  double mean_minus_3_sigma = 0., mean_plus_3_sigma = 0.;
   double max = 0., min = 0.;
-  double percent_without_contact = 0.;       ///< 100 x share of the window's time points
-  double filter_cutoff_hz = 0.;              ///< 0: unfiltered
-  double window_start = 0., window_end = 0.; ///< x_p [m] of the first and last point used
+  double mean_plus_3std = 0., mean_minus_3std = 0.;
+  /// 100 x (time points with force <= 0) / n: contact loss, resolution one step.
+  double contact_loss_percent = 0.;
   unsigned long n_points = 0;
-  /// Maximum over the run of w_w(x_d, t) - w_w(x_d, 0) per dropper [m].
-  std::vector<double> max_uplift_at_droppers;
 };
 
 /**
- * The statistics of @p series: filters lambda_p over the whole run (when a
- * cut-off is set; sample rate from the time points), then takes the points
- * with x_p in the window. A window that holds no time point (narrower than
- * one step) gives n_points = 0 and NaN figures (null in summary.json).
- * @p filtered, if given, receives the (filtered) force of every time point.
+ * The figures of @p force at the time points @p points (indices into it);
+ * NaN figures if @p points is empty. The variance in two passes (no
+ * cancellation).
+ */
+ForceFigures force_figures(const std::vector<double>& force,
+                           const std::vector<std::size_t>& points);
+
+/// The largest rise of the contact wire at one steady arm.
+struct SteadyArmUplift
+{
+  double x = 0.;         ///< the steady arm's position [m]
+  double max_uplift = 0; ///< max over the run of w_w(x, t) - w_w(x, 0) [m]
+};
+
+/**
+ * Contact-force statistics of one pantograph in its evaluation window, raw
+ * and (with a cut-off) after the zero-phase low pass of the whole run, and
+ * the uplift of the contact wire at the steady arms in the window.
+ */
+struct ContactForceStatistics
+{
+  EvaluationWindow window;                ///< as asked (in metres)
+  double first_position = 0.;             ///< x_p [m] of the first point used
+  double last_position = 0.;              ///< x_p [m] of the last point used
+  double first_time = 0., last_time = 0.; ///< t [s] of the first and last point used
+  double filter_cutoff_hz = 0.;           ///< 0: unfiltered
+  unsigned int filter_order = 0;          ///< order of the Butterworth low pass
+  ForceFigures raw;                       ///< lambda_p as computed
+  std::optional<ForceFigures>
+      filtered; ///< after the low pass (a cut-off set, > 2 points)
+  std::vector<SteadyArmUplift> steady_arms; ///< those in the window, ends included
+  /// Maximum uplift w_w(x_d, t) - w_w(x_d, 0) over the whole run per dropper [m].
+  std::vector<double> max_uplift_at_droppers;
+
+  /// The largest uplift over the steady arms in the window; none without one.
+  std::optional<double> max_steady_arm_uplift() const;
+};
+
+/**
+ * The statistics of @p series in @p window: the raw figures, and when
+ * @p parameters set a cut-off, the figures of lambda_p filtered over the
+ * whole run (sample rate from the time points) taken in the same window. A
+ * window that holds no time point (narrower than one step) gives n_points =
+ * 0 and NaN figures (null in summary.json). @p filtered, if given, receives
+ * the filtered force of every time point (lambda_p itself without a cut-off).
  */
 ContactForceStatistics evaluate_contact_force(const ContactForceSeries& series,
                                               const StatisticsParameters& parameters,
+                                              const EvaluationWindow& window,
                                               std::vector<double>* filtered = nullptr);
 
 /**
  * Observer that records the contact-force series of one pantograph's contact
- * (one observer per contact) and the contact-wire
- * displacement w_w(x_d, t) at every dropper position x_d (two sparse rows
- * per time point), and evaluates the statistics at the end of the run.
+ * (one observer per contact) and the contact-wire displacement w_w(x, t) at
+ * every dropper and at every steady arm inside the evaluation window (a
+ * sparse row each), and evaluates the statistics at the end of the run.
  */
 class ContactStatistics : public SimulationObserver
 {
 public:
-  /// For pantograph @p pantograph (its index in SimulationLayout::pantographs).
+  /**
+   * For pantograph @p pantograph (its index in SimulationLayout::pantographs);
+   * @p steady_arms: the positions [m] of the scene's steady arms (none if it
+   * has none: SteadyArms::positions()).
+   */
   ContactStatistics(const StatisticsParameters& parameters,
                     const CatenaryDiscretisation& discretisation,
-                    const SemiDiscreteSystem& system, unsigned int pantograph = 0);
+                    const SemiDiscreteSystem& system,
+                    const std::vector<double>& steady_arms = {},
+                    unsigned int pantograph = 0);
 
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint&) override {}
@@ -76,10 +121,14 @@ public:
 
 private:
   StatisticsParameters parameters;
+  EvaluationWindow window;
   unsigned int pantograph = 0;
   unsigned int contact_index = 0;
-  std::vector<SparseRow> dropper_rows; ///< w_w(x_d) = row . q
-  std::vector<double> initial_height, max_uplift;
+  /// w_w = row . q at the droppers, then at the steady arms in the window.
+  std::vector<SparseRow> wire_rows;
+  unsigned int n_droppers = 0;     ///< the first n_droppers of wire_rows
+  std::vector<double> steady_arms; ///< x [m] of the steady arms in the window
+  std::vector<double> initial_height, max_uplift; ///< per row of wire_rows
   ContactForceSeries recorded;
   ContactForceStatistics statistics;
   std::vector<double> filtered;

@@ -11,6 +11,13 @@ namespace pantocat
 /// A time interval [t0, t1] in seconds.
 using Interval = std::pair<double, double>;
 
+/// How often each dropper went slack: the number of its slack intervals.
+struct DropperSlackEvents
+{
+  std::vector<unsigned long> per_dropper; ///< in dropper order
+  unsigned long total = 0;                ///< the sum over the droppers
+};
+
 /**
  * Statistics of a run as summary.json reports them: contact-force statistics,
  * the intervals in which each dropper is slack and the contact is lost, and
@@ -56,6 +63,13 @@ public:
   unsigned int max_droppers_slack_at_once() const { return max_slack; }
   /// Slack intervals of each dropper, in dropper order.
   std::vector<std::vector<Interval>> dropper_slack_intervals() const;
+  /**
+   * The slack intervals of each dropper that begin at a time in [@p from,
+   * @p to] (by default all of the run), counted.
+   */
+  DropperSlackEvents
+  dropper_slack_events(double from = -std::numeric_limits<double>::infinity(),
+                       double to = std::numeric_limits<double>::infinity()) const;
   /// Loss intervals of the first pantograph's contact.
   std::vector<Interval> contact_loss_intervals() const;
   /// Loss intervals of pantograph @p k's contact (empty without contact).
