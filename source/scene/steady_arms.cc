@@ -18,7 +18,7 @@ bool SteadyArms::enabled(const SceneParameters& scene,
 std::vector<double> SteadyArms::positions(const SceneParameters& scene,
                                           const CatenaryParameters& catenary)
 {
-  return SteadyArms().enabled(scene, catenary) ? catenary.interior_supports()
+  return SteadyArms().enabled(scene, catenary) ? catenary.steady_arm_positions()
                                                : std::vector<double>{};
 }
 
