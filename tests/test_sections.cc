@@ -90,7 +90,7 @@ TEST(Sections, S55StartsAtRestWithThePenaltyContactPressedIn)
   const ProgramParameters p =
       shipped("section-s55.prm",
               {"Discretisation/Method=fdm", "Discretisation/Number of intervals=1100",
-               "Pantograph/Final position=5", "Statistics/Window="});
+               "Pantograph/Final position=5", "Statistics/Window spans="});
   CaseRunner runner(p.make_case());
   const SimulationLayout& layout = runner.layout();
   const unsigned int contact = layout.pantographs[0].contact;
