@@ -1,0 +1,25 @@
+# Runs a shipped section case and checks its evaluation window's figures in
+# summary.json against the band the grid study of doc/catenaries.md gives.
+#   -DEXE=... -DPRM=... -DOUTDIR=... -DSTD_MIN=... -DSTD_MAX=... (filtered sigma, N)
+file(REMOVE_RECURSE ${OUTDIR})
+execute_process(COMMAND ${EXE} ${PRM} --set "Output/Output directory=${OUTDIR}"
+                --set "Output/Plots=false"
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "${PRM} failed (${status}): ${err}")
+endif()
+file(READ ${OUTDIR}/summary.json summary)
+string(JSON n LENGTH "${summary}" pantographs)
+math(EXPR last "${n} - 1")
+foreach(k RANGE ${last})
+  string(JSON std GET "${summary}" pantographs ${k} statistics filtered std)
+  string(JSON loss GET "${summary}" pantographs ${k} statistics raw contact_loss_percent)
+  string(JSON min GET "${summary}" pantographs ${k} statistics raw min)
+  message(STATUS "pantograph ${k}: filtered sigma ${std} N, raw min ${min} N, loss ${loss} %")
+  if(std LESS ${STD_MIN} OR std GREATER ${STD_MAX})
+    message(FATAL_ERROR "pantograph ${k}: filtered sigma ${std} N outside [${STD_MIN}, ${STD_MAX}] N")
+  endif()
+  if(min LESS 0)
+    message(FATAL_ERROR "pantograph ${k}: a negative contact force ${min} N reached the output")
+  endif()
+endforeach()
