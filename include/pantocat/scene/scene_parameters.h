@@ -21,7 +21,7 @@ enum class DropperModel
 {
   unilateral, ///< may slacken: Delta_d >= 0, Sec. 5.3
   bilateral,  ///< always taut: Delta_d = 0, Eq. (4)
-  elastic,    ///< tension-only spring: force k_d max(-Delta_d, 0), L0 = l_j (issue 15)
+  elastic,    ///< tension-only spring: force k_d max(-Delta_d, 0), unstretched length l_j
   absent
 };
 
