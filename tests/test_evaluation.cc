@@ -13,6 +13,7 @@
 #include <pantocat/simulation/run_statistics.h>
 
 #include "support/case_files.h"
+#include "support/input_errors.h"
 
 #include <deal.II/base/utilities.h>
 
@@ -72,20 +73,6 @@ double amplitude_in(const ContactForceSeries& s, const std::vector<double>& y,
   return 2. * std::hypot(sine, cosine) / count;
 }
 
-/// The message of the InputError that @p f throws ("" if none).
-template <typename Function>
-std::string input_error_of(const Function& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
-}
 } // namespace
 
 // ---------------------------------------------------------------- windows

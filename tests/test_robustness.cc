@@ -13,6 +13,7 @@
 #include <pantocat/time/time_integrator.h>
 
 #include "support/case_files.h"
+#include "support/input_errors.h"
 
 #include <gtest/gtest.h>
 
@@ -21,24 +22,6 @@
 #include <fstream>
 
 using namespace pantocat;
-
-namespace
-{
-/// The message of the InputError that @p f throws ("" if none).
-template <typename Function>
-std::string input_error_of(const Function& f)
-{
-  try
-  {
-    f();
-  }
-  catch (const InputError& e)
-  {
-    return e.what();
-  }
-  return "";
-}
-} // namespace
 
 TEST(Robustness, EveryIntegratorRefusesASystemWithoutUnknowns)
 {
