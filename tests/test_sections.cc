@@ -187,7 +187,7 @@ TEST(Sections, WaveSpeedsAndTheDesignRule)
 TEST(Sections, APantographSpacingOutsideTheSectionIsRefused)
 {
   // Two S55 pantographs 200 m apart need the leader at x >= 200 m: from 150 m
-  // the second would start at -50 m, outside [0, 550] m.
+  // the second would start at -50 m, outside the 13-span section [0, 715] m.
   try
   {
     shipped("section-s55-two-pantographs.prm", {"Pantograph/Initial position=150"})
@@ -198,7 +198,7 @@ TEST(Sections, APantographSpacingOutsideTheSectionIsRefused)
   {
     EXPECT_NE(
         std::string(e.what()).find("Scene/Pantograph spacing = 200: puts pantograph 2 "
-                                   "at x_p(0) = -50 m, outside the section [0, 550] "
+                                   "at x_p(0) = -50 m, outside the section [0, 715] "
                                    "m; allowed: 0 <= s <= 150 m"),
         std::string::npos)
         << e.what();

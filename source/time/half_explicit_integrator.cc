@@ -19,13 +19,29 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   const unsigned int n = system.n_dofs(), m = system.n_constraints();
   for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new})
     x->reinit(n);
-  for (auto* c : {&Y, &P, &Q, &R})
-    c->assign(m, dealii::Vector<double>(n));
   lambda.assign(m, 0.);
   gaps.assign(m, 0.);
+  position.assign(m, -1);
   for (unsigned int i = 0; i < m; ++i)
-    if (system.constraints[i]->is_compliant())
+  {
+    const Constraint& c = *system.constraints[i];
+    if (c.is_compliant())
       compliant.push_back(i);
+    else if (c.depends_on_time())
+    {
+      position[i] = moving.size();
+      moving.push_back(i);
+    }
+    else
+    {
+      position[i] = fixed.size();
+      fixed.push_back(i);
+    }
+  }
+  columns.resize(moving.size());
+  for (MovingColumns& c : columns)
+    for (auto* x : {&c.Y, &c.P, &c.Q, &c.R, &c.U, &c.V})
+      x->reinit(n);
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   factorize();
   // Diagonal storage of K and D/2.
@@ -164,6 +180,7 @@ void HalfExplicitIntegrator::compute_forces()
     // The coupled rows (unscaled by row_scaling) get their dampers, then their block.
     for (const auto& [i, j, d] : forces.listed_damping)
       out[i] -= d * (vp[j] + vv[j]);
+    add_compliant_loads(out, scale);
     smoothed_mass_inverse.apply_coupled_rows(a);
     return;
   }
@@ -184,6 +201,7 @@ void HalfExplicitIntegrator::compute_forces()
     for (int i = first; i < last; ++i)
       out[i] -= d[i] * (vp[i + o] + vv[i + o]);
   }
+  add_compliant_loads(out, nullptr);
   smoothed_mass_inverse.apply(a);
 }
 
@@ -198,19 +216,14 @@ void HalfExplicitIntegrator::factorize()
     diagonal = it->row() == it->column() || it->value() == 0.;
   smoothed_mass_inverse.initialize(smoothed, diagonal, "matrix M + dt/2 D");
 
-  // Columns of the constant constraint rows, once.
-  const auto& states = at_n.states();
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    if (!system.constraints[i]->depends_on_time())
-    {
-      Y[i] = 0.;
-      P[i] = 0.;
-      Q[i] = 0.;
-      R[i] = 0.;
-      smoothed_mass_inverse.apply_to_row(states[i].G, Y[i]);
-      mass_inverse.apply_to_row(states[i].G, P[i]);
-      mass_inverse.apply_to_row(states[i].G, R[i]); // G(t_n) = G(t_{n+1/2})
-    }
+  // The Schur complements of the rigid constraints with constant rows, once.
+  std::vector<const SparseRow*> rows;
+  for (const unsigned int i : fixed)
+    rows.push_back(&at_n.states()[i].G);
+  fixed_smoothed.initialize(rows, smoothed_mass_inverse, system.n_dofs(),
+                            "matrix G (M + dt/2 D)^-1 G^T of the fixed constraints");
+  fixed_mass.initialize(rows, mass_inverse, system.n_dofs(),
+                        "matrix G M^-1 G^T of the fixed constraints");
 }
 
 void HalfExplicitIntegrator::set_time_step(const double time_step)
@@ -238,35 +251,101 @@ void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>&
   v_prev = vp;
 }
 
-void HalfExplicitIntegrator::compute_time_dependent_columns()
+void HalfExplicitIntegrator::compute_moving_columns()
 {
   const auto& sn = at_n.states();
   const auto& sh = at_half.states();
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    if (system.constraints[i]->depends_on_time())
-    {
-      smoothed_mass_inverse.apply_to_row(sn[i].G, Y[i]);
-      mass_inverse.apply_to_row(sn[i].G, P[i]);
-      mass_inverse.apply_to_row(sh[i].G_t, Q[i]);
-      mass_inverse.apply_to_row(sh[i].G, R[i]);
-    }
+  const auto& s1 = at_next.states();
+  for (unsigned int c = 0; c < moving.size(); ++c)
+  {
+    const unsigned int i = moving[c];
+    MovingColumns& x = columns[c];
+    smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
+    mass_inverse.apply_to_row(sn[i].G, x.P);
+    mass_inverse.apply_to_row(sh[i].G_t, x.Q);
+    mass_inverse.apply_to_row(sh[i].G, x.R);
+    if (fixed.empty())
+      continue;
+    mass_inverse.apply_to_row(s1[i].G, x.U);
+    mass_inverse.apply_to_row(s1[i].G_t, x.V);
+  }
 }
 
-void HalfExplicitIntegrator::reset_time_dependent_columns()
+void HalfExplicitIntegrator::reset_moving_columns()
 {
   const auto& sn = at_n.states();
   const auto& sh = at_half.states();
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    if (system.constraints[i]->depends_on_time())
-    {
-      smoothed_mass_inverse.reset_column(sn[i].G, Y[i]);
-      mass_inverse.reset_column(sn[i].G, P[i]);
-      mass_inverse.reset_column(sh[i].G_t, Q[i]);
-      mass_inverse.reset_column(sh[i].G, R[i]);
-    }
+  const auto& s1 = at_next.states();
+  for (unsigned int c = 0; c < moving.size(); ++c)
+  {
+    const unsigned int i = moving[c];
+    MovingColumns& x = columns[c];
+    smoothed_mass_inverse.reset_column(sn[i].G, x.Y);
+    mass_inverse.reset_column(sn[i].G, x.P);
+    mass_inverse.reset_column(sh[i].G_t, x.Q);
+    mass_inverse.reset_column(sh[i].G, x.R);
+    if (fixed.empty())
+      continue;
+    mass_inverse.reset_column(s1[i].G, x.U);
+    mass_inverse.reset_column(s1[i].G_t, x.V);
+  }
 }
 
-void HalfExplicitIntegrator::add_compliant_forces()
+void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
+                                   std::vector<bool>& keep_fixed,
+                                   std::vector<unsigned int>& moving_in_A) const
+{
+  keep_fixed.assign(fixed.size(), false);
+  moving_in_A.clear();
+  for (const unsigned int i : A)
+  {
+    if (system.constraints[i]->depends_on_time())
+      moving_in_A.push_back(i);
+    else
+      keep_fixed[position[i]] = true;
+  }
+}
+
+namespace
+{
+/**
+ * Solves the bordered system [A B; C D] [x; y] = [r; s] by block elimination,
+ * with A^-1 applied in place by @p solve_fixed: x0 = A^-1 r, Z = A^-1 B,
+ * (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds the columns of B (becomes
+ * Z), @p C the rows of C; on return @p r holds x and @p s holds y.
+ */
+template <typename Solve>
+void solve_bordered(const Solve& solve_fixed, std::vector<dealii::Vector<double>>& B,
+                    const std::vector<dealii::Vector<double>>& C,
+                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
+                    dealii::Vector<double>& s, const double t, const char* what)
+{
+  const bool has_fixed = r.size() > 0;
+  if (has_fixed)
+    solve_fixed(r);
+  const unsigned int p = s.size();
+  if (p == 0)
+    return;
+  dealii::Vector<double> rhs(s);
+  if (has_fixed)
+  {
+    for (auto& b : B)
+      solve_fixed(b);
+    for (unsigned int k = 0; k < p; ++k)
+    {
+      rhs(k) -= C[k] * r;
+      for (unsigned int l = 0; l < p; ++l)
+        D(k, l) -= C[k] * B[l];
+    }
+  }
+  solve_multiplier_system(D, rhs, s, t, what);
+  if (has_fixed)
+    for (unsigned int l = 0; l < p; ++l)
+      r.add(-s(l), B[l]);
+}
+} // namespace
+
+void HalfExplicitIntegrator::compute_compliant_forces()
 {
   const auto& sn = at_n.states();
   for (const unsigned int i : compliant)
@@ -282,40 +361,87 @@ void HalfExplicitIntegrator::add_compliant_forces()
     // Counted once: a repetition of step 1 in the same step finds it set.
     stats.active_set_changes += engaged != active_now[i];
     active_now[i] = engaged;
-    // a += (M + dt/2 D)^-1 G^T lambda_i: a sparse column, computed once.
+  }
+}
+
+void HalfExplicitIntegrator::add_compliant_loads(double* f, const double* scaling) const
+{
+  const auto& sn = at_n.states();
+  for (const unsigned int i : compliant)
     if (lambda[i] != 0.)
-      smoothed_mass_inverse.add_column(s.G, Y[i], lambda[i], a);
+    {
+      const SparseRow& G = sn[i].G;
+      for (std::size_t k = 0; k < G.size(); ++k)
+      {
+        const unsigned int j = G.index[k];
+        f[j] += lambda[i] * G.value[k] * (scaling ? scaling[j] : 1.);
+      }
+    }
+}
+
+void HalfExplicitIntegrator::add_acceleration_multipliers(
+    const std::vector<unsigned int>& A)
+{
+  const auto& sn = at_n.states();
+  split(A, keep, moving_active);
+  fixed_smoothed.select(keep);
+  const unsigned int mF = fixed.size(), p = moving_active.size();
+  if (mF + p == 0)
+    return;
+  // g^(II) = G a + 2 G_t v + G_tt q + z_tt = 0 at t_n.
+  const auto level2 = [&](const unsigned int i)
+  {
+    const ConstraintState& s = sn[i];
+    return -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
+  };
+  dealii::Vector<double> x(mF), y(p);
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+      x(k) = level2(fixed[k]);
+  // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
+  // ((M + dt/2 D) is symmetric), D = G_c Y_c'.
+  std::vector<dealii::Vector<double>> B(p, dealii::Vector<double>(mF));
+  dealii::FullMatrix<double> D(p, p);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    y(c) = level2(moving_active[c]);
+    const dealii::Vector<double>& Y = columns[position[moving_active[c]]].Y;
+    for (unsigned int k = 0; k < mF; ++k)
+      if (keep[k])
+        B[c](k) = sn[fixed[k]].G.dot(Y);
+    for (unsigned int r = 0; r < p; ++r)
+      D(r, c) = sn[moving_active[r]].G.dot(Y);
+  }
+  const std::vector<dealii::Vector<double>> C(B);
+  solve_bordered([&](dealii::Vector<double>& r) { fixed_smoothed.solve(r); }, B, C, D, x,
+                 y, t, "acceleration level");
+  // a += (M + dt/2 D)^-1 G^T lambda: one application for the fixed rows.
+  terms.clear();
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k] && x(k) != 0.)
+    {
+      lambda[fixed[k]] = x(k);
+      terms.push_back({&sn[fixed[k]].G, x(k)});
+    }
+  smoothed_mass_inverse.add_rows(terms, a);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const unsigned int i = moving_active[c];
+    lambda[i] = y(c);
+    smoothed_mass_inverse.add_column(sn[i].G, columns[position[i]].Y, y(c), a);
   }
 }
 
 void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A)
 {
-  const auto& sn = at_n.states();
-  // (M + dt/2 D) a = f - K q_n - D (v_{n-1} + v_n)/2: the smoothing (41).
-  compute_forces(); // a <- (M + dt/2 D)^-1 (f - K q_n - D (v_{n-1} + v_n)/2)
   std::fill(lambda.begin(), lambda.end(), 0.);
-  // + G^T lambda of the compliant constraints, before the rigid multipliers
-  // (whose g^(II) = 0 sees these forces).
-  add_compliant_forces();
-
-  const unsigned int m = A.size();
-  small.reinit(m, m);
-  small_rhs.reinit(m);
-  small_solution.reinit(m);
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    const ConstraintState& s = sn[A[k]];
-    for (unsigned int l = 0; l < m; ++l)
-      small(k, l) = s.G.dot(Y[A[l]]);
-    // g^(II) = G a + 2 G_t v + G_tt q + z_tt = 0 at t_n.
-    small_rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
-  }
-  solve_multiplier_system(small, small_rhs, small_solution, t, "acceleration level");
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    lambda[A[k]] = small_solution(k);
-    smoothed_mass_inverse.add_column(sn[A[k]].G, Y[A[k]], small_solution(k), a);
-  }
+  // The compliant forces first: they join f of (39), and the rigid
+  // multipliers' g^(II) = 0 sees them.
+  compute_compliant_forces();
+  // (M + dt/2 D) a = f - K q_n - D (v_{n-1} + v_n)/2 + G_c^T lambda_c: the smoothing
+  // (41).
+  compute_forces();
+  add_acceleration_multipliers(A);
 }
 
 void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
@@ -338,41 +464,112 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
       qn[i] = qq[i] + 0.5 * dt * (vv[i] + vn[i]);
     }
   }
-
-  const unsigned int m = A.size();
-  small.reinit(2 * m, 2 * m);
-  small_rhs.reinit(2 * m);
-  small_solution.reinit(2 * m);
-  const double h = dt;
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    const ConstraintState& s = s1[A[k]];
-    for (unsigned int l = 0; l < m; ++l)
-    {
-      const unsigned int j = A[l];
-      const double GP = s.G.dot(P[j]), GQ = s.G.dot(Q[j]), GR = s.G.dot(R[j]);
-      const double GtP = s.G_t.dot(P[j]), GtQ = s.G_t.dot(Q[j]), GtR = s.G_t.dot(R[j]);
-      small(k, l) = h * h * GP + h * GQ;                     // position row, eta
-      small(k, m + l) = h * GR;                              // position row, mu
-      small(m + k, l) = h * h * GtP + h * GtQ + 2. * h * GP; // velocity row, eta
-      small(m + k, m + l) = h * GtR;                         // velocity row, mu
-    }
-    small_rhs(k) = -(s.G.dot(q_new) + s.z);
-    small_rhs(m + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
-  }
-  solve_multiplier_system(small, small_rhs, small_solution, t + dt,
-                          "position/velocity level");
-  for (unsigned int l = 0; l < m; ++l)
-  {
-    const unsigned int j = A[l];
-    const double eta = small_solution(l), mu = small_solution(m + l);
-    mass_inverse.add_column(sn[j].G, P[j], h * h * eta, q_new);
-    mass_inverse.add_column(sh[j].G_t, Q[j], h * eta, q_new);
-    mass_inverse.add_column(sh[j].G, R[j], h * mu, q_new);
-    mass_inverse.add_column(sn[j].G, P[j], 2. * h * eta, v_new);
-  }
+  split(A, keep, moving_active);
+  const unsigned int mF = fixed.size(), p = moving_active.size();
+  if (mF + p > 0)
+    solve_position_and_velocity_level(sn, sh, s1);
   for (unsigned int i = 0; i < system.n_constraints(); ++i)
     gaps[i] = s1[i].position_residual(q_new);
+}
+void HalfExplicitIntegrator::solve_position_and_velocity_level(
+    const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
+    const std::vector<ConstraintState>& s1)
+{
+  fixed_mass.select(keep);
+  const unsigned int mF = fixed.size(), p = moving_active.size();
+  const double h = dt;
+  // Unknowns (eta_F, mu_F | eta_C, mu_C), rows g = 0 and dg/dt = 0 at t_{n+1}.
+  dealii::Vector<double> x(2 * mF), y(2 * p);
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+    {
+      const ConstraintState& s = s1[fixed[k]];
+      x(k) = -(s.G.dot(q_new) + s.z);
+      x(mF + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
+    }
+  std::vector<dealii::Vector<double>> B(2 * p, dealii::Vector<double>(2 * mF)),
+      C(2 * p, dealii::Vector<double>(2 * mF));
+  dealii::FullMatrix<double> D(2 * p, 2 * p);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const ConstraintState& sc = s1[moving_active[c]];
+    y(c) = -(sc.G.dot(q_new) + sc.z);
+    y(p + c) = -(sc.G_t.dot(q_new) + sc.G.dot(v_new) + sc.z_t);
+    const MovingColumns& X = columns[position[moving_active[c]]];
+    // Fixed rows against the moving unknowns (their G_t = 0), and the moving
+    // rows against the fixed unknowns through U, V (M symmetric: G_c M^-1 G_l^T = G_l
+    // U_c).
+    for (unsigned int k = 0; k < mF; ++k)
+      if (keep[k])
+      {
+        const SparseRow& G = s1[fixed[k]].G;
+        const double GP = G.dot(X.P), GQ = G.dot(X.Q), GR = G.dot(X.R);
+        B[c](k) = h * h * GP + h * GQ;
+        B[c](mF + k) = 2. * h * GP;
+        B[p + c](k) = h * GR;
+        const double GU = G.dot(X.U), GV = G.dot(X.V);
+        C[c](k) = h * h * GU;
+        C[c](mF + k) = h * GU;
+        C[p + c](k) = h * h * GV + 2. * h * GU;
+        C[p + c](mF + k) = h * GV;
+      }
+    // Moving rows against the moving unknowns, as (40) reads.
+    for (unsigned int r = 0; r < p; ++r)
+    {
+      const ConstraintState& s = s1[moving_active[r]];
+      const double GP = s.G.dot(X.P), GQ = s.G.dot(X.Q), GR = s.G.dot(X.R);
+      const double GtP = s.G_t.dot(X.P), GtQ = s.G_t.dot(X.Q), GtR = s.G_t.dot(X.R);
+      D(r, c) = h * h * GP + h * GQ;
+      D(r, p + c) = h * GR;
+      D(p + r, c) = h * h * GtP + h * GtQ + 2. * h * GP;
+      D(p + r, p + c) = h * GtR;
+    }
+  }
+  // The fixed block [h^2 S, h S; 2h S, 0] (S = G_F M^-1 G_F^T) by two solves with S:
+  // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta.
+  dealii::Vector<double> r_g(mF), r_v(mF);
+  const auto solve_fixed = [&](dealii::Vector<double>& r)
+  {
+    for (unsigned int k = 0; k < mF; ++k)
+    {
+      r_g(k) = r(k);
+      r_v(k) = r(mF + k);
+    }
+    fixed_mass.solve(r_g);
+    fixed_mass.solve(r_v);
+    for (unsigned int k = 0; k < mF; ++k)
+    {
+      const double eta = r_v(k) / (2. * h);
+      r(k) = eta;
+      r(mF + k) = r_g(k) / h - h * eta;
+    }
+  };
+  solve_bordered(solve_fixed, B, C, D, x, y, t + dt, "position/velocity level");
+
+  // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
+  // one application of M^-1 each for the fixed rows.
+  terms.clear();
+  terms_v.clear();
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+    {
+      const double eta = x(k), mu = x(mF + k);
+      const SparseRow& G = sn[fixed[k]].G;
+      terms.push_back({&G, h * h * eta + h * mu});
+      terms_v.push_back({&G, 2. * h * eta});
+    }
+  mass_inverse.add_rows(terms, q_new);
+  mass_inverse.add_rows(terms_v, v_new);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const unsigned int j = moving_active[c];
+    const MovingColumns& X = columns[position[j]];
+    const double eta = y(c), mu = y(p + c);
+    mass_inverse.add_column(sn[j].G, X.P, h * h * eta, q_new);
+    mass_inverse.add_column(sh[j].G_t, X.Q, h * eta, q_new);
+    mass_inverse.add_column(sh[j].G, X.R, h * mu, q_new);
+    mass_inverse.add_column(sn[j].G, X.P, 2. * h * eta, v_new);
+  }
 }
 
 void HalfExplicitIntegrator::advance()
@@ -380,7 +577,7 @@ void HalfExplicitIntegrator::advance()
   at_n.at(t);
   at_half.at(t + 0.5 * dt, 1); // (40) needs G and G_t at t_{n+1/2} and t_{n+1}
   at_next.at(t + dt, 1);
-  compute_time_dependent_columns();
+  compute_moving_columns();
   active_set.start(active_now);
   for (;;)
   {
@@ -391,7 +588,7 @@ void HalfExplicitIntegrator::advance()
       break;
     ++stats.active_set_iterations;
   }
-  reset_time_dependent_columns();
+  reset_moving_columns();
   stats.active_set_changes += active_set.changes_in_step();
 
   // Report t_n: q_n, v_n satisfy the constraints of J_n; lambda_n belongs to
@@ -419,13 +616,14 @@ void HalfExplicitIntegrator::finish()
   // Step 1 alone at the final time: a_N and lambda_N with the current active set.
   at_n.at(t);
   at_half.at(t + 0.5 * dt, 1);
-  compute_time_dependent_columns();
+  at_next.at(t + dt, 1);
+  compute_moving_columns();
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)
     if (active_now[i] && !system.constraints[i]->is_compliant())
       A.push_back(i);
   compute_acceleration(A);
-  reset_time_dependent_columns();
+  reset_moving_columns();
   reported.t = t;
   reported.q = q;
   reported.v = v;

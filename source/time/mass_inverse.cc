@@ -187,4 +187,39 @@ void MassInverse::add_column(const SparseRow& row, const dealii::Vector<double>&
     if (std::find(row.index.begin(), row.index.end(), i) == row.index.end())
       y[i] += factor * column[i];
 }
+
+void MassInverse::add_rows(const std::vector<RowTerm>& terms,
+                           dealii::Vector<double>& y) const
+{
+  if (terms.empty())
+    return;
+  if (!diagonal)
+  {
+    work.reinit(y.size()); // zero
+    for (const auto& [row, factor] : terms)
+      row->add_transpose_to(work, factor);
+    factorization.solve(work);
+    y += work;
+    return;
+  }
+  const unsigned int c = coupled_rows.size();
+  if (c > 0)
+    block_in = 0.;
+  for (const auto& [row, factor] : terms)
+    for (std::size_t k = 0; k < row->size(); ++k)
+    {
+      const unsigned int i = row->index[k];
+      y[i] += factor * row->value[k] * inverse_diagonal[i]; // 0 on coupled rows
+      if (c == 0)
+        continue;
+      const auto it = std::lower_bound(coupled_rows.begin(), coupled_rows.end(), i);
+      if (it != coupled_rows.end() && *it == i)
+        block_in(it - coupled_rows.begin()) += factor * row->value[k];
+    }
+  if (c == 0)
+    return;
+  coupled_inverse.vmult(block_out, block_in);
+  for (unsigned int k = 0; k < c; ++k)
+    y(coupled_rows[k]) += block_out(k);
+}
 } // namespace pantocat

@@ -2,6 +2,7 @@
 
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
+#include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
@@ -21,9 +22,18 @@ namespace pantocat
  *  2. (40): v_{n+1} = v_{n-1} + 2 dt a_n + 2 dt M^-1 G(t_n)^T eta,
  *     q_{n+1} = q_n + dt (v_n + v_{n+1})/2 + dt M^-1 (G_t(t_{n+1/2})^T eta
  *     + G(t_{n+1/2})^T mu), with eta, mu from g^(0) = g^(I) = 0 at t_{n+1}.
- * Only the multipliers come from small dense systems; the rest are
- * applications of (M + dt/2 D)^-1 and M^-1: diagonal scalings for FDM,
- * solves with factorisations made once for FEM.
+ * The rest are applications of (M + dt/2 D)^-1 and M^-1: diagonal scalings
+ * for FDM, solves with factorisations made once for FEM; each step applies
+ * each of them a fixed number of times, whatever the number of constraints
+ * (the constraint forces G^T lambda are summed first, then solved with).
+ *
+ * The multiplier systems are split by the rows of the rigid constraints
+ * (doc/benchmarks.md, "Constraints"): those with constant rows G_F (droppers,
+ * supports) have the constant Schur complements G_F (M + dt/2 D)^-1 G_F^T and
+ * G_F M^-1 G_F^T (FixedConstraintSchur: sparse, banded, refactorised only when
+ * the active set changes); the few moving ones (the contact) border them, with
+ * their columns (M + dt/2 D)^-1 G^T, M^-1 G^T, ... computed each step. A step
+ * thus costs O(n + m), not O(n m + m^3).
  *
  * Compliant constraints (Constraint::is_compliant) are explicit forces: in
  * step 1, lambda_i = max(0, -k g_i - c dg_i/dt) (unilateral, 0 when g_i >= 0)
@@ -67,17 +77,31 @@ public:
   const dealii::Vector<double>& previous_velocities() const { return v_prev; }
 
 private:
-  /// lambda_n of the compliant constraints (their engagement in active_now), a += Y
-  /// lambda.
-  void add_compliant_forces();
+  /// lambda_n of the compliant constraints, and their engagement in active_now.
+  void compute_compliant_forces();
+  /// f += G^T lambda of the compliant constraints, scaled by @p scaling if given.
+  void add_compliant_loads(double* f, const double* scaling) const;
+  /**
+   * The multipliers of the acceleration level g^(II) = 0 of the constraints
+   * @p active (step 1): lambda_n, and a += (M + dt/2 D)^-1 G^T lambda_n.
+   */
+  void add_acceleration_multipliers(const std::vector<unsigned int>& active);
   /// Step 1: a_n and lambda_n for the active set.
   void compute_acceleration(const std::vector<unsigned int>& active);
   /// Step 2: q_{n+1}, v_{n+1} for the active set; fills the gaps at t_{n+1}.
   void compute_update(const std::vector<unsigned int>& active);
-  void compute_time_dependent_columns();
-  void reset_time_dependent_columns();
+  /// eta, mu of (40) for the constraints split() found, and their corrections of q*, v*.
+  void solve_position_and_velocity_level(const std::vector<ConstraintState>& at_n,
+                                         const std::vector<ConstraintState>& at_half,
+                                         const std::vector<ConstraintState>& at_next);
+  void compute_moving_columns();
+  void reset_moving_columns();
+  /// keep[k] for the fixed constraints among @p active, and the moving ones among them.
+  void split(const std::vector<unsigned int>& active, std::vector<bool>& keep,
+             std::vector<unsigned int>& moving_active) const;
   void factorize();
-  /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2), in one pass over the
+  /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2 + G_c^T lambda_c), with
+  /// the compliant forces lambda_c, in one pass over the
   /// rows where (M + dt/2 D) is diagonal but for a few coupled rows.
   void compute_forces();
   /// f(t_n): the system's constant load, or f(t_n) in load_now if it depends on t.
@@ -118,13 +142,25 @@ private:
   ConstraintEvaluator at_n, at_half, at_next;
   ActiveSetIteration active_set;
   std::vector<bool> active_now;
-  /// Columns per constraint: Y = (M+dt/2 D)^-1 G(t_n)^T, P = M^-1 G(t_n)^T,
-  /// Q = M^-1 G_t(t_{n+1/2})^T, R = M^-1 G(t_{n+1/2})^T.
-  std::vector<dealii::Vector<double>> Y, P, Q, R;
+  std::vector<unsigned int> fixed;     ///< rigid constraints with constant rows
+  std::vector<unsigned int> moving;    ///< rigid constraints whose rows move
+  std::vector<int> position;           ///< of constraint i in fixed or moving
+  FixedConstraintSchur fixed_smoothed; ///< G_F (M + dt/2 D)^-1 G_F^T
+  FixedConstraintSchur fixed_mass;     ///< G_F M^-1 G_F^T
+  /// Columns of a moving constraint, every step: Y = (M+dt/2 D)^-1 G(t_n)^T,
+  /// P = M^-1 G(t_n)^T, Q = M^-1 G_t(t_{n+1/2})^T, R = M^-1 G(t_{n+1/2})^T,
+  /// and its rows at t_{n+1} against M^-1: U = M^-1 G(t_{n+1})^T, V = M^-1
+  /// G_t(t_{n+1})^T.
+  struct MovingColumns
+  {
+    dealii::Vector<double> Y, P, Q, R, U, V;
+  };
+  std::vector<MovingColumns> columns;
   std::vector<double> lambda, gaps;
   std::vector<unsigned int> compliant; ///< indices of the compliant constraints
-  dealii::FullMatrix<double> small;
-  dealii::Vector<double> small_rhs, small_solution;
+  std::vector<MassInverse::RowTerm> terms, terms_v; ///< workspace
+  std::vector<bool> keep;
+  std::vector<unsigned int> moving_active;
   DynamicState reported;
 };
 } // namespace pantocat

@@ -60,6 +60,19 @@ public:
   void add_column(const SparseRow& row, const dealii::Vector<double>& column,
                   double factor, dealii::Vector<double>& y) const;
 
+  /// One term factor * row^T of add_rows().
+  struct RowTerm
+  {
+    const SparseRow* row;
+    double factor;
+  };
+  /**
+   * y += A^{-1} (sum of factor * row^T over @p terms): one application of
+   * A^{-1} for all rows (O(sum nnz) in the diagonal forms, one solve when
+   * factorised), instead of one column per row.
+   */
+  void add_rows(const std::vector<RowTerm>& terms, dealii::Vector<double>& y) const;
+
 private:
   /// column[C] = block^{-1} row[C] for the coupled rows C.
   void apply_block_to_row(const SparseRow& row, dealii::Vector<double>& column) const;
@@ -70,6 +83,7 @@ private:
   std::vector<unsigned int> coupled_rows;
   dealii::FullMatrix<double> coupled_inverse;
   mutable dealii::Vector<double> block_in, block_out;
+  mutable dealii::Vector<double> work; ///< add_rows() when factorised
   SparseDirectSolver factorization;
 };
 } // namespace pantocat

@@ -1,0 +1,71 @@
+#pragma once
+
+#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/sparse_row.h>
+#include <pantocat/time/mass_inverse.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <string>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * The Schur complement S = G_F A^-1 G_F^T of the rigid constraints with
+ * constant rows G_F (droppers, carrier supports: (31)) for a constant
+ * symmetric positive definite A (M, or M + dt/2 D of (39), (41)): the matrix
+ * of the multiplier systems of the half-explicit method restricted to those
+ * constraints.
+ *
+ * S does not change during a run, so it is computed once, from one
+ * application of A^-1 per constraint. It is stored sparse: an entry is kept
+ * when |S_kl| > 1e-15 sqrt(S_kk S_ll) (A^-1 of a wire decays exponentially
+ * along it, so the dropped entries are below round-off of the multipliers;
+ * for a diagonal A, S is sparse exactly). Its unknowns are renumbered by
+ * Cuthill-McKee, which makes S banded with a half bandwidth b of a few
+ * (constraints along a section couple only to their neighbours).
+ *
+ * For each set of active constraints (select()) S restricted to them is
+ * factorised by SparseDirectSolver (banded Cholesky): O(m b^2) when the active
+ * set changes, O(m b) per solve. A change of the active set thus costs a
+ * refactorisation of this small banded matrix, never of A, and a step costs
+ * O(m), not O(m^3) as a dense multiplier system would.
+ */
+class FixedConstraintSchur
+{
+public:
+  /**
+   * Computes S for the rows @p rows (of vectors of @p n_dofs unknowns) and the
+   * inverse @p A; @p what names S in errors (a singular S: dependent constraints).
+   */
+  void initialize(const std::vector<const SparseRow*>& rows, const MassInverse& A,
+                  unsigned int n_dofs, const std::string& what);
+
+  unsigned int size() const { return n; }
+  /// Number of stored entries of S (for the benchmarks' reports).
+  std::size_t n_nonzero_entries() const { return entries.n_nonzero_elements(); }
+
+  /**
+   * Restricts the solves to the constraints k with @p keep[k] (the others'
+   * multipliers are 0); refactorises only if the selection changed.
+   */
+  void select(const std::vector<bool>& keep);
+
+  /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
+  void solve(dealii::Vector<double>& x) const;
+
+private:
+  unsigned int n = 0;
+  std::string what;
+  std::vector<unsigned int> new_index; ///< Cuthill-McKee position of constraint k
+  dealii::SparsityPattern pattern;     ///< in the new numbering
+  dealii::SparseMatrix<double> entries, selected_matrix;
+  std::vector<bool> selected;
+  bool factorised = false;
+  SparseDirectSolver factor;
+  mutable dealii::Vector<double> permuted;
+};
+} // namespace pantocat
