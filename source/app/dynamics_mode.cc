@@ -48,8 +48,14 @@ PlottedColumns plotted_columns(const SimulationLayout& layout)
   PlottedColumns c;
   for (const PantographLayout* p : layout.contacts())
     c.contact_forces.push_back("lambda_p" + p->column_suffix);
-  for (unsigned int j = 0; j < layout.dropper_indices.size(); ++j)
+  // At most 9 droppers, evenly spread (a section has ~90): more lines make the
+  // plot unreadable, and gnuplot reads the whole CSV once per line.
+  const unsigned int m = layout.dropper_indices.size(), shown = std::min(m, 9u);
+  for (unsigned int k = 0; k < shown; ++k)
+  {
+    const unsigned int j = shown == m ? k : (k * (m - 1) + (shown - 1) / 2) / (shown - 1);
     c.dropper_forces.push_back("lambda_d" + std::to_string(j + 1));
+  }
   for (const PantographLayout& p : layout.pantographs)
     for (const auto& name : p.coordinates)
       c.coordinates.push_back(name + p.column_suffix);

@@ -16,10 +16,25 @@ struct Entry
   double value;
 };
 
-/// The entries S_kl = G_k A^-1 G_l^T with k >= l that are not zero, and S_kk.
+/// The entries of @p column above 1e-16 of its largest one.
+SparseRow truncated(const dealii::Vector<double>& column)
+{
+  const double tolerance = 1e-16 * column.linfty_norm();
+  SparseRow row;
+  for (unsigned int i = 0; i < column.size(); ++i)
+    if (std::abs(column[i]) > tolerance)
+      row.add(i, column[i]);
+  return row;
+}
+
+/**
+ * The entries S_kl = G_k A^-1 G_l^T with k >= l that are not zero, S_kk, and
+ * the columns A^-1 G_l^T truncated.
+ */
 std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
                                  const MassInverse& A, const unsigned int n_dofs,
-                                 std::vector<double>& diagonal)
+                                 std::vector<double>& diagonal,
+                                 std::vector<SparseRow>& columns)
 {
   const unsigned int m = rows.size();
   std::vector<Entry> lower;
@@ -28,6 +43,7 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
   for (unsigned int l = 0; l < m; ++l)
   {
     A.apply_to_row(*rows[l], column);
+    columns.push_back(truncated(column));
     for (unsigned int k = l; k < m; ++k)
     {
       const double s = rows[k]->dot(column);
@@ -53,7 +69,8 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
   if (n == 0)
     return;
   std::vector<double> diagonal;
-  std::vector<Entry> lower = lower_entries(rows, A, n_dofs, diagonal);
+  columns.clear();
+  std::vector<Entry> lower = lower_entries(rows, A, n_dofs, diagonal, columns);
   for (unsigned int k = 0; k < n; ++k)
     if (!(diagonal[k] > 0.))
       throw SimulationError("the " + what +
@@ -117,6 +134,22 @@ void FixedConstraintSchur::select(const std::vector<bool>& keep)
     }
   factor.factorize(selected_matrix, what);
   factorised = true;
+}
+
+void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
+                                       dealii::Vector<double>& y) const
+{
+  for (unsigned int k = 0; k < n; ++k)
+    if (factors[k] != 0.)
+      columns[k].add_transpose_to(y, factors[k]);
+}
+
+std::size_t FixedConstraintSchur::n_column_entries() const
+{
+  std::size_t s = 0;
+  for (const SparseRow& c : columns)
+    s += c.size();
+  return s;
 }
 
 void FixedConstraintSchur::solve(dealii::Vector<double>& x) const

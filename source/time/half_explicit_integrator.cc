@@ -415,15 +415,12 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   const std::vector<dealii::Vector<double>> C(B);
   solve_bordered([&](dealii::Vector<double>& r) { fixed_smoothed.solve(r); }, B, C, D, x,
                  y, t, "acceleration level");
-  // a += (M + dt/2 D)^-1 G^T lambda: one application for the fixed rows.
-  terms.clear();
+  // a += (M + dt/2 D)^-1 G^T lambda: the fixed rows' truncated columns.
+  factors.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
-    if (keep[k] && x(k) != 0.)
-    {
-      lambda[fixed[k]] = x(k);
-      terms.push_back({&sn[fixed[k]].G, x(k)});
-    }
-  smoothed_mass_inverse.add_rows(terms, a);
+    if (keep[k])
+      factors[k] = lambda[fixed[k]] = x(k);
+  fixed_smoothed.add_columns(factors, a);
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int i = moving_active[c];
@@ -547,19 +544,18 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   solve_bordered(solve_fixed, B, C, D, x, y, t + dt, "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
-  // one application of M^-1 each for the fixed rows.
-  terms.clear();
-  terms_v.clear();
+  // the fixed rows' truncated columns M^-1 G^T (their G_t = 0).
+  factors.assign(mF, 0.);
+  factors_v.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
     {
       const double eta = x(k), mu = x(mF + k);
-      const SparseRow& G = sn[fixed[k]].G;
-      terms.push_back({&G, h * h * eta + h * mu});
-      terms_v.push_back({&G, 2. * h * eta});
+      factors[k] = h * h * eta + h * mu;
+      factors_v[k] = 2. * h * eta;
     }
-  mass_inverse.add_rows(terms, q_new);
-  mass_inverse.add_rows(terms_v, v_new);
+  fixed_mass.add_columns(factors, q_new);
+  fixed_mass.add_columns(factors_v, v_new);
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int j = moving_active[c];

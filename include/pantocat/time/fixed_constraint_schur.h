@@ -33,6 +33,11 @@ namespace pantocat
  * set changes, O(m b) per solve. A change of the active set thus costs a
  * refactorisation of this small banded matrix, never of A, and a step costs
  * O(m), not O(m^3) as a dense multiplier system would.
+ *
+ * The columns A^-1 G_k^T are kept too, truncated to their entries above
+ * 1e-16 of the largest (a few dozen nodes each side of the constraint for a
+ * FEM wire; the row's pattern for a diagonal A): the force G_F^T lambda then
+ * enters the state in O(m) work, without a solve with A.
  */
 class FixedConstraintSchur
 {
@@ -54,12 +59,18 @@ public:
    */
   void select(const std::vector<bool>& keep);
 
+  /// y += sum_k factors[k] A^-1 G_k^T (the truncated columns).
+  void add_columns(const std::vector<double>& factors, dealii::Vector<double>& y) const;
+  /// Number of stored entries of the truncated columns.
+  std::size_t n_column_entries() const;
+
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
 
 private:
   unsigned int n = 0;
   std::string what;
+  std::vector<SparseRow> columns;      ///< A^-1 G_k^T, truncated
   std::vector<unsigned int> new_index; ///< Cuthill-McKee position of constraint k
   dealii::SparsityPattern pattern;     ///< in the new numbering
   dealii::SparseMatrix<double> entries, selected_matrix;

@@ -157,8 +157,8 @@ private:
   };
   std::vector<MovingColumns> columns;
   std::vector<double> lambda, gaps;
-  std::vector<unsigned int> compliant; ///< indices of the compliant constraints
-  std::vector<MassInverse::RowTerm> terms, terms_v; ///< workspace
+  std::vector<unsigned int> compliant;    ///< indices of the compliant constraints
+  std::vector<double> factors, factors_v; ///< workspace
   std::vector<bool> keep;
   std::vector<unsigned int> moving_active;
   DynamicState reported;
