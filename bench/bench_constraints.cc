@@ -1,0 +1,134 @@
+// Cost per step against the number m of fixed constraints (issue 16): one
+// 100 m span, FDM with N+1 = 2500 intervals (dx = 0.04 m as in the paper's
+// benchmark) or FEM with N+1 = 500 (Hermite beam, h = 0.2 m), the benchmark's wires and
+// pantograph at 32 m/s, dt = 5e-5 s, m bilateral droppers evenly spaced (0.95 m long), m
+// = 0 (Droppers = absent), 2, 10, 40, 100, 200. Each integrator's time per step (no
+// observers, start-up not timed, the fastest of 5 batches), and its ratio to
+// the same grid without droppers: the target is 1.5 for m up to 200.
+// Usage (from the repository root): bench_constraints [steps] [m ...]
+#include <pantocat/app/program_parameters.h>
+#include <pantocat/simulation/case_runner.h>
+#include <pantocat/time/time_integrator.h>
+
+#include <deal.II/base/mpi.h>
+#include <deal.II/base/multithread_info.h>
+#include <deal.II/base/parameter_handler.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <iomanip>
+#include <iostream>
+#include <sstream>
+#include <vector>
+
+using namespace pantocat;
+using Clock = std::chrono::steady_clock;
+
+namespace
+{
+constexpr unsigned int batches = 5;
+
+/// The case: prm/benchmark-32.prm on a 100 m span with m droppers.
+ProgramParameters span_with_droppers(const unsigned int m, const std::string& method,
+                                     const std::string& integrator)
+{
+  // FEM beams need dt ~ h^2 with the half-explicit method: h = 0.2 m there
+  // (2/omega_max = 1.3e-4 s), dt = 5e-5 s for all.
+  const std::string intervals = method == "fem" ? "500" : "2500";
+  std::ostringstream positions, lengths;
+  for (unsigned int j = 0; j < m; ++j)
+  {
+    positions << (j ? "," : "") << 100. * (j + 0.5) / m;
+    lengths << (j ? "," : "") << 0.95;
+  }
+  std::vector<std::string> overrides = {"Catenary/Span=100",
+                                        "Pantograph/Final position=98",
+                                        "Discretisation/Method=" + method,
+                                        "Discretisation/Number of intervals=" + intervals,
+                                        "Time integration/Integrator=" + integrator,
+                                        "Time integration/Time step=5e-5",
+                                        "Scene/Droppers=" +
+                                            std::string(m ? "bilateral" : "absent")};
+  if (m == 0)
+    overrides.push_back("Scene/Clamp and dropper masses=false");
+  else
+  {
+    overrides.push_back("Catenary/Droppers/Positions=" + positions.str());
+    overrides.push_back("Catenary/Droppers/Lengths=" + lengths.str());
+  }
+  dealii::ParameterHandler prm;
+  read_program_parameters(prm, "prm/benchmark-32.prm", overrides);
+  ProgramParameters p;
+  p.parse_parameters(prm);
+  p.time_integration.force_step_size = true;
+  return p;
+}
+
+/// Microseconds per step of the integrator alone (fastest of the batches).
+double step_time(const ProgramParameters& p, const unsigned int steps)
+{
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
+  auto integrator = create_time_integrator(simulation.system(), p.time_integration);
+  integrator->initialize(simulation.initial_state());
+  integrator->advance(); // start-up not timed
+  double best = 1e300;
+  const unsigned int per_batch = std::max(1u, steps / batches);
+  for (unsigned int b = 0; b < batches; ++b)
+  {
+    const auto t0 = Clock::now();
+    for (unsigned int k = 0; k < per_batch; ++k)
+      integrator->advance();
+    best = std::min(best, 1e6 * std::chrono::duration<double>(Clock::now() - t0).count() /
+                              per_batch);
+  }
+  return best;
+}
+} // namespace
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
+  const unsigned int steps = argc > 1 ? std::atoi(argv[1]) : 1000;
+  std::vector<unsigned int> counts;
+  for (int i = 2; i < argc; ++i)
+    counts.push_back(std::atoi(argv[i]));
+  if (counts.empty())
+    counts = {2, 10, 40, 100, 200};
+  struct Column
+  {
+    std::string method, integrator;
+    unsigned int steps;
+  };
+  const std::vector<Column> columns = {{"fdm", "half-explicit", steps},
+                                       {"fem", "half-explicit", steps / 2},
+                                       {"fdm", "bdf2", steps / 10},
+                                       {"fdm", "generalized-alpha", steps / 10}};
+  std::vector<double> without;
+  std::cout << "| m |";
+  for (const Column& c : columns)
+    std::cout << ' ' << c.method << " + " << c.integrator << " [us/step] | ratio |";
+  std::cout << "\n|---|";
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    std::cout << "---|---|";
+  std::cout << "\n| 0 |";
+  for (const Column& c : columns)
+  {
+    without.push_back(step_time(span_with_droppers(0, c.method, c.integrator), c.steps));
+    std::cout << ' ' << std::setprecision(3) << without.back() << " | 1 |" << std::flush;
+  }
+  std::cout << '\n';
+  for (const unsigned int m : counts)
+  {
+    std::cout << "| " << m << " |";
+    for (std::size_t k = 0; k < columns.size(); ++k)
+    {
+      const Column& c = columns[k];
+      const double t = step_time(span_with_droppers(m, c.method, c.integrator), c.steps);
+      std::cout << ' ' << std::setprecision(3) << t << " | " << t / without[k] << " |"
+                << std::flush;
+    }
+    std::cout << '\n';
+  }
+}
