@@ -2,6 +2,7 @@
 #include <pantocat/base/serialization.h>
 #include <pantocat/io/time_series_writer.h>
 
+#include <charconv>
 #include <filesystem>
 #include <sstream>
 
@@ -63,36 +64,56 @@ void TimeSeriesWriter::start(const SimulationLayout& l)
   out << '\n';
 }
 
+namespace
+{
+/// Appends "," (unless @p first) and @p x as printf's %.10g writes it (the
+/// stream's precision 10), without the stream's locale and formatting machinery.
+void append(std::string& line, const double x, const bool first = false)
+{
+  char buffer[32];
+  char* p = buffer;
+  if (!first)
+    *p++ = ',';
+  p = std::to_chars(p, buffer + sizeof buffer, x, std::chars_format::general, 10).ptr;
+  line.append(buffer, p);
+}
+} // namespace
+
 void TimeSeriesWriter::observe(const TimePoint& p)
 {
   reopen_after_resume();
   if (seen++ % every != 0)
     return;
+  // One row, formatted into a reused buffer and handed to the stream's own
+  // buffer: the file is written in blocks, not row by row (flushed at a
+  // checkpoint and at the end).
   const auto contacts = layout.contacts();
-  out << p.t;
+  line.clear();
+  append(line, p.t, true);
   for (const double x : p.x_p)
-    out << ',' << x;
+    append(line, x);
   for (const PantographLayout* c : contacts)
-    out << ',' << p.lambda[c->contact];
+    append(line, p.lambda[c->contact]);
   for (const unsigned int i : layout.dropper_indices)
-    out << ',' << p.lambda[i];
+    append(line, p.lambda[i]);
   for (const double w : p.pantograph)
-    out << ',' << w;
+    append(line, w);
   for (const PantographLayout* c : contacts)
-    out << ',' << p.gap[c->contact];
+    append(line, p.gap[c->contact]);
   for (const unsigned int i : layout.dropper_indices)
-    out << ',' << p.gap[i];
+    append(line, p.gap[i]);
   for (const PantographLayout* c : contacts)
-    out << ',' << p.active[c->contact];
+    line += p.active[c->contact] ? ",1" : ",0";
   for (const unsigned int i : layout.dropper_indices)
-    out << ',' << p.active[i];
-  out << ',' << p.position_residual << ',' << p.velocity_residual;
+    line += p.active[i] ? ",1" : ",0";
+  append(line, p.position_residual);
+  append(line, p.velocity_residual);
   for (const double w : p.probes)
-    out << ',' << w;
+    append(line, w);
   if (layout.energy)
-    out << ',' << p.energy;
-  out << '\n';
-  out.flush();
+    append(line, p.energy);
+  line += '\n';
+  out.write(line.data(), line.size());
 }
 
 void TimeSeriesWriter::finish()

@@ -71,10 +71,36 @@ std::vector<InitialContact> initial_contacts(const BuiltScene& built)
  * of a wire comes near that, while an unstable mode grows through it within a
  * few steps of exponential growth.
  */
+/**
+ * max |x_i|, or a non-finite value if an entry is not finite: one pass in four
+ * independent chains (x * 0 is 0 unless x is infinite or NaN), several times
+ * faster than two deal.II norms on every step.
+ */
+double largest_magnitude(const dealii::Vector<double>& x)
+{
+  double m[4] = {0., 0., 0., 0.}, poison[4] = {0., 0., 0., 0.};
+  const double* __restrict p = x.begin();
+  const std::size_t n = x.size();
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      m[k] = std::max(m[k], std::abs(p[i + k]));
+      poison[k] += p[i + k] * 0.;
+    }
+  for (; i < n; ++i)
+  {
+    m[0] = std::max(m[0], std::abs(p[i]));
+    poison[0] += p[i] * 0.;
+  }
+  return std::max(std::max(m[0], m[1]), std::max(m[2], m[3])) + poison[0] + poison[1] +
+         poison[2] + poison[3];
+}
+
 void check_bounded(const DynamicState& s, const unsigned long step, const double bound)
 {
-  const double largest = s.q.linfty_norm();
-  bool finite = std::isfinite(largest) && std::isfinite(s.v.linfty_norm());
+  const double largest = largest_magnitude(s.q);
+  bool finite = std::isfinite(largest) && std::isfinite(largest_magnitude(s.v));
   for (const double l : s.lambda)
     finite = finite && std::isfinite(l);
   std::ostringstream m;

@@ -47,5 +47,6 @@ private:
   SimulationLayout layout;
   unsigned int every;
   unsigned long seen = 0;
+  std::string line; ///< the row being formatted
 };
 } // namespace pantocat
