@@ -179,8 +179,10 @@ TEST(Robustness, EveryIntegratorEndsExactlyAtTheFinalPosition)
   // neither dt divides. The last step used to run past the final position
   // (BDF-2, dt = 0.01 s: 21.2 m for 19.7 m); now the step is t_e / ceil(t_e /
   // dt), so the last time point is at t_e and x_p = 4.7 m up to rounding.
+  // (half-explicit: 5.5e-5 s, below its limit with the moving contact; 6e-5 s
+  // is refused since issue 17)
   for (const auto& [integrator, dt] :
-       std::vector<std::pair<std::string, double>>{{"half-explicit", 6e-5},
+       std::vector<std::pair<std::string, double>>{{"half-explicit", 5.5e-5},
                                                    {"bdf2", 0.01},
                                                    {"generalized-alpha", 0.01},
                                                    {"ida", 1e-3}})

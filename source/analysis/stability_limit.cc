@@ -1,4 +1,5 @@
 #include <pantocat/analysis/banded_eigenvalues.h>
+#include <pantocat/analysis/half_explicit_step_map.h>
 #include <pantocat/analysis/stability_limit.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace pantocat
 {
@@ -82,5 +84,77 @@ std::string compliant_stiffness_note(const SemiDiscreteSystem& system)
     << "', k = " << stiffest->compliance().stiffness
     << " N/m), explicit forces of this method that raise omega_max by k G M^-1 G^T";
   return s.str();
+}
+bool has_moving_constraints(const SemiDiscreteSystem& system,
+                            const std::vector<bool>& active)
+{
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (i < active.size() && active[i] && system.constraints[i]->depends_on_time())
+      return true;
+  return false;
+}
+
+namespace
+{
+bool stable(const SemiDiscreteSystem& system, const std::vector<bool>& active,
+            const double dt, const double t0, const StepLimitOptions& options,
+            double& growth)
+{
+  growth = growth_per_step(system, active, dt, t0, options.steps);
+  return growth <= 1. + options.growth_tolerance;
+}
+} // namespace
+
+bool half_explicit_step_allowed(const SemiDiscreteSystem& system,
+                                const std::vector<bool>& active, const double dt,
+                                const double t0, const StepLimitOptions& options,
+                                double* growth)
+{
+  double g = 0.;
+  const bool ok = stable(system, active, dt / options.margin, t0, options, g);
+  if (growth)
+    *growth = g;
+  return ok;
+}
+
+HalfExplicitStepLimit half_explicit_step_limit(const SemiDiscreteSystem& system,
+                                               const std::vector<bool>& active,
+                                               const double upper, const double t0,
+                                               const StepLimitOptions& options)
+{
+  HalfExplicitStepLimit l;
+  double growth = 0.;
+  l.unstable = upper;
+  ++l.tests;
+  if (stable(system, active, upper, t0, options, growth))
+    throw std::runtime_error("half_explicit_step_limit: the upper step is stable");
+  l.growth_unstable = growth;
+  l.critical = 0.5 * upper;
+  for (unsigned int k = 0;; ++k)
+  {
+    ++l.tests;
+    if (stable(system, active, l.critical, t0, options, growth))
+      break;
+    if (k == 10)
+      throw std::runtime_error("half_explicit_step_limit: no stable step above " +
+                               std::to_string(l.critical) + " s");
+    l.unstable = l.critical;
+    l.growth_unstable = growth;
+    l.critical *= 0.5;
+  }
+  while (l.unstable - l.critical > options.relative_accuracy * l.critical)
+  {
+    const double mid = 0.5 * (l.critical + l.unstable);
+    ++l.tests;
+    if (stable(system, active, mid, t0, options, growth))
+      l.critical = mid;
+    else
+    {
+      l.unstable = mid;
+      l.growth_unstable = growth;
+    }
+  }
+  l.allowed = options.margin * l.critical;
+  return l;
 }
 } // namespace pantocat

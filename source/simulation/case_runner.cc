@@ -8,9 +8,12 @@
 #include <pantocat/simulation/initial_state.h>
 #include <pantocat/time/integrator_registry.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 namespace pantocat
@@ -196,32 +199,75 @@ double CaseRunner::explicit_stability_limit() const
 
 void CaseRunner::check() const
 {
-  check_step_size();
+  // The grid first: on an unresolved load the moving contact's map is
+  // unstable at any step, and the grid is what to change.
   check_load_resolution();
+  check_step_size();
+}
+
+std::string CaseRunner::step_size_problem() const
+{
+  if (step_size_checked)
+    return step_size_reason;
+  step_size_checked = true;
+  const auto& ti = data.time_integration;
+  if (!integrator_entry(ti.integrator).explicit_step_limit)
+    return step_size_reason = "";
+  const double limit = explicit_stability_limit();
+  std::ostringstream message;
+  message << std::setprecision(3);
+  if (ti.time_step > limit)
+  {
+    message << "above the stability limit 2/omega_max = " << limit << " s of the "
+            << ti.integrator << " method for this grid ("
+            << to_string(data.discretisation.method)
+            << ", N+1 = " << data.discretisation.n_intervals << ")"
+            << compliant_stiffness_note(system());
+    return step_size_reason = message.str();
+  }
+  // Below 2/omega_max: the moving contact's rows (doc/stability.md).
+  if (!has_moving_constraints(system(), initial.active))
+    return step_size_reason = "";
+  StepLimitOptions options;
+  options.steps = static_cast<unsigned int>(
+      std::min<unsigned long>(options.steps, number_of_steps()));
+  if (options.steps < 2 || half_explicit_step_allowed(system(), initial.active,
+                                                      ti.time_step, initial.t, options))
+    return step_size_reason = "";
+  const HalfExplicitStepLimit l = half_explicit_step_limit(
+      system(), initial.active, ti.time_step / options.margin, initial.t, options);
+  message << "exceeds the limit " << l.allowed << " s of the " << ti.integrator
+          << " method with the moving contact: perturbations grow by a factor "
+          << std::setprecision(5) << l.growth_unstable << std::setprecision(3)
+          << " per step at dt = " << l.unstable << " s (the one-step map (39)-(41) over "
+          << options.steps << " steps from x_p = " << initial_contact_position()
+          << " m; 2/omega_max = " << limit << " s), stable up to " << l.critical
+          << " s; allowed: dt <= " << options.margin << " x " << l.critical << " = "
+          << l.allowed << " s";
+  return step_size_reason = message.str();
 }
 
 void CaseRunner::check_step_size() const
 {
-  const auto& ti = data.time_integration;
-  if (!integrator_entry(ti.integrator).explicit_step_limit)
+  const std::string problem = step_size_problem();
+  if (problem.empty())
     return;
-  const double limit = explicit_stability_limit();
-  if (ti.time_step <= limit)
-    return;
-  std::ostringstream message;
-  message << "above the stability limit 2/omega_max = " << std::setprecision(3) << limit
-          << " s of the " << ti.integrator << " method for this grid ("
-          << to_string(data.discretisation.method)
-          << ", N+1 = " << data.discretisation.n_intervals << ")"
-          << compliant_stiffness_note(system());
-  if (!ti.force_step_size)
+  if (!data.time_integration.force_step_size)
     throw InputError("Time integration/Time step = " + number_to_string(asked_time_step) +
-                     ": " + message.str() +
+                     ": " + problem +
                      "; choose a smaller step or set Force step size = true");
   if (!warned)
     std::cerr << "pantocat-fem: warning: time step " << asked_time_step << " s is "
-              << message.str() << " (forced)\n";
+              << problem << " (forced)\n";
   warned = true;
+}
+
+double CaseRunner::initial_contact_position() const
+{
+  for (const ScenePantograph& p : scene->built.pantographs)
+    if (p.has_contact())
+      return p.motion.position(initial.t);
+  return std::numeric_limits<double>::quiet_NaN();
 }
 
 void CaseRunner::check_load_resolution() const

@@ -1,5 +1,6 @@
 #include <pantocat/analysis/eigenfrequency_analysis.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/studies/study_run.h>
 #include <pantocat/time/integrator_registry.h>
@@ -162,15 +163,12 @@ RunOutcome execute_study_run(const StudyRun& run, const Case& base,
   const Case p = run.parameters(base);
   const std::clock_t start = std::clock();
   CaseRunner runner(p);
-  if (integrator_entry(run.integrator).explicit_step_limit &&
-      run.time_step > runner.explicit_stability_limit())
+  // Above the explicit method's limit (2/omega_max, or with the moving contact
+  // the limit of CaseRunner::step_size_problem): skipped and reported.
+  if (const std::string problem = runner.step_size_problem(); !problem.empty())
   {
-    std::ostringstream m;
-    m << "dt = " << run.time_step
-      << " s is above the stability limit 2/omega_max = " << std::setprecision(3)
-      << runner.explicit_stability_limit() << " s of the " << run.integrator << " method";
     outcome.status = RunOutcome::Status::skipped;
-    outcome.message = m.str();
+    outcome.message = "dt = " + number_to_string(run.time_step) + " s is " + problem;
     return outcome;
   }
   ContactForceRecorder recorder(outcome);

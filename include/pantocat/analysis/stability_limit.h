@@ -3,6 +3,7 @@
 #include <pantocat/system/semi_discrete_system.h>
 
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -38,4 +39,64 @@ double compliant_frequency_bound(const SemiDiscreteSystem& system, double t = 0.
  * else "".
  */
 std::string compliant_stiffness_note(const SemiDiscreteSystem& system);
+
+/**
+ * The step limit of the half-explicit method with the moving contact: the
+ * constraint rows that change with time (the contact's G(t), G_t, G_tt) make
+ * the method unstable below 2/omega_max (doc/stability.md). A step dt is
+ * *stable* if perturbations of the run do not grow: growth_per_step() of the
+ * product of the one-step maps (39)-(41) from t_0 over `steps` steps, the
+ * constraints active as in the initial state, is at most 1 + growth_tolerance.
+ *
+ * Margin policy: a step is allowed if dt / margin is stable, i.e. dt is at
+ * most margin times the largest stable step (critical step), found by
+ * bisection to relative_accuracy.
+ */
+struct StepLimitOptions
+{
+  /// The allowed step is this fraction of the critical step.
+  double margin = 0.95;
+  /// Growth per step above 1 + this is unstable (e^2 over 1e4 steps); the
+  /// estimate scatters by about 2e-5 where stable.
+  double growth_tolerance = 2e-4;
+  /// Steps of each power iteration.
+  unsigned int steps = 2000;
+  /// Of the critical step, in the bisection.
+  double relative_accuracy = 0.01;
+};
+
+/// The result of half_explicit_step_limit().
+struct HalfExplicitStepLimit
+{
+  double critical = 0.;        ///< the largest stable step found [s]
+  double unstable = 0.;        ///< the smallest unstable step found [s]
+  double growth_unstable = 0.; ///< growth per step at the step `unstable`
+  double allowed = 0.;         ///< margin x critical [s]
+  unsigned int tests = 0;      ///< power iterations done
+};
+
+/**
+ * True if the step @p dt / margin is stable in the sense of StepLimitOptions
+ * (one power iteration); @p growth receives the growth per step there.
+ * @p active: the constraints active (rigid) or engaged (compliant) in the
+ * state at @p t0 (DynamicState::active).
+ */
+bool half_explicit_step_allowed(const SemiDiscreteSystem& system,
+                                const std::vector<bool>& active, double dt, double t0,
+                                const StepLimitOptions& options = {},
+                                double* growth = nullptr);
+
+/**
+ * The critical step below @p upper (an unstable step, e.g. dt / margin) by
+ * bisection; the lower end starts at upper / 2 and is halved while unstable
+ * (at most 10 times, then std::runtime_error).
+ */
+HalfExplicitStepLimit half_explicit_step_limit(const SemiDiscreteSystem& system,
+                                               const std::vector<bool>& active,
+                                               double upper, double t0,
+                                               const StepLimitOptions& options = {});
+
+/// True if an active constraint's rows change with time (a moving contact).
+bool has_moving_constraints(const SemiDiscreteSystem& system,
+                            const std::vector<bool>& active);
 } // namespace pantocat

@@ -68,8 +68,8 @@ public:
 
   /**
    * Refuses, before anything is written, what the run cannot do: a step above
-   * the stability limit of an explicit integrator (a warning if forced), a
-   * grid that does not resolve the smoothed load of a moving contact.
+   * the stability limit of an explicit integrator (step_size_problem(); a warning if
+   * forced), a grid that does not resolve the smoothed load of a moving contact.
    */
   void check() const;
 
@@ -122,6 +122,14 @@ public:
   double contact_wire_displacement(const dealii::Vector<double>& q, double x) const;
   /// The step-size limit 2/omega_max of the explicit method (computed once).
   double explicit_stability_limit() const;
+  /**
+   * Why the step is too large for an explicit integrator ("" if it is not):
+   * above 2/omega_max, or (half-explicit with a moving contact) above the
+   * limit of half_explicit_step_limit() with StepLimitOptions' margin
+   * (doc/stability.md). Computed once: one power iteration for a step that is
+   * allowed, a bisection of about eight for one that is not.
+   */
+  std::string step_size_problem() const;
   /// Builds the time point of a state (gaps and residuals evaluated here).
   TimePoint time_point(const DynamicState& state) const;
   /// One line per effect of the scene (what is assembled), and the effects left out.
@@ -135,6 +143,8 @@ private:
   RunGuard make_guard() const;
   void check_step_size() const;
   void check_load_resolution() const;
+  /// x_p(t_0) of the first pantograph in contact (NaN if none).
+  double initial_contact_position() const;
 
   Case data;
   double asked_time_step; ///< Time integration/Time step as given
@@ -146,5 +156,7 @@ private:
   DynamicState initial;
   mutable double stability_limit = 0.;
   mutable bool warned = false;
+  mutable bool step_size_checked = false;
+  mutable std::string step_size_reason;
 };
 } // namespace pantocat

@@ -1,0 +1,333 @@
+#include <pantocat/analysis/half_explicit_step_map.h>
+#include <pantocat/lac/sparse_direct_solver.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+#include <deal.II/lac/full_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <stdexcept>
+
+namespace pantocat
+{
+class HalfExplicitStepMap::BlockInverse
+{
+public:
+  /// The inverse of M + @p damping_factor D, one factorisation per body block.
+  BlockInverse(const SemiDiscreteSystem& system, const double damping_factor)
+  {
+    for (const DofBlock& b : system.blocks)
+    {
+      Part p;
+      p.first = b.first;
+      p.size = b.size;
+      p.diagonal.reinit(b.size);
+      bool diagonal = true;
+      dealii::DynamicSparsityPattern dsp(b.size, b.size);
+      for (unsigned int i = 0; i < b.size; ++i)
+        for (auto it = system.sparsity->begin(b.first + i);
+             it != system.sparsity->end(b.first + i); ++it)
+        {
+          const unsigned int j = it->column();
+          const double value = system.mass(b.first + i, j) +
+                               damping_factor * system.damping(b.first + i, j);
+          if (value == 0.)
+            continue;
+          if (j < b.first || j >= b.first + b.size)
+            throw std::logic_error("HalfExplicitStepMap: M or D couples two blocks");
+          dsp.add(i, j - b.first);
+          if (j == b.first + i)
+            p.diagonal(i) = value;
+          else
+            diagonal = false;
+        }
+      if (diagonal)
+        for (unsigned int i = 0; i < b.size; ++i)
+          p.diagonal(i) = 1. / p.diagonal(i);
+      else
+      {
+        p.pattern = std::make_unique<dealii::SparsityPattern>();
+        p.pattern->copy_from(dsp);
+        p.matrix.reinit(*p.pattern);
+        for (unsigned int i = 0; i < b.size; ++i)
+          for (auto it = system.sparsity->begin(b.first + i);
+               it != system.sparsity->end(b.first + i); ++it)
+          {
+            const unsigned int j = it->column();
+            const double value = system.mass(b.first + i, j) +
+                                 damping_factor * system.damping(b.first + i, j);
+            if (value != 0.)
+              p.matrix.set(i, j - b.first, value);
+          }
+        p.lu = std::make_unique<SparseDirectSolver>();
+        p.lu->factorize(p.matrix, "matrix M + dt/2 D");
+        p.work.reinit(b.size);
+      }
+      parts.push_back(std::move(p));
+    }
+    for (unsigned int k = 0; k < parts.size(); ++k)
+      for (unsigned int i = 0; i < parts[k].size; ++i)
+        part_of.push_back(k);
+  }
+
+  /// x <- A^-1 x in the blocks flagged in @p touched (all if empty).
+  void solve(dealii::Vector<double>& x, const std::vector<bool>& touched = {}) const
+  {
+    for (unsigned int k = 0; k < parts.size(); ++k)
+      if (touched.empty() || touched[k])
+      {
+        const Part& p = parts[k];
+        if (!p.lu)
+        {
+          for (unsigned int i = 0; i < p.size; ++i)
+            x(p.first + i) *= p.diagonal(i);
+          continue;
+        }
+        for (unsigned int i = 0; i < p.size; ++i)
+          p.work(i) = x(p.first + i);
+        p.lu->solve(p.work);
+        for (unsigned int i = 0; i < p.size; ++i)
+          x(p.first + i) = p.work(i);
+      }
+  }
+
+  unsigned int n_parts() const { return parts.size(); }
+  unsigned int part(const unsigned int dof) const { return part_of[dof]; }
+
+private:
+  struct Part
+  {
+    unsigned int first = 0, size = 0;
+    dealii::Vector<double> diagonal; ///< inverse diagonal, if the block is diagonal
+    std::unique_ptr<dealii::SparsityPattern> pattern;
+    dealii::SparseMatrix<double> matrix;
+    std::unique_ptr<SparseDirectSolver> lu; ///< banded Cholesky (or UMFPACK)
+    mutable dealii::Vector<double> work;
+  };
+  std::vector<Part> parts;
+  std::vector<unsigned int> part_of;
+};
+
+/// The rows of the constraints at t_n, t_{n+1/2}, t_{n+1} and their columns.
+struct HalfExplicitStepMap::Rows
+{
+  std::vector<ConstraintState> at_n, at_half, at_next;
+  /// Y = (M + dt/2 D)^-1 G(t_n)^T, P = M^-1 G(t_n)^T, Q = M^-1 G_t(t_{n+1/2})^T,
+  /// R = M^-1 G(t_{n+1/2})^T, for the rigid constraints.
+  std::vector<dealii::Vector<double>> Y, P, Q, R;
+};
+
+HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
+                                         const std::vector<bool>& active, const double dt)
+    : system(system), dt(dt), mass_inverse(std::make_unique<BlockInverse>(system, 0.)),
+      smoothed_inverse(std::make_unique<BlockInverse>(system, 0.5 * dt)),
+      rows(std::make_unique<Rows>())
+{
+  const unsigned int n = system.n_dofs(), m = system.n_constraints();
+  for (unsigned int i = 0; i < m; ++i)
+    if (i < active.size() && active[i])
+      (system.constraints[i]->is_compliant() ? springs : rigid).push_back(i);
+  for (auto* x : {&a, &r, &sum, &q_new, &v_new})
+    x->reinit(n);
+  rows->at_n.resize(m);
+  rows->at_half.resize(m);
+  rows->at_next.resize(m);
+  for (auto* c : {&rows->Y, &rows->P, &rows->Q, &rows->R})
+    c->assign(rigid.size(), dealii::Vector<double>(n));
+  // The constant rows and their columns, once.
+  for (unsigned int i = 0; i < m; ++i)
+    if (!system.constraints[i]->depends_on_time())
+    {
+      system.constraints[i]->evaluate(0., rows->at_n[i]);
+      rows->at_half[i] = rows->at_n[i];
+      rows->at_next[i] = rows->at_n[i];
+    }
+  for (unsigned int k = 0; k < rigid.size(); ++k)
+    if (!system.constraints[rigid[k]]->depends_on_time())
+    {
+      const ConstraintState& s = rows->at_n[rigid[k]];
+      column(*smoothed_inverse, s.G, rows->Y[k]);
+      column(*mass_inverse, s.G, rows->P[k]);
+      column(*mass_inverse, s.G_t, rows->Q[k]);
+      rows->R[k] = rows->P[k];
+    }
+}
+
+HalfExplicitStepMap::~HalfExplicitStepMap() = default;
+
+void HalfExplicitStepMap::column(const BlockInverse& inverse, const SparseRow& row,
+                                 dealii::Vector<double>& out) const
+{
+  out = 0.;
+  std::vector<bool> touched(inverse.n_parts(), false);
+  for (std::size_t e = 0; e < row.size(); ++e)
+  {
+    out(row.index[e]) += row.value[e];
+    touched[inverse.part(row.index[e])] = true;
+  }
+  inverse.solve(out, touched);
+}
+
+void HalfExplicitStepMap::evaluate_rows(const double t_n, const double t_half,
+                                        const double t_next)
+{
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (system.constraints[i]->depends_on_time())
+    {
+      system.constraints[i]->evaluate(t_n, rows->at_n[i], 2);
+      system.constraints[i]->evaluate(t_half, rows->at_half[i], 1);
+      system.constraints[i]->evaluate(t_next, rows->at_next[i], 1);
+    }
+  for (unsigned int k = 0; k < rigid.size(); ++k)
+    if (system.constraints[rigid[k]]->depends_on_time())
+    {
+      const unsigned int i = rigid[k];
+      column(*smoothed_inverse, rows->at_n[i].G, rows->Y[k]);
+      column(*mass_inverse, rows->at_n[i].G, rows->P[k]);
+      column(*mass_inverse, rows->at_half[i].G_t, rows->Q[k]);
+      column(*mass_inverse, rows->at_half[i].G, rows->R[k]);
+    }
+}
+
+void HalfExplicitStepMap::apply(const double t_n, const double t_half,
+                                const double t_next, State& x)
+{
+  evaluate_rows(t_n, t_half, t_next);
+  const auto& sn = rows->at_n;
+  const auto& s1 = rows->at_next;
+  const double h = dt;
+
+  // (39) with (41): (M + dt/2 D) a = -K q - D (v_prev + v)/2 + the springs.
+  sum = x.v_prev;
+  sum += x.v;
+  system.stiffness.vmult(r, x.q);
+  r *= -1.;
+  system.damping.vmult(a, sum); // a: D (v_prev + v), scratch
+  r.add(-0.5, a);
+  for (const unsigned int i : springs)
+  {
+    const ConstraintState& s = sn[i];
+    const Compliance& c = system.constraints[i]->compliance();
+    const double lambda =
+        -c.stiffness * s.G.dot(x.q) - c.damping * (s.G_t.dot(x.q) + 0.5 * s.G.dot(sum));
+    s.G.add_transpose_to(r, lambda);
+  }
+  a = r;
+  smoothed_inverse->solve(a);
+
+  // The rigid multipliers: g^(II) = G a + 2 G_t v + G_tt q = 0 at t_n.
+  const unsigned int m = rigid.size();
+  if (m > 0)
+  {
+    dealii::FullMatrix<double> S(m, m);
+    dealii::Vector<double> rhs(m), lambda(m);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      const ConstraintState& s = sn[rigid[k]];
+      for (unsigned int l = 0; l < m; ++l)
+        S(k, l) = s.G.dot(rows->Y[l]);
+      rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(x.v) + s.G_tt.dot(x.q));
+    }
+    S.gauss_jordan();
+    S.vmult(lambda, rhs);
+    for (unsigned int l = 0; l < m; ++l)
+      a.add(lambda(l), rows->Y[l]);
+  }
+
+  // (40): v* = v_prev + 2 dt a, q* = q + dt (v + v*)/2, then eta and mu.
+  v_new = x.v_prev;
+  v_new.add(2. * h, a);
+  q_new = x.q;
+  q_new.add(0.5 * h, x.v, 0.5 * h, v_new);
+  if (m > 0)
+  {
+    dealii::FullMatrix<double> S(2 * m, 2 * m);
+    dealii::Vector<double> rhs(2 * m), solution(2 * m);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      const ConstraintState& s = s1[rigid[k]];
+      for (unsigned int l = 0; l < m; ++l)
+      {
+        const auto &P = rows->P[l], &Q = rows->Q[l], &R = rows->R[l];
+        const double GP = s.G.dot(P), GQ = s.G.dot(Q), GR = s.G.dot(R);
+        const double GtP = s.G_t.dot(P), GtQ = s.G_t.dot(Q), GtR = s.G_t.dot(R);
+        S(k, l) = h * h * GP + h * GQ;
+        S(k, m + l) = h * GR;
+        S(m + k, l) = h * h * GtP + h * GtQ + 2. * h * GP;
+        S(m + k, m + l) = h * GtR;
+      }
+      rhs(k) = -s.G.dot(q_new);
+      rhs(m + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new));
+    }
+    S.gauss_jordan();
+    S.vmult(solution, rhs);
+    for (unsigned int l = 0; l < m; ++l)
+    {
+      const double eta = solution(l), mu = solution(m + l);
+      q_new.add(h * h * eta, rows->P[l], h * eta, rows->Q[l]);
+      q_new.add(h * mu, rows->R[l]);
+      v_new.add(2. * h * eta, rows->P[l]);
+    }
+  }
+  x.v_prev.swap(x.v); // v_{n} becomes v_prev
+  x.v.swap(v_new);
+  x.q.swap(q_new);
+}
+
+double growth_per_step(const SemiDiscreteSystem& system, const std::vector<bool>& active,
+                       const double dt, const double t0, const unsigned int steps,
+                       const ContactRows contact)
+{
+  HalfExplicitStepMap map(system, active, dt);
+  const unsigned int n = system.n_dofs();
+  HalfExplicitStepMap::State x;
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> uniform(-1., 1.);
+  for (auto* y : {&x.q, &x.v, &x.v_prev})
+  {
+    y->reinit(n);
+    for (auto& e : *y)
+      e = uniform(random);
+  }
+  const double omega = 2. / dt;
+  const auto norm = [&]()
+  {
+    return std::sqrt(omega * omega * x.q.norm_sqr() + x.v.norm_sqr() +
+                     x.v_prev.norm_sqr());
+  };
+  // log |x_k| accumulated with a normalisation every step; the growth is the
+  // slope of its least-squares line over the second half (less sensitive to
+  // the beating of the neutral modes than the ratio of two norms).
+  double log_norm = 0.;
+  const unsigned int first = steps / 2;
+  double sk = 0., sy = 0., skk = 0., sky = 0.;
+  for (unsigned int k = 0; k < steps; ++k)
+  {
+    const double t = contact == ContactRows::moving ? t0 + k * dt : t0;
+    if (contact == ContactRows::moving)
+      map.apply(t, t + 0.5 * dt, t + dt, x);
+    else
+      map.apply(t, t, t, x);
+    const double size = norm();
+    if (!(size > 0.) || !std::isfinite(size))
+      return std::numeric_limits<double>::infinity();
+    log_norm += std::log(size);
+    x.q /= size;
+    x.v /= size;
+    x.v_prev /= size;
+    if (k >= first)
+    {
+      const double kk = k - first;
+      sk += kk;
+      sy += log_norm;
+      skk += kk * kk;
+      sky += kk * log_norm;
+    }
+  }
+  const double count = steps - first;
+  return std::exp((count * sky - sk * sy) / (count * skk - sk * sk));
+}
+} // namespace pantocat
