@@ -95,6 +95,13 @@ private:
                                          const std::vector<ConstraintState>& at_half,
                                          const std::vector<ConstraintState>& at_next);
   void compute_moving_columns();
+  struct MovingColumns;
+  /// The columns of one moving constraint when M and M + dt/2 D are factorised.
+  void compute_factorised_columns(const SparseDirectSolver& W,
+                                  const SparseDirectSolver& M,
+                                  const ConstraintState& at_n,
+                                  const ConstraintState& at_half,
+                                  const ConstraintState& at_next, MovingColumns& x);
   void reset_moving_columns();
   /// keep[k] for the fixed constraints among @p active, and the moving ones among them.
   void split(const std::vector<unsigned int>& active, std::vector<bool>& keep,
@@ -156,6 +163,7 @@ private:
     dealii::Vector<double> Y, P, Q, R, U, V;
   };
   std::vector<MovingColumns> columns;
+  InterleavedColumns batch_W, batch_M; ///< workspace of compute_factorised_columns()
   std::vector<double> lambda, gaps;
   std::vector<unsigned int> compliant;    ///< indices of the compliant constraints
   std::vector<double> factors, factors_v; ///< workspace
