@@ -34,6 +34,8 @@ MovingLoadSeries::MovingLoadSeries(const WireParameters& wire, const double span
                                    const unsigned int n_modes)
     : span(span), motion(motion)
 {
+  require(motion.ramp_time == 0., "Pantograph/Speed ramp", motion.ramp_time,
+          "the series of the moving load is for a constant speed; allowed: 0");
   require(motion.speed < wire.wave_speed(), "Pantograph/Speed", motion.speed,
           "the series of the moving load needs a speed below the wave speed " +
               number_to_string(wire.wave_speed()) + " m/s");

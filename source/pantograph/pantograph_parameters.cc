@@ -48,6 +48,11 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "pantographs: when the first of them reaches its final position).");
   prm.declare_entry("Speed", number_to_string(defaults.speed), Double(),
                     "Pantograph speed v_p [m/s], > 0.");
+  prm.declare_entry("Speed ramp", number_to_string(defaults.speed_ramp), Double(0.),
+                    "T_r [s]: the pantograph starts from rest and reaches v_p at the "
+                    "constant acceleration v_p / T_r, over v_p T_r / 2 metres (a smooth "
+                    "start away from an anchor); 0: at v_p from t = 0. The aerodynamic "
+                    "force keeps its value at v_p.");
   prm.declare_entry("Initial contact force",
                     number_to_string(defaults.initial_contact_force), Double(0.),
                     "lambda_p(0) [N]: the contact load of the initial static catenary.");
@@ -146,6 +151,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
   prm.enter_subsection(subsection);
   initial_position = prm.get_double("Initial position");
   final_position = prm.get_double("Final position");
+  speed_ramp = prm.get_double("Speed ramp");
   speed = prm.get_double("Speed");
   initial_contact_force = prm.get_double("Initial contact force");
   initial_offset = prm.get_double("Initial offset");

@@ -16,7 +16,7 @@ std::vector<ScenePantograph> make_scene_pantographs(const SceneParameters& scene
     p.data = &data;
     if (const PantographModelEntry* entry = find_pantograph_model(data.model))
       p.model = entry->create(data.parameters);
-    p.motion = {data.parameters.initial_position, data.parameters.speed};
+    p.motion = data.parameters.motion();
     const std::string number = n == 1 ? "" : " " + std::to_string(k + 1);
     p.block = "pantograph" + number;
     p.contact = "contact" + number;

@@ -267,6 +267,7 @@ void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
       p.parameters.initial_position = first.initial_position - behind;
       p.parameters.final_position = first.final_position - behind;
       p.parameters.speed = first.speed;
+      p.parameters.speed_ramp = first.speed_ramp; // the same motion, 200 m behind
     }
   }
 }

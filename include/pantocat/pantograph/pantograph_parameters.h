@@ -1,5 +1,9 @@
 #pragma once
 
+#include <pantocat/base/contact_point_motion.h>
+
+#include <cmath>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
@@ -96,19 +100,29 @@ struct MassChainPantographParameters
  */
 struct PantographParameters
 {
-  double initial_position = 2.0;       ///< x_{p,0} [m]
-  double final_position = 18.0;        ///< x_p(t_e) [m]
-  double speed = 32.0;                 ///< v_p [m/s]
+  double initial_position = 2.0; ///< x_{p,0} [m]
+  double final_position = 18.0;  ///< x_p(t_e) [m]
+  double speed = 32.0;           ///< v_p [m/s]
+  double speed_ramp = 0.0; ///< T_r [s]: from rest to v_p (ContactPointMotion); 0: none
   double initial_contact_force = 8.75; ///< lambda_p(0) [N]
   double initial_offset = 0.0;         ///< w_{p,1}(0) - w_{p,2}(0) [m], (13) and Sec. 6
   TwoMassPantographParameters two_mass;
   ThreeMassPantographParameters three_mass;
   MassChainPantographParameters mass_chain;
 
+  /// The motion x_p(t), with the speed ramp if any.
+  ContactPointMotion motion() const { return {initial_position, speed, speed_ramp}; }
   /// x_p(t).
-  double position(double t) const { return initial_position + speed * t; }
-  /// End time t_e with x_p(t_e) = final position.
-  double end_time() const { return (final_position - initial_position) / speed; }
+  double position(double t) const { return motion().position(t); }
+  /// End time t_e with x_p(t_e) = final position (with a ramp: T_r / 2 later, or
+  /// inside the ramp if the run is shorter than the v_p T_r / 2 it takes).
+  double end_time() const
+  {
+    const double distance = final_position - initial_position;
+    if (distance < 0.5 * speed * speed_ramp)
+      return std::sqrt(2. * distance * speed_ramp / speed);
+    return distance / speed + 0.5 * speed_ramp;
+  }
 
   /// The prm subsection these were read from ("Pantograph", "Pantograph 2", ...).
   std::string subsection = "Pantograph";
