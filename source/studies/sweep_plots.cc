@@ -132,6 +132,7 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
   const std::string data = "'" + csv + "' skip 1 using 1:";
   gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << png << "'\n"
      << "set multiplot layout 2,1\nset grid\nset key outside right\n"
+     << "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
      << "set xlabel 'speed [km/h]'\nset ylabel 'contact force [N]'\n"
      << "set y2label 'contact loss [%]'\nset y2tics\nset ytics nomirror\n"
      << "set title "
