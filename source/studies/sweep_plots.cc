@@ -129,7 +129,14 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
   const std::string f = filtered ? "filtered_" : "";
   const auto col = [&](const std::string& s)
   { return of_pantograph(p, csv_column(s, 1), 2); };
-  const std::string data = "'" + csv + "' skip 1 using 1:";
+  // Rows go speed by speed, one per pantograph: every n-th row is this one's
+  // (NaN rows in between would break its lines and its band).
+  const std::vector<unsigned int> all = t.pantographs();
+  const std::string rows =
+      "' skip 1 every " + std::to_string(all.size()) +
+      "::" + std::to_string(std::find(all.begin(), all.end(), p) - all.begin()) +
+      " using 1:";
+  const std::string data = "'" + csv + rows;
   gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << png << "'\n"
      << "set multiplot layout 2,1\nset grid\nset key outside right\n"
      << "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
@@ -139,7 +146,7 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
      << gnuplot_string("pantograph " + std::to_string(p) +
                        ": contact force in the window" + (filtered ? " (low pass)" : "") +
                        " against speed")
-     << "\nplot '" << csv << "' skip 1 using 1:" << col(f + "mean_minus_3std") << ":"
+     << "\nplot " << data << col(f + "mean_minus_3std") << ":"
      << col(f + "mean_plus_3std")
      << " with filledcurves lc rgb '#c8d8f0' title 'mean +/- 3 sigma', \\\n  " << data
      << col(f + "mean") << " with linespoints lc rgb '#0060c0' pt 7 title 'mean', \\\n  "
@@ -177,44 +184,61 @@ std::vector<std::string> distinct(const SweepTable& t, const unsigned int c)
   return values;
 }
 
-/// The parameter sweep's plot of statistic @p s for pantograph @p p.
-void parameter_script(std::ostream& gp, const std::string& csv, const std::string& png,
-                      const SweepTable& t, const unsigned int p, const std::string& s)
+/// The points (first entry, statistic @p c) of pantograph @p p's completed rows
+/// whose second entry is @p second (any if empty), sorted by the first entry.
+std::vector<std::pair<double, double>> curve_points(const SweepTable& t,
+                                                    const unsigned int p,
+                                                    const unsigned int c,
+                                                    const std::string& second)
 {
-  const unsigned int n_keys = t.key_columns.size();
+  std::vector<std::pair<double, double>> points;
+  for (const SweepTable::Row& r : t.rows)
+    if (r.pantograph == p && r.status == "completed" && std::isfinite(r.values[c]) &&
+        (second.empty() || r.key[1] == second))
+      points.emplace_back(to_value(r.key[0]), r.values[c]);
+  std::sort(points.begin(), points.end());
+  return points;
+}
+
+/**
+ * The parameter sweep's plot of statistic @p s for pantograph @p p: one curve
+ * per value of the second entry (raw, and filtered if there is a low pass),
+ * each an inline data block sorted by the first entry (failed runs left out),
+ * so that the curves are unbroken and the script redraws without the CSV.
+ */
+void parameter_script(std::ostream& gp, const std::string& png, const SweepTable& t,
+                      const unsigned int p, const std::string& s)
+{
   const bool filtered = has_filtered(t, p);
-  gp << "set terminal pngcairo size 900,550 noenhanced\nset output '" << png << "'\n"
-     << "set grid\nset key outside right\nset xlabel " << gnuplot_string(t.key_columns[0])
-     << "\nset ylabel " << gnuplot_string(s) << "\nset title "
-     << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
-     << "\nplot ";
-  const unsigned int pc = n_keys + 1;
   const std::vector<std::string> variants =
       s == "max_support_uplift_m" || !filtered
           ? std::vector<std::string>{s}
           : std::vector<std::string>{s, "filtered_" + s};
-  bool first = true;
+  const std::vector<std::string> seconds =
+      t.key_columns.size() > 1 ? distinct(t, 1) : std::vector<std::string>{""};
+  std::vector<std::string> curves;
+  gp << std::setprecision(10);
   for (const std::string& v : variants)
-  {
-    const unsigned int c = csv_column(v, n_keys);
-    const std::string what = v.rfind("filtered_", 0) == 0 ? "low pass" : "raw";
-    if (n_keys == 1)
+    for (const std::string& second : seconds)
     {
-      gp << (first ? "" : ", \\\n  ") << "'" << csv
-         << "' skip 1 using 1:" << of_pantograph(p, c, pc) << " with linespoints title '"
-         << what << "'";
-      first = false;
-      continue;
+      const std::string block = "$curve" + std::to_string(curves.size());
+      gp << block << " << EOD\n";
+      for (const auto& [x, y] : curve_points(t, p, SweepTable::statistic(v), second))
+        gp << x << ',' << y << '\n';
+      gp << "EOD\n";
+      const std::string what = v.rfind("filtered_", 0) == 0 ? "low pass" : "raw";
+      curves.push_back(block + " using 1:2 with linespoints title " +
+                       gnuplot_string(second.empty() ? what
+                                                     : what + ", " + t.key_columns[1] +
+                                                           " = " + second));
     }
-    for (const std::string& second : distinct(t, 1))
-    {
-      gp << (first ? "" : ", \\\n  ") << "'" << csv
-         << "' skip 1 using 1:(column(2) == " << second << " ? "
-         << of_pantograph(p, c, pc) << " : NaN) with linespoints "
-         << "title " << gnuplot_string(what + ", " + t.key_columns[1] + " = " + second);
-      first = false;
-    }
-  }
+  gp << "set terminal pngcairo size 900,600 noenhanced\nset output '" << png << "'\n"
+     << "set grid\nset key below\nset xlabel " << gnuplot_string(t.key_columns[0])
+     << "\nset ylabel " << gnuplot_string(s) << "\nset title "
+     << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
+     << "\nplot ";
+  for (std::size_t k = 0; k < curves.size(); ++k)
+    gp << (k ? ", \\\n  " : "") << curves[k];
   gp << '\n';
 }
 
@@ -379,7 +403,7 @@ std::vector<std::string> plot_sweep(const std::string& dir, const std::string& n
         if (kind == SweepKind::speed)
           speed_script(gp, csv, png, t, p, wave_speed);
         else if (kind == SweepKind::parameter)
-          parameter_script(gp, csv, png, t, p, statistic);
+          parameter_script(gp, png, t, p, statistic);
         else
           monte_carlo_script(gp, csv, png, t, p);
         if (!gp)

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <ctime>
 #include <memory>
 #include <random>
 
@@ -131,6 +132,7 @@ std::vector<char> SweepOutcome::pack() const
   put(b, static_cast<std::uint64_t>(reason.size()));
   b.insert(b.end(), reason.begin(), reason.end());
   put(b, wall_seconds);
+  put(b, cpu_seconds);
   put(b, static_cast<std::uint64_t>(steps));
   put(b, rank);
   put(b, static_cast<std::uint64_t>(pantographs.size()));
@@ -155,6 +157,7 @@ SweepOutcome SweepOutcome::unpack(const std::vector<char>& b)
   o.reason.assign(b.data() + pos, length);
   pos += length;
   o.wall_seconds = get<double>(b, pos);
+  o.cpu_seconds = get<double>(b, pos);
   o.steps = get<std::uint64_t>(b, pos);
   o.rank = get<unsigned int>(b, pos);
   o.pantographs.resize(get<std::uint64_t>(b, pos));
@@ -173,6 +176,7 @@ SweepOutcome SweepOutcome::unpack(const std::vector<char>& b)
 SweepOutcome execute_sweep_run(const SweepCase& run, const std::function<void()>& poll)
 {
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   SweepOutcome outcome;
   try
   {
@@ -190,6 +194,7 @@ SweepOutcome execute_sweep_run(const SweepCase& run, const std::function<void()>
   }
   outcome.wall_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  outcome.cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return outcome;
 }
 

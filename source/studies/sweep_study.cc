@@ -251,7 +251,8 @@ void SweepStudy::finished(const unsigned int k, const SweepOutcome& outcome,
   for (const std::string& key : plan.keys[k])
     timing << key << ",";
   timing << to_string(outcome.status) << "," << std::setprecision(4)
-         << outcome.wall_seconds << "," << outcome.steps << "," << outcome.rank << "\n";
+         << outcome.wall_seconds << "," << outcome.cpu_seconds << "," << outcome.steps
+         << "," << outcome.rank << "\n";
   timings[k] = timing.str();
   ++done_here;
   const double elapsed = wall_clock() - started;
@@ -341,7 +342,7 @@ void SweepStudy::write(std::ostream& out) const
   std::string runs;
   for (const std::string& k : plan.key_columns)
     runs += k + ",";
-  runs += "status,wall_seconds,steps,rank\n";
+  runs += "status,wall_seconds,cpu_seconds,steps,rank\n";
   for (const auto& [k, text] : timings)
     runs += text;
   write_file_atomically(dir + "/" + name() + "_runs.csv", runs);

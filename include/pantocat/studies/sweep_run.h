@@ -40,8 +40,10 @@ struct SweepOutcome
     refused ///< the case of this run is not allowed (InputError)
   };
   Status status = Status::completed;
-  std::string reason;                         ///< why failed or refused (one line)
-  double wall_seconds = 0.;                   ///< of this run, on its rank
+  std::string reason;       ///< why failed or refused (one line)
+  double wall_seconds = 0.; ///< of this run, on its rank
+  double cpu_seconds =
+      0.; ///< CPU time of this run (less than wall_seconds when the core is shared)
   unsigned long steps = 0;                    ///< time steps integrated
   unsigned int rank = 0;                      ///< the MPI rank that ran it
   std::vector<PantographFigures> pantographs; ///< every pantograph in contact
