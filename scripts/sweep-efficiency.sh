@@ -7,7 +7,8 @@
 #   CPU share              S = CPU time / wall time of the runs, serial and on 2 ranks
 # (B from <name>_runs.csv: how well the work queue keeps both ranks busy,
 # whatever else the machine runs; E also counts the cores' contention, which
-# S shows: S = 1 on an idle machine, about 0.5 if other jobs hold a core).
+# S shows: S = 1 on an idle machine, about 0.5 if other jobs hold a core;
+# E S1/S2 estimates the efficiency the ranks would reach on whole cores).
 # A benchmark, not a test: run it on an otherwise idle machine.
 #   scripts/sweep-efficiency.sh [prm] [build dir]
 # From the repository root; default prm/studies/speed-sweep-s55.prm.
@@ -26,6 +27,6 @@ awk -v t1="$(echo "$t1 - $t0" | bc)" -v t2="$(echo "$t2 - $t1" | bc)" \
   -v s1="$(share "$out/serial/${name}_runs.csv")" -v s2="$(share "$out/mpi/${name}_runs.csv")" \
   -v load="$(cut -d' ' -f1-3 /proc/loadavg)" -F, '
   NR > 1 { busy += $(NF - 3) }
-  END { printf "serial %.1f s, 2 ranks %.1f s: efficiency %.2f, load balance %.2f, CPU share %s serial, %s on 2 ranks (load %s)\n",
-        t1, t2, t1 / (2 * t2), busy / (2 * t2), s1, s2, load }' "$out/mpi/${name}_runs.csv"
+  END { printf "serial %.1f s, 2 ranks %.1f s: efficiency %.2f, load balance %.2f, CPU share %s serial, %s on 2 ranks (load %s); with whole cores (E S1/S2) about %.2f\n",
+        t1, t2, t1 / (2 * t2), busy / (2 * t2), s1, s2, load, t1 * s1 / (2 * t2 * s2) }' "$out/mpi/${name}_runs.csv"
 rm -rf "$out"
