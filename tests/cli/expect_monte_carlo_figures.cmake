@@ -31,7 +31,7 @@ if(NOT completed EQUAL SAMPLES)
 endif()
 file(STRINGS ${OUTDIR}/monte_carlo_distribution.csv lines REGEX "^filtered_std,1,")
 string(REPLACE "," ";" fields "${lines}")
-list(GET fields 8 p50)
+list(GET fields 7 p50) # statistic,pantograph,n,mean,std,min,p5,p50
 message(STATUS "${completed} samples; filtered sigma median ${p50} N")
 if(p50 LESS ${P50_MIN} OR p50 GREATER ${P50_MAX})
   message(FATAL_ERROR "median filtered sigma ${p50} N outside [${P50_MIN}, ${P50_MAX}] N")
