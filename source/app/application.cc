@@ -4,6 +4,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/app/run_phase.h>
+#include <pantocat/app/sweep_mode.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/atomic_file.h>
 #include <pantocat/studies/convergence_study.h>
@@ -218,12 +219,8 @@ unsigned int launcher_rank()
   return 0;
 }
 
-bool is_study(const RunMode mode)
-{
-  return mode == RunMode::convergence_study || mode == RunMode::work_precision;
-}
-
-void run_mode(const ProgramParameters& parameters, std::ostream& out, RunPhase& phase)
+void run_mode(const ProgramParameters& parameters, const dealii::ParameterHandler& prm,
+              const SweepInput& input, std::ostream& out, RunPhase& phase)
 {
   switch (parameters.mode)
   {
@@ -243,6 +240,12 @@ void run_mode(const ProgramParameters& parameters, std::ostream& out, RunPhase& 
   case RunMode::work_precision:
     phase.begin_study();
     run_work_precision_study(parameters.make_study_case(), std::cout);
+    break;
+  case RunMode::speed_sweep:
+  case RunMode::parameter_sweep:
+  case RunMode::monte_carlo:
+    phase.begin_study();
+    run_sweep(parameters, prm, input, out);
     break;
   }
 }
@@ -296,7 +299,7 @@ int run(const CommandLine& cl, int argc, char** argv)
                  parameters.mode == RunMode::dynamics && parameters.checkpoint.resume);
   try
   {
-    run_mode(parameters, out, phase);
+    run_mode(parameters, prm, {cl.parameter_file, overrides}, out, phase);
   }
   catch (const InputError&)
   {

@@ -7,6 +7,18 @@
 
 namespace pantocat
 {
+bool is_sweep(const RunMode mode)
+{
+  return mode == RunMode::speed_sweep || mode == RunMode::parameter_sweep ||
+         mode == RunMode::monte_carlo;
+}
+
+bool is_study(const RunMode mode)
+{
+  return mode == RunMode::convergence_study || mode == RunMode::work_precision ||
+         is_sweep(mode);
+}
+
 void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
                                            const unsigned int n_pantographs,
                                            const PantographCase& first_pantograph)
@@ -15,13 +27,16 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.declare_entry(
       "Mode", "dynamics",
       dealii::Patterns::Selection(
-          "dynamics|static|eigenfrequencies|convergence study|work precision"),
+          "dynamics|static|eigenfrequencies|convergence study|work precision|speed "
+          "sweep|parameter sweep|monte carlo"),
       "dynamics: the coupled pantograph-catenary run from x_p(0) to the final "
       "position (Sec. 6); static: the initial catenary under gravity, droppers "
       "and the contact load lambda_p(0) at x_p(0) (Fig. 5); eigenfrequencies: "
       "lowest and highest eigenfrequency of each wire (Table 1); convergence "
       "study, work precision: many dynamic runs (subsection Study), spread "
-      "over MPI ranks under mpirun.");
+      "over MPI ranks under mpirun; speed sweep, parameter sweep, monte carlo: the "
+      "contact-force statistics of the evaluation window for many dynamic runs "
+      "(subsection Sweep), spread over MPI ranks by a work queue.");
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   prm.declare_entry("Discretisations", "fem, fdm",
@@ -35,6 +50,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
   OutputParameters::declare_parameters(prm);
   StatisticsParameters::declare_parameters(prm);
   StudyParameters::declare_parameters(prm);
+  SweepParameters::declare_parameters(prm);
   CheckpointParameters::declare_parameters(prm);
   GuardParameters::declare_parameters(prm);
   ElasticityParameters::declare_parameters(prm);
@@ -48,6 +64,9 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
          : m == "static"            ? RunMode::static_equilibrium
          : m == "convergence study" ? RunMode::convergence_study
          : m == "work precision"    ? RunMode::work_precision
+         : m == "speed sweep"       ? RunMode::speed_sweep
+         : m == "parameter sweep"   ? RunMode::parameter_sweep
+         : m == "monte carlo"       ? RunMode::monte_carlo
                                     : RunMode::dynamics;
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
@@ -63,6 +82,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   output.parse_parameters(prm);
   statistics.parse_parameters(prm);
   study.parse_parameters(prm);
+  sweep.parse_parameters(prm, m);
   checkpoint.parse_parameters(prm);
   guards.parse_parameters(prm);
   elasticity.parse_parameters(prm);
@@ -74,16 +94,18 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
           "a convergence study pairs N+1 and dt row by row and prints the observed "
           "order between successive rows; allowed: paired (all combinations is for "
           "Mode = work precision)");
-  if (mode == RunMode::convergence_study || mode == RunMode::work_precision)
+  if (is_study(mode))
     require(scene.pantographs[0].has_body() && scene.contact_wire == WireModel::elastic,
             "Scene/Pantograph", scene.pantographs[0].model,
-            "studies measure the contact force lambda_p on the elastic wire: allowed "
+            "studies and sweeps measure the contact force lambda_p on the elastic wire: "
+            "allowed "
             "two-mass | three-mass | mass-chain with Contact wire = elastic");
   elasticity.check(catenary.number_of_spans());
-  require(!elasticity.enabled() || scene.droppers != DropperModel::bilateral,
-          "Elasticity/Span", elasticity.span,
-          "the static check lets the droppers slacken, which Scene/Droppers = "
-          "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral or elastic");
+  require(
+      !elasticity.enabled() || scene.droppers != DropperModel::bilateral,
+      "Elasticity/Span", elasticity.span,
+      "the static check lets the droppers slacken, which Scene/Droppers = "
+      "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral or elastic");
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step);
   statistics.check(time_integration.time_step, pantograph().initial_position,

@@ -33,7 +33,10 @@ const std::vector<std::string>& result_files()
                                               "eigenfrequencies.csv",
                                               "convergence.txt",
                                               "convergence.csv",
-                                              "work_precision.csv"};
+                                              "work_precision.csv",
+                                              "speed_sweep.csv",
+                                              "parameter_sweep.csv",
+                                              "monte_carlo.csv"};
   return files;
 }
 

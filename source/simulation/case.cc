@@ -2,6 +2,8 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/simulation/case.h>
 
+#include <deal.II/base/exceptions.h>
+
 #include <limits>
 #include <sstream>
 
@@ -15,6 +17,31 @@ double arrival_time(const PantographParameters& p)
   return (p.final_position - p.initial_position) / p.speed;
 }
 } // namespace
+
+bool InstallationDeviations::any() const
+{
+  return !dropper_lengths.empty() || !steady_arm_heights.empty() ||
+         carrier_tension_factor != 1. || contact_wire_tension_factor != 1.;
+}
+
+void InstallationDeviations::apply(CatenaryParameters& c) const
+{
+  if (!any())
+    return;
+  Assert(dropper_lengths.empty() || dropper_lengths.size() == c.n_droppers(),
+         dealii::ExcDimensionMismatch(dropper_lengths.size(), c.n_droppers()));
+  for (unsigned int j = 0; j < dropper_lengths.size(); ++j)
+    c.dropper_lengths[j] += dropper_lengths[j];
+  const std::size_t n_arms = c.steady_arm_positions().size();
+  Assert(steady_arm_heights.empty() || steady_arm_heights.size() == n_arms,
+         dealii::ExcDimensionMismatch(steady_arm_heights.size(), n_arms));
+  if (!steady_arm_heights.empty())
+    c.steady_arm_preloads.resize(n_arms, 0.);
+  for (std::size_t k = 0; k < steady_arm_heights.size(); ++k)
+    c.steady_arm_preloads[k] += c.steady_arm_stiffness * steady_arm_heights[k];
+  c.carrier.tension *= carrier_tension_factor;
+  c.contact_wire.tension *= contact_wire_tension_factor;
+}
 
 double Case::end_time() const
 {

@@ -131,6 +131,7 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
     design_ = design_catenary(data.scene, data.catenary, *space);
     data.catenary = design_->catenary;
   }
+  data.installation.apply(data.catenary); // the catenary as installed
   scene->built = build_scene(data.scene, data.catenary, *space);
   const BuiltScene& built = scene->built;
   layout_ = make_layout(built, measurements);

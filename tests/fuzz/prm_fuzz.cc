@@ -200,11 +200,12 @@ private:
       return uniform(0, 1) ? "true" : "false";
     case Pattern::Kind::selection:
     {
-      // Not the study modes: each runs many dynamic runs on grids up to
-      // N+1 = 8000 (minutes); their input checks have their own tests.
+      // Not the study and sweep modes: each runs many dynamic runs on grids
+      // up to N+1 = 8000 (minutes); their input checks have their own tests.
       std::vector<std::string> choices;
       for (const auto& c : p.choices)
-        if (c != "convergence study" && c != "work precision")
+        if (c != "convergence study" && c != "work precision" && c != "speed sweep" &&
+            c != "parameter sweep" && c != "monte carlo")
           choices.push_back(c);
       return pick(choices);
     }

@@ -11,6 +11,7 @@
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/studies/study_case.h>
 #include <pantocat/studies/study_parameters.h>
+#include <pantocat/studies/sweep_parameters.h>
 #include <pantocat/time/time_integration_parameters.h>
 
 #include <deal.II/base/parameter_handler.h>
@@ -26,8 +27,16 @@ enum class RunMode
   eigenfrequencies,   ///< Table 1 of Sec. 6
   dynamics,           ///< the coupled run of Sec. 6 (Figs. 6, 7)
   convergence_study,  ///< one case for a list of refinements: errors and orders
-  work_precision      ///< error against CPU time for several methods
+  work_precision,     ///< error against CPU time for several methods
+  speed_sweep,        ///< the window's statistics for a list of speeds
+  parameter_sweep,    ///< the window's statistics over one or two prm entries
+  monte_carlo         ///< the window's statistics over random installation deviations
 };
+
+/// True for the modes whose runs are spread over MPI ranks (studies and sweeps).
+bool is_study(RunMode mode);
+/// True for speed sweep, parameter sweep and monte carlo.
+bool is_sweep(RunMode mode);
 
 /// All parameters of one run: one struct per prm subsection.
 struct ProgramParameters
@@ -42,6 +51,7 @@ struct ProgramParameters
   OutputParameters output;
   StatisticsParameters statistics;
   StudyParameters study;
+  SweepParameters sweep; ///< speed sweep, parameter sweep, monte carlo
   CheckpointParameters checkpoint;
   GuardParameters guards;
   ElasticityParameters elasticity; ///< the static check (Mode = static)

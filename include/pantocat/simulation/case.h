@@ -6,8 +6,35 @@
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/time/time_integration_parameters.h>
 
+#include <vector>
+
 namespace pantocat
 {
+/**
+ * Deviations of an installed catenary from its design (Mode = monte carlo):
+ * what the fitters got wrong, applied by the CaseRunner after the static
+ * design (the droppers were cut for the design, then installed with these
+ * errors). Empty lists and factors of 1: the catenary as designed.
+ */
+struct InstallationDeviations
+{
+  /// Added to each dropper's length l_j [m], in dropper order (empty: none).
+  std::vector<double> dropper_lengths;
+  /**
+   * Height error [m] of each steady arm's fixing, in the order of
+   * CatenaryParameters::steady_arm_positions() (empty: none): an arm fixed
+   * delta higher pulls with k_s delta more (its preload grows by that).
+   */
+  std::vector<double> steady_arm_heights;
+  double carrier_tension_factor = 1.;      ///< T_c = factor x the design's tension
+  double contact_wire_tension_factor = 1.; ///< T_w = factor x the design's tension
+
+  /// True if any deviation is set.
+  bool any() const;
+  /// Applies the deviations to the designed (or given) catenary @p c.
+  void apply(CatenaryParameters& c) const;
+};
+
 /**
  * A case: the physics and the numerics of one simulation, and nothing of how
  * it was asked for (no command line, no output settings). The scene says
@@ -24,6 +51,8 @@ struct Case
   DiscretisationParameters discretisation;
   TimeIntegrationParameters time_integration;
   GuardParameters guards;
+  /// Installation errors applied after the design (Monte Carlo); none by default.
+  InstallationDeviations installation = {};
 
   /**
    * The end time t_e of a dynamic run: the first pantograph (moving force or

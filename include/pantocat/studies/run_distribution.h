@@ -31,6 +31,24 @@ public:
   run_and_gather(unsigned int n_runs,
                  const std::function<RunOutcome(unsigned int)>& execute) const;
 
+  /**
+   * A work queue on rank 0 for runs that differ in length (dynamic load
+   * balancing): every rank asks rank 0 for its next run when it is free.
+   * Rank 0 works too: it takes runs from the queue itself and serves the other
+   * ranks' requests whenever @p execute calls the poll function it is given
+   * (every few time steps), so that no rank waits long and 2 ranks keep 2
+   * cores busy. @p runs are the run indices in the order to hand them out
+   * (longest first balances best). On rank 0, @p finished(k, outcome) is
+   * called for each run as it ends (in the order they end); the other ranks
+   * return when the queue is empty. Waiting ranks sleep instead of spinning.
+   * Without MPI (one rank) rank 0 runs them all in order.
+   */
+  void run_queue(
+      const std::vector<unsigned int>& runs,
+      const std::function<std::vector<char>(unsigned int, const std::function<void()>&)>&
+          execute,
+      const std::function<void(unsigned int, const std::vector<char>&)>& finished) const;
+
 private:
   unsigned int rank_ = 0;
   unsigned int size_ = 1;

@@ -1,0 +1,199 @@
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
+#include <pantocat/studies/sweep_parameters.h>
+
+#include <deal.II/base/utilities.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace pantocat
+{
+namespace
+{
+/// @p text as a finite double, or false.
+bool to_number(const std::string& text, double& value)
+{
+  const std::string t = dealii::Utilities::trim(text);
+  if (t.empty())
+    return false;
+  std::istringstream in(t);
+  in >> value;
+  return !in.fail() && in.eof() && std::isfinite(value);
+}
+
+/// "a to b step s" split into its three numbers; false if @p text is no range.
+bool parse_range(const std::string& text, double& first, double& last, double& step)
+{
+  const auto to = text.find(" to ");
+  const auto by = text.find(" step ");
+  if (to == std::string::npos || by == std::string::npos || by < to)
+    return false;
+  return to_number(text.substr(0, to), first) &&
+         to_number(text.substr(to + 4, by - to - 4), last) &&
+         to_number(text.substr(by + 6), step);
+}
+
+/// The text of the values of a range, printed with up to 12 digits.
+std::vector<std::string> as_text(const std::vector<double>& values)
+{
+  std::vector<std::string> text;
+  for (const double v : values)
+    text.push_back(number_to_string(v, 12));
+  return text;
+}
+
+/// The values of an entry as written: a list of words, or a range expanded.
+std::vector<std::string> value_words(const std::string& text,
+                                     const std::string& parameter)
+{
+  if (text.find(" to ") != std::string::npos)
+    return as_text(parse_sweep_values(text, parameter));
+  std::vector<std::string> words;
+  for (const std::string& w : dealii::Utilities::split_string_list(text))
+    words.push_back(dealii::Utilities::trim(w));
+  require(!words.empty(), parameter, text,
+          "give at least one value: a list \"a, b, c\" or a range \"first to last "
+          "step s\"");
+  return words;
+}
+} // namespace
+
+std::vector<double> parse_sweep_values(const std::string& text,
+                                       const std::string& parameter)
+{
+  const std::string allowed =
+      "a list \"a, b, c\" or a range \"first to last step s\" with first <= last "
+      "and s > 0";
+  std::vector<double> values;
+  double first = 0., last = 0., step = 0.;
+  if (text.find(" to ") != std::string::npos)
+  {
+    require(parse_range(text, first, last, step), parameter, text, allowed);
+    require(step > 0. && first <= last, parameter, text,
+            "an empty range; allowed: " + allowed);
+    const double n = std::floor((last - first) / step + 1e-9);
+    require(n < 1e5, parameter, text, "more than 100000 values; allowed: " + allowed);
+    for (long i = 0; i <= static_cast<long>(n); ++i)
+      values.push_back(first + i * step);
+    return values;
+  }
+  for (const std::string& word : dealii::Utilities::split_string_list(text))
+  {
+    double v = 0.;
+    require(to_number(word, v), parameter, text,
+            "\"" + word + "\" is not a number; allowed: " + allowed);
+    values.push_back(v);
+  }
+  require(!values.empty(), parameter, text,
+          "an empty list; give at least one value: " + allowed);
+  return values;
+}
+
+void SweepParameters::declare_parameters(dealii::ParameterHandler& prm)
+{
+  using dealii::Patterns::Anything;
+  prm.enter_subsection("Sweep");
+  prm.declare_entry("Speeds", "", Anything(),
+                    "Mode = speed sweep: the train speeds [km/h], a list \"250, 280, "
+                    "320\" or a range \"200 to 400 step 20\". Every pantograph runs at "
+                    "the speed; their positions stay as given.");
+  prm.declare_entry("Parameter", "", Anything(),
+                    "Mode = parameter sweep: the prm entry to vary, with its "
+                    "subsections, e.g. Catenary/Contact wire/Tension. Numeric entries "
+                    "only (Double or Integer).");
+  prm.declare_entry("Values", "", Anything(),
+                    "The values of Parameter: a list or a range \"first to last step "
+                    "s\".");
+  prm.declare_entry("Second parameter", "", Anything(),
+                    "Optional second entry: every value of Parameter runs with every "
+                    "value of the second one (a grid).");
+  prm.declare_entry("Second values", "", Anything(),
+                    "The values of Second parameter: a list or a range.");
+  prm.declare_entry("Samples", "0", dealii::Patterns::Integer(),
+                    "Mode = monte carlo: the number of samples (> 0).");
+  prm.declare_entry("Seed", "1", dealii::Patterns::Integer(0),
+                    "Sample i draws its deviations from std::mt19937_64(Seed + i): "
+                    "the same seed gives the same samples on any number of ranks.");
+  prm.declare_entry("Distribution", "uniform",
+                    dealii::Patterns::Selection("uniform|normal"),
+                    "uniform: each deviation uniform in [-tolerance, tolerance]; normal: "
+                    "mean 0, standard deviation tolerance / 3.");
+  prm.declare_entry("Dropper length tolerance", "0", dealii::Patterns::Double(0.),
+                    "Installation tolerance of every dropper's length [m] (cut and "
+                    "fitted length against the design).");
+  prm.declare_entry("Steady arm height tolerance", "0", dealii::Patterns::Double(0.),
+                    "Height tolerance of every steady arm's fixing [m].");
+  prm.declare_entry("Tension tolerance", "0", dealii::Patterns::Double(0., 0.5),
+                    "Relative tolerance of the tension of each wire (0.02: +/- 2 %); 0: "
+                    "tensions as designed.");
+  prm.declare_entry("Resume", "false", dealii::Patterns::Bool(),
+                    "Go on with a sweep that was stopped: the runs in <name>.csv.partial "
+                    "of the output directory are kept and not run again.");
+  prm.declare_entry("Output name", "", Anything(),
+                    "Base name of the tables and plots; empty: speed_sweep, "
+                    "parameter_sweep or monte_carlo.");
+  prm.leave_subsection();
+}
+
+void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
+                                       const std::string& mode)
+{
+  prm.enter_subsection("Sweep");
+  speeds_text = prm.get("Speeds");
+  const std::string first = dealii::Utilities::trim(prm.get("Parameter"));
+  const std::string second = dealii::Utilities::trim(prm.get("Second parameter"));
+  const std::string first_values = prm.get("Values");
+  const std::string second_values = prm.get("Second values");
+  const long n_samples = prm.get_integer("Samples");
+  seed = static_cast<std::uint64_t>(prm.get_integer("Seed"));
+  distribution = prm.get("Distribution") == "normal" ? DeviationDistribution::normal
+                                                     : DeviationDistribution::uniform;
+  dropper_length_tolerance = prm.get_double("Dropper length tolerance");
+  steady_arm_height_tolerance = prm.get_double("Steady arm height tolerance");
+  tension_tolerance = prm.get_double("Tension tolerance");
+  resume = prm.get_bool("Resume");
+  output_name = prm.get("Output name");
+  prm.leave_subsection();
+
+  require(output_name.find('/') == std::string::npos, "Sweep/Output name", output_name,
+          "a file base name without '/'");
+  entries.clear(), values.clear(), values_text.clear(), speeds_kmh.clear();
+  if (mode == "speed sweep")
+  {
+    speeds_kmh = parse_sweep_values(speeds_text, "Sweep/Speeds");
+    for (const double v : speeds_kmh)
+      require(v > 0., "Sweep/Speeds", speeds_text, "every speed must be > 0 km/h");
+  }
+  if (mode == "parameter sweep")
+  {
+    require(!first.empty(), "Sweep/Parameter", first,
+            "name the prm entry to vary, e.g. Catenary/Contact wire/Tension");
+    entries.push_back(first);
+    values.push_back(value_words(first_values, "Sweep/Values"));
+    values_text.push_back(first_values);
+    if (!second.empty())
+    {
+      require(second != first, "Sweep/Second parameter", second,
+              "must differ from Sweep/Parameter");
+      entries.push_back(second);
+      values.push_back(value_words(second_values, "Sweep/Second values"));
+      values_text.push_back(second_values);
+    }
+    else
+      require(dealii::Utilities::trim(second_values).empty(), "Sweep/Second values",
+              second_values, "only with a Sweep/Second parameter");
+  }
+  if (mode == "monte carlo")
+  {
+    require(n_samples > 0 && n_samples <= 1000000, "Sweep/Samples", n_samples,
+            "a Monte Carlo study needs 1 to 1000000 samples");
+    samples = static_cast<unsigned int>(n_samples);
+    require(dropper_length_tolerance > 0. || steady_arm_height_tolerance > 0. ||
+                tension_tolerance > 0.,
+            "Sweep/Dropper length tolerance", dropper_length_tolerance,
+            "with Steady arm height tolerance and Tension tolerance also 0 every "
+            "sample is the designed catenary; set at least one tolerance > 0");
+  }
+}
+} // namespace pantocat

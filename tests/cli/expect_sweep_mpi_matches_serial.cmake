@@ -1,0 +1,47 @@
+# A sweep on 2 MPI ranks (dynamic work queue) must write the same CSV as the
+# serial run, byte for byte: each run is computed by one rank with the same
+# arithmetic, sent bitwise, and the rows are written in plan order whatever
+# order the runs finish in. No <name>.csv.partial may be left.
+#   -DEXE=... -DMPIEXEC=... -DPRM=... -DOUTDIR=dir -DTABLE=speed_sweep.csv -DROWS=n
+cmake_minimum_required(VERSION 3.13)
+file(REMOVE_RECURSE ${OUTDIR}-serial ${OUTDIR}-mpi)
+execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR}-serial
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "serial run failed (${status}):\n${out}\n${err}")
+endif()
+if(out MATCHES "MPI")
+  message(FATAL_ERROR "the serial run should not mention MPI:\n${out}")
+endif()
+execute_process(COMMAND ${MPIEXEC} --oversubscribe -np 2 ${EXE} ${PRM} -o ${OUTDIR}-mpi
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 0)
+  message(FATAL_ERROR "2-rank run failed (${status}):\n${out}\n${err}")
+endif()
+if(NOT out MATCHES "on 2 MPI ranks")
+  message(FATAL_ERROR "the 2-rank run did not run on 2 ranks:\n${out}")
+endif()
+# Both ranks ran runs (rank 0 works too): the run table names rank 0 and 1.
+file(STRINGS ${OUTDIR}-mpi/${TABLE} rows)
+string(REPLACE ".csv" "_runs.csv" runs_table ${TABLE})
+file(READ ${OUTDIR}-mpi/${runs_table} runs)
+if(NOT runs MATCHES ",0\n" OR NOT runs MATCHES ",1\n")
+  message(FATAL_ERROR "not both ranks ran runs:\n${runs}")
+endif()
+file(READ ${OUTDIR}-serial/${TABLE} serial)
+file(READ ${OUTDIR}-mpi/${TABLE} mpi)
+list(LENGTH rows n)
+math(EXPR expected "${ROWS} + 1")
+if(NOT n EQUAL expected)
+  message(FATAL_ERROR "${TABLE} has ${n} lines, expected ${expected}:\n${mpi}")
+endif()
+if(NOT serial STREQUAL mpi)
+  message(FATAL_ERROR "${TABLE} differs between serial and 2 ranks:\n${serial}\n---\n${mpi}")
+endif()
+foreach(dir ${OUTDIR}-serial ${OUTDIR}-mpi)
+  file(GLOB partial ${dir}/*.partial)
+  if(partial)
+    message(FATAL_ERROR "left behind: ${partial}")
+  endif()
+endforeach()
+message(STATUS "${TABLE}: ${n} lines, the same on 2 ranks as serially")
