@@ -2,6 +2,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/studies/packed_bytes.h>
 #include <pantocat/studies/study_run.h>
 #include <pantocat/time/integrator_registry.h>
 
@@ -46,21 +47,8 @@ const char* to_string(const RunOutcome::Status status)
 
 namespace
 {
-template <typename T>
-void put(std::vector<char>& b, const T& value)
-{
-  const char* p = reinterpret_cast<const char*>(&value);
-  b.insert(b.end(), p, p + sizeof(T));
-}
-
-template <typename T>
-T get(const std::vector<char>& b, std::size_t& pos)
-{
-  T value;
-  std::memcpy(&value, b.data() + pos, sizeof(T));
-  pos += sizeof(T);
-  return value;
-}
+using packed::get;
+using packed::put;
 
 void put_vector(std::vector<char>& b, const std::vector<double>& v)
 {

@@ -1,6 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/studies/packed_bytes.h>
 #include <pantocat/studies/sweep_run.h>
 
 #include <chrono>
@@ -14,21 +15,8 @@ namespace pantocat
 {
 namespace
 {
-template <typename T>
-void put(std::vector<char>& b, const T& value)
-{
-  const char* p = reinterpret_cast<const char*>(&value);
-  b.insert(b.end(), p, p + sizeof(T));
-}
-
-template <typename T>
-T get(const std::vector<char>& b, std::size_t& pos)
-{
-  T value;
-  std::memcpy(&value, b.data() + pos, sizeof(T));
-  pos += sizeof(T);
-  return value;
-}
+using packed::get;
+using packed::put;
 
 void put_figures(std::vector<char>& b, const ForceFigures& f)
 {
