@@ -92,8 +92,12 @@ int main(int argc, char** argv)
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
   const unsigned int steps = argc > 1 ? std::atoi(argv[1]) : 1000;
   std::vector<unsigned int> counts;
+  std::string only; // --only=fem+bdf2 : one column
   for (int i = 2; i < argc; ++i)
-    counts.push_back(std::atoi(argv[i]));
+    if (std::string(argv[i]).rfind("--only=", 0) == 0)
+      only = std::string(argv[i]).substr(7);
+    else
+      counts.push_back(std::atoi(argv[i]));
   if (counts.empty())
     counts = {2, 10, 40, 100, 200};
   struct Column
@@ -101,10 +105,15 @@ int main(int argc, char** argv)
     std::string method, integrator;
     unsigned int steps;
   };
-  const std::vector<Column> columns = {{"fdm", "half-explicit", steps},
-                                       {"fem", "half-explicit", steps / 2},
-                                       {"fdm", "bdf2", steps / 10},
-                                       {"fdm", "generalized-alpha", steps / 10}};
+  std::vector<Column> columns = {
+      {"fdm", "half-explicit", steps}, {"fem", "half-explicit", steps / 2},
+      {"fdm", "bdf2", steps / 10},     {"fdm", "generalized-alpha", steps / 10},
+      {"fem", "bdf2", steps / 10},     {"fem", "generalized-alpha", steps / 10}};
+  if (!only.empty())
+    columns.erase(std::remove_if(columns.begin(), columns.end(),
+                                 [&](const Column& c)
+                                 { return c.method + "+" + c.integrator != only; }),
+                  columns.end());
   std::vector<double> without;
   std::cout << "| m |";
   for (const Column& c : columns)

@@ -20,9 +20,6 @@ namespace pantocat
 {
 namespace
 {
-/// Banded storage pays off only for narrow bands.
-constexpr int max_banded_bandwidth = 16;
-
 /**
  * Forward (U^T y = b) and backward (U x = y) substitution on the rows
  * [first, last) of one uncoupled block with half bandwidth KD (a compile-time
@@ -162,7 +159,8 @@ void SparseDirectSolver::find_blocks(const dealii::SparseMatrix<double>& A)
   independent_blocks = std::move(merged);
 }
 
-bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>& A)
+bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>& A,
+                                             const int max_bandwidth)
 {
   n = A.m();
   kd = 0;
@@ -172,7 +170,7 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
       const int d =
           std::abs(static_cast<int>(it->row()) - static_cast<int>(it->column()));
       kd = std::max(kd, d);
-      if (kd > max_banded_bandwidth)
+      if (kd > max_bandwidth)
         return false;
       // Cholesky needs symmetry (up to round-off of the assembly).
       if (it->row() < it->column())
@@ -230,10 +228,11 @@ SparseDirectSolver::SparseDirectSolver() = default;
 SparseDirectSolver::~SparseDirectSolver() = default;
 
 void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
-                                   const std::string& what, const LinearSolverType type)
+                                   const std::string& what, const LinearSolverType type,
+                                   const int max_bandwidth)
 {
   klu.reset();
-  banded = type == LinearSolverType::banded && try_banded_cholesky(matrix);
+  banded = type == LinearSolverType::banded && try_banded_cholesky(matrix, max_bandwidth);
   if (banded)
     return;
   n = matrix.m();

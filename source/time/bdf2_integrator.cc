@@ -59,7 +59,8 @@ struct Bdf2Integrator::Stage : IterationMatrix
   void compute_columns(const unsigned int l, const ConstraintState& r)
   {
     const unsigned int n = system.n_dofs();
-    InterleavedColumns &X = S_columns[l], &U = M_columns[l];
+    InterleavedColumns &X = columns_of(l, S_columns, all_S),
+                       &U = columns_of(l, M_columns, all_M);
     for (unsigned int i = 0; i < n; ++i) // keep the base column
       X(i, lambda) = X(i, eta) = X(i, mu) = 0.;
     U.clear();
@@ -109,11 +110,39 @@ struct Bdf2Integrator::Stage : IterationMatrix
     }
   }
 
+  /// The batch of constraint l: the moving constraints' from IterationMatrix.
+  InterleavedColumns& columns_of(const unsigned int l,
+                                 std::vector<InterleavedColumns>& moving_batches,
+                                 std::vector<InterleavedColumns>& fixed_batches)
+  {
+    if (system.constraints[l]->depends_on_time())
+      return moving_batches[position[l]];
+    if (fixed_batches.size() != system.n_constraints())
+      fixed_batches.resize(system.n_constraints());
+    if (fixed_batches[l].size() != system.n_dofs())
+      fixed_batches[l].reinit(system.n_dofs());
+    return fixed_batches[l];
+  }
+  const InterleavedColumns& S_of(const unsigned int l)
+  {
+    return columns_of(l, S_columns, all_S);
+  }
+  const InterleavedColumns& M_of(const unsigned int l)
+  {
+    return columns_of(l, M_columns, all_M);
+  }
+
   const SemiDiscreteSystem& system;
   const MassInverse& mass_inverse;
   const DampingOverMass& damping_over_mass;
   double c;
   SparseRow DY, DZ; ///< workspace
+  std::vector<InterleavedColumns> all_S, all_M;
+  bool fixed_columns_ready = false;
+  unsigned int base_owner() const
+  {
+    return moving.empty() ? system.n_constraints() : moving.front();
+  }
 };
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
@@ -169,7 +198,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     base_levels[k][2] += r.z_tt;
     for (unsigned int l = 0; l < m_all; ++l)
     {
-      const InterleavedColumns &X = s.S_columns[l], &U = s.M_columns[l];
+      const InterleavedColumns &X = s.S_of(l), &U = s.M_of(l);
       const double GY = U.dot(r.G, Y), GtY = U.dot(r.G_t, Y), GZ = U.dot(r.G, Z),
                    GtZ = U.dot(r.G_t, Z);
       for (const unsigned int kind : {lambda, eta, mu})
@@ -292,12 +321,12 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   if (s.moving.empty())
     q_terms.push_back({B.data(), {{0., 0., 0., 1.}}});
   for (unsigned int l = 0; l < m_all; ++l)
-    if (x.active[l] || l == s.base_owner)
+    if (x.active[l] || l == s.base_owner())
       q_terms.push_back(
-          {s.S_columns[l].data(),
-           {{y_lambda[l], y_eta[l], y_mu[l], l == s.base_owner ? 1. : 0.}}});
+          {s.S_of(l).data(),
+           {{y_lambda[l], y_eta[l], y_mu[l], l == s.base_owner() ? 1. : 0.}}});
   for (const unsigned int l : A) // (mu Y + eta Z, eta Y) of constraint l
-    u_terms.push_back({s.M_columns[l].data(), {{y_mu[l], y_eta[l], y_eta[l], 0.}}});
+    u_terms.push_back({s.M_of(l).data(), {{y_mu[l], y_eta[l], y_eta[l], 0.}}});
   x.q.reinit(n, true);
   x.v.reinit(n, true);
   x.a.reinit(n, true);

@@ -4,6 +4,7 @@
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace pantocat
@@ -32,8 +33,8 @@ SparseRow truncated(const dealii::Vector<double>& column)
  * the columns A^-1 G_l^T truncated.
  */
 std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
-                                 const MassInverse& A, const unsigned int n_dofs,
-                                 std::vector<double>& diagonal,
+                                 const FixedConstraintSchur::ColumnSolver& A,
+                                 const unsigned int n_dofs, std::vector<double>& diagonal,
                                  std::vector<SparseRow>& columns)
 {
   const unsigned int m = rows.size();
@@ -42,7 +43,7 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
   dealii::Vector<double> column(n_dofs);
   for (unsigned int l = 0; l < m; ++l)
   {
-    A.apply_to_row(*rows[l], column);
+    A.apply(*rows[l], column);
     columns.push_back(truncated(column));
     for (unsigned int k = l; k < m; ++k)
     {
@@ -52,7 +53,7 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
       else if (s != 0.)
         lower.push_back({k, l, s});
     }
-    A.reset_column(*rows[l], column);
+    A.reset(*rows[l], column);
   }
   return lower;
 }
@@ -60,17 +61,65 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
 
 void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
                                       const MassInverse& A, const unsigned int n_dofs,
-                                      const std::string& name)
+                                      const std::string& name,
+                                      const std::vector<double>& C)
 {
-  n = rows.size();
+  ColumnSolver solver;
+  solver.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.apply_to_row(row, column); };
+  solver.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.reset_column(row, column); };
+  solver.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
+  const SparseDirectSolver* factor = A.factorised();
+  solver.solve_cost = factor ? factor->solve_cost() : n_dofs;
+  initialize(rows, solver, n_dofs, name, C);
+}
+
+void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
+                                      const SparseDirectSolver& A,
+                                      const unsigned int n_dofs, const std::string& name,
+                                      const std::vector<double>& C)
+{
+  ColumnSolver solver;
+  solver.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  {
+    row.add_transpose_to(column, 1.);
+    A.solve(column);
+  };
+  solver.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
+  solver.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
+  solver.solve_cost = A.solve_cost();
+  initialize(rows, solver, n_dofs, name, C);
+}
+
+void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
+                                      const ColumnSolver& A, const unsigned int n_dofs,
+                                      const std::string& name,
+                                      const std::vector<double>& C)
+{
+  n = G.size();
   what = name;
+  compliance = C.empty() ? std::vector<double>(n, 0.) : C;
+  if (compliance.size() != n)
+    throw SimulationError("the " + what + " got " + std::to_string(C.size()) +
+                          " compliances for " + std::to_string(n) + " constraints");
   selected.clear();
   factorised = false;
   if (n == 0)
     return;
   std::vector<double> diagonal;
   columns.clear();
-  std::vector<Entry> lower = lower_entries(rows, A, n_dofs, diagonal, columns);
+  std::vector<Entry> lower = lower_entries(G, A, n_dofs, diagonal, columns);
+  rows.clear();
+  if (static_cast<double>(n_column_entries()) > A.solve_cost && A.solve)
+  {
+    // One solve with G_F^T lambda reads fewer entries than the columns.
+    columns.clear();
+    for (const SparseRow* g : G)
+      rows.push_back(*g);
+    solve_with_A = A.solve;
+    work.reinit(n_dofs);
+  }
   for (unsigned int k = 0; k < n; ++k)
     if (!(diagonal[k] > 0.))
       throw SimulationError("the " + what +
@@ -122,23 +171,46 @@ void FixedConstraintSchur::select(const std::vector<bool>& keep)
     return;
   selected = keep;
   std::vector<bool> kept_new(n);
+  std::vector<double> compliance_new(n);
   for (unsigned int k = 0; k < n; ++k)
+  {
     kept_new[new_index[k]] = keep[k];
+    compliance_new[new_index[k]] = compliance[k];
+  }
   for (unsigned int i = 0; i < n; ++i)
     for (auto it = entries.begin(i), s = selected_matrix.begin(i); it != entries.end(i);
          ++it, ++s)
     {
       const unsigned int j = it->column();
-      s->value() =
-          kept_new[i] && kept_new[j] ? it->value() : (i == j ? 1. : 0.); // identity
+      s->value() = kept_new[i] && kept_new[j]
+                       ? it->value() + (i == j ? compliance_new[i] : 0.)
+                       : (i == j ? 1. : 0.); // identity
     }
-  factor.factorize(selected_matrix, what);
+  // Cuthill-McKee keeps the band narrow; a consistent FEM mass makes it a few
+  // dozen constraints wide (M^-1 decays slowly), still far cheaper banded.
+  factor.factorize(selected_matrix, what, LinearSolverType::banded, 96);
   factorised = true;
 }
 
 void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
                                        dealii::Vector<double>& y) const
 {
+  if (!rows.empty())
+  {
+    bool any = false;
+    for (unsigned int k = 0; k < n; ++k)
+      if (factors[k] != 0.)
+      {
+        rows[k].add_transpose_to(work, factors[k]);
+        any = true;
+      }
+    if (!any)
+      return;
+    solve_with_A(work);
+    y += work;
+    work = 0.;
+    return;
+  }
   for (unsigned int k = 0; k < n; ++k)
     if (factors[k] != 0.)
       columns[k].add_transpose_to(y, factors[k]);
@@ -161,5 +233,24 @@ void FixedConstraintSchur::solve(dealii::Vector<double>& x) const
   factor.solve(permuted);
   for (unsigned int k = 0; k < n; ++k)
     x[k] = selected[k] ? permuted[new_index[k]] : 0.;
+}
+
+void FixedConstraintSchur::solve(const std::vector<dealii::Vector<double>*>& xs) const
+{
+  if (n == 0)
+    return;
+  constexpr std::size_t width = 4;
+  for (std::size_t first = 0; first < xs.size(); first += width)
+  {
+    const unsigned int k = std::min(width, xs.size() - first);
+    interleaved.resize(static_cast<std::size_t>(n) * k);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int r = 0; r < k; ++r)
+        interleaved[new_index[i] * k + r] = selected[i] ? (*xs[first + r])[i] : 0.;
+    factor.solve_interleaved(interleaved.data(), k);
+    for (unsigned int i = 0; i < n; ++i)
+      for (unsigned int r = 0; r < k; ++r)
+        (*xs[first + r])[i] = selected[i] ? interleaved[new_index[i] * k + r] : 0.;
+  }
 }
 } // namespace pantocat

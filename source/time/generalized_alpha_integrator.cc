@@ -7,8 +7,10 @@ namespace pantocat
 {
 namespace
 {
-/// Columns of the S batch: X = S^-1 G^T and, for the owner, the base solution.
-constexpr unsigned int lambda_column = 0, base_column = IterationMatrix::base_column;
+/// Columns of the S batch: S^-1 G^T, S^-1 G_t^T and, for the first moving
+/// constraint, the base solution.
+constexpr unsigned int lambda_column = 0, rate_column = 1,
+                       base_column = IterationMatrix::base_column;
 } // namespace
 
 GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
@@ -39,14 +41,15 @@ void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
   step_number = 0;
 }
 
-void GeneralizedAlphaIntegrator::compute_columns(const unsigned int l,
-                                                 const ConstraintState& r)
+void GeneralizedAlphaIntegrator::compute_moving_columns(const unsigned int c,
+                                                        const ConstraintState& r)
 {
-  InterleavedColumns &X = S.S_columns[l], &U = S.M_columns[l];
+  InterleavedColumns &X = S.S_columns[c], &U = S.M_columns[c];
   for (unsigned int i = 0; i < X.size(); ++i) // keep the base column
-    X(i, lambda_column) = 0.;
+    X(i, lambda_column) = X(i, rate_column) = 0.;
   U.clear();
   X.add_row(lambda_column, r.G, 1.);
+  X.add_row(rate_column, r.G_t, 1.);
   U.add_row(0, r.G, 1.);
   if (const SparseDirectSolver* M = mass_inverse.factorised())
     S.inverse.solve_interleaved_with(X.data(), *M, U.data());
@@ -57,23 +60,57 @@ void GeneralizedAlphaIntegrator::compute_columns(const unsigned int l,
   }
 }
 
+double GeneralizedAlphaIntegrator::damping_ratio(const unsigned int i) const
+{
+  const Constraint& c = *system.constraints[i];
+  return c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
+}
+
+void GeneralizedAlphaIntegrator::initialize_fixed(
+    const std::vector<ConstraintState>& rows)
+{
+  // A fixed compliant row, lambda/k + g + d dg/dt = 0 with dg/dt = G v =
+  // G v^ + c_v G (q - q^) (G_t = 0), is (1 + d c_v) times
+  // G S^-1 G^T lambda + lambda / (k (1 + d c_v)) = -(g0 + d r0) / (1 + d c_v):
+  // divided by (1 + d c_v), the fixed block is symmetric with the
+  // compliance 1 / (k (1 + d c_v)) on its diagonal.
+  std::vector<const SparseRow*> G;
+  std::vector<double> compliance;
+  for (const unsigned int i : S.fixed)
+  {
+    if (rows[i].G_t.size() > 0 || rows[i].G_tt.size() > 0)
+      throw SimulationError("constraint " + system.constraints[i]->name() +
+                            " has constant rows but a time derivative");
+    G.push_back(&rows[i].G);
+    const Constraint& c = *system.constraints[i];
+    compliance.push_back(
+        c.is_compliant() ? 1. / (c.compliance().stiffness * (1. + damping_ratio(i) * c_v))
+                         : 0.);
+  }
+  fixed_S.initialize(G, S.inverse, system.n_dofs(),
+                     "matrix G S^-1 G^T + C of the fixed constraints (generalized-alpha)",
+                     compliance);
+  fixed_M.initialize(G, mass_inverse, system.n_dofs(),
+                     "matrix G M^-1 G^T of the fixed constraints (velocity projection)");
+  keep.assign(S.fixed.size(), false);
+  factors.assign(S.fixed.size(), 0.);
+  fixed_ready = true;
+}
+
 void GeneralizedAlphaIntegrator::advance()
 {
   const unsigned int n = system.n_dofs(), m_all = system.n_constraints();
   const double t1 = current.t + h;
   const auto& rows = at_next.at(t1, 1);
-  if (!S.fixed_columns_ready)
-  {
-    for (const unsigned int l : S.fixed)
-      compute_columns(l, rows[l]);
-    S.fixed_columns_ready = true;
-  }
+  if (!fixed_ready)
+    initialize_fixed(rows);
   // Predictors: q^ = q_n + h v_n + h^2 (1/2 - beta) a_n, v^ = v_n + h (1 - gamma) a_n,
   // w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f). Then
   // S q0 = f + M (c_q q^ - w) + D (c_v q^ - v^).
   const dealii::Vector<double>& a_n = pseudo_acceleration;
-  dealii::Vector<double> q_hat(current.q), v_hat(current.v), w(n), mass_part(n),
-      damping_part(n);
+  q_hat = current.q;
+  v_hat = current.v;
+  dealii::Vector<double> w(n), mass_part(n), damping_part(n);
   q_hat.add(h, current.v, h * h * (0.5 - k.beta), a_n);
   v_hat.add(h * (1. - k.gamma), a_n);
   w.equ(k.alpha_m / (1. - k.alpha_f), a_n);
@@ -87,74 +124,39 @@ void GeneralizedAlphaIntegrator::advance()
   operators.history(mass_part, damping_part, B, base_column);
   if (S.moving.empty())
     S.inverse.solve_interleaved(B.data(), InterleavedColumns::width);
-  for (const unsigned int l : S.moving)
-    compute_columns(l, rows[l]);
+  for (unsigned int c = 0; c < S.moving.size(); ++c)
+    compute_moving_columns(c, rows[S.moving[c]]);
+  q0.reinit(n, true);
+  for (unsigned int i = 0; i < n; ++i)
+    q0[i] = B(i, base_column);
 
-  // G_k X_l and the base gaps; for the compliant constraints also the rates
-  // dg/dt = G_t q + G v + z_t with v = v^ + c_v (q - q^) (Newmark), i.e.
-  // (G_t + c_v G) X_l per unit lambda_l and the base rate of q0.
-  std::vector<double> GX(m_all * m_all), base_gap(m_all), RX(m_all * m_all),
-      base_rate(m_all);
+  // g and dg/dt of every constraint at q0, with v = v^ + c_v (q - q^) (Newmark).
+  base_gap.resize(m_all);
+  base_rate.resize(m_all);
   for (unsigned int i = 0; i < m_all; ++i)
   {
-    base_gap[i] = B.dot(rows[i].G, base_column) + rows[i].z;
-    for (unsigned int l = 0; l < m_all; ++l)
-      GX[i * m_all + l] = S.S_columns[l].dot(rows[i].G, lambda_column);
-    if (!system.constraints[i]->is_compliant())
-      continue;
-    base_rate[i] = B.dot(rows[i].G_t, base_column) +
-                   c_v * (base_gap[i] - rows[i].z - rows[i].G.dot(q_hat)) +
-                   rows[i].G.dot(v_hat) + rows[i].z_t;
-    for (unsigned int l = 0; l < m_all; ++l)
-      RX[i * m_all + l] =
-          S.S_columns[l].dot(rows[i].G_t, lambda_column) + c_v * GX[i * m_all + l];
+    const ConstraintState& r = rows[i];
+    const double Gq0 = r.G.dot(q0);
+    base_gap[i] = Gq0 + r.z;
+    base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - r.G.dot(q_hat)) + r.G.dot(v_hat) + r.z_t;
   }
 
   DynamicState x;
   x.t = t1;
   x.lambda.assign(m_all, 0.);
+  x.q.reinit(n, true);
   std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(current.active);
   for (;;)
   {
-    // Unknowns: the multipliers of the active rigid constraints (rows g = 0)
-    // and the forces of the engaged compliant ones, whose rows are their
-    // law divided by k: lambda/k + g + (c/k) dg/dt = 0 at t_{n+1}, i.e.
-    // (G S^-1 G^T + C) lambda = -g0 with the compliance C = diag(1/k) (and the
-    // damping part): implicit in the force, S untouched.
-    unknowns = active_set.active_indices();
-    const auto& E = active_set.engaged_indices();
-    unknowns.insert(unknowns.end(), E.begin(), E.end());
-    const auto& U = unknowns;
-    const unsigned int m = U.size();
-    small.reinit(m, m);
-    small_rhs.reinit(m);
-    small_solution.reinit(m);
-    for (unsigned int i = 0; i < m; ++i)
-    {
-      const Constraint& c = *system.constraints[U[i]];
-      const double damping =
-          c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
-      for (unsigned int l = 0; l < m; ++l)
-        small(i, l) = GX[U[i] * m_all + U[l]] + damping * RX[U[i] * m_all + U[l]];
-      if (c.is_compliant())
-        small(i, i) += 1. / c.compliance().stiffness;
-      small_rhs(i) = -(base_gap[U[i]] + damping * base_rate[U[i]]);
-    }
-    solve_multiplier_system(small, small_rhs, small_solution, t1,
-                            "generalized-alpha step");
-    std::fill(x.lambda.begin(), x.lambda.end(), 0.);
-    for (unsigned int l = 0; l < m; ++l)
-      x.lambda[U[l]] = small_solution(l);
+    solve_position_level(rows, x.lambda);
+    assemble_positions(x.lambda, x.q);
     for (unsigned int i = 0; i < m_all; ++i)
     {
-      gaps[i] = base_gap[i];
-      rates[i] = base_rate[i];
-      for (unsigned int l = 0; l < m; ++l)
-      {
-        gaps[i] += small_solution(l) * GX[i * m_all + U[l]];
-        rates[i] += small_solution(l) * RX[i * m_all + U[l]];
-      }
+      const ConstraintState& r = rows[i];
+      const double Gq = r.G.dot(x.q);
+      gaps[i] = Gq + r.z;
+      rates[i] = r.G_t.dot(x.q) + c_v * (Gq - r.G.dot(q_hat)) + r.G.dot(v_hat) + r.z_t;
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
@@ -162,17 +164,9 @@ void GeneralizedAlphaIntegrator::advance()
   }
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();
-  const auto& A = active_set.active_indices();
-
-  // q = q0 + sum_l lambda_l X_l, then a, v, a_c from the Newmark relations.
-  x.q.reinit(n);
-  if (S.moving.empty())
-    B.add_combination({{0., 0., 0., 1.}}, x.q);
-  for (unsigned int l = 0; l < m_all; ++l)
-    if (x.active[l] || l == S.base_owner)
-      S.S_columns[l].add_combination({{x.lambda[l], 0., 0., l == S.base_owner ? 1. : 0.}},
-                                     x.q);
   clamp_compliant_forces(system, x.lambda);
+
+  // a, v, a_c from the Newmark relations.
   dealii::Vector<double> a_next(x.q);
   a_next.add(-1., q_hat);
   a_next *= 1. / (h * h * k.beta);
@@ -181,29 +175,137 @@ void GeneralizedAlphaIntegrator::advance()
   x.a.reinit(n, true);
   x.a.equ((1. - k.alpha_m) / (1. - k.alpha_f), a_next);
   x.a += w;
-
-  // Velocity projection onto dg/dt = 0 of the active set: v += M^-1 G^T eta.
-  const unsigned int m = A.size();
-  if (m > 0)
-  {
-    small.reinit(m, m);
-    small_rhs.reinit(m);
-    small_solution.reinit(m);
-    for (unsigned int i = 0; i < m; ++i)
-    {
-      const ConstraintState& r = rows[A[i]];
-      for (unsigned int l = 0; l < m; ++l)
-        small(i, l) = S.M_columns[A[l]].dot(r.G, 0);
-      small_rhs(i) = -r.velocity_residual(x.q, x.v);
-    }
-    solve_multiplier_system(small, small_rhs, small_solution, t1, "velocity projection");
-    for (unsigned int l = 0; l < m; ++l)
-      S.M_columns[A[l]].add_combination({{small_solution(l), 0., 0., 0.}}, x.v);
-  }
+  project_velocities(rows, t1, x.q, x.v);
   pseudo_acceleration.swap(a_next);
   current = std::move(x);
   ++step_number;
   ++stats.steps;
+}
+
+void GeneralizedAlphaIntegrator::solve_position_level(
+    const std::vector<ConstraintState>& rows, std::vector<double>& lambda)
+{
+  // Unknowns: the multipliers of the active rigid constraints (rows g = 0)
+  // and the forces of the engaged compliant ones (rows: their law divided by
+  // k, lambda/k + g + d dg/dt = 0 at t_{n+1}), i.e.
+  // (G S^-1 G^T + C) lambda = -(g0 + d r0): implicit in the force, S
+  // untouched. The fixed constraints form a sparse block, the moving ones
+  // border it.
+  std::fill(keep.begin(), keep.end(), false);
+  std::vector<unsigned int> moving_in;
+  const auto select = [&](const unsigned int i)
+  {
+    if (system.constraints[i]->depends_on_time())
+      moving_in.push_back(i);
+    else
+      keep[S.position[i]] = true;
+  };
+  for (const unsigned int i : active_set.active_indices())
+    select(i);
+  for (const unsigned int i : active_set.engaged_indices())
+    select(i);
+  fixed_S.select(keep);
+
+  const unsigned int mF = S.fixed.size(), p = moving_in.size();
+  dealii::Vector<double> x(mF), y(p);
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+    {
+      const unsigned int i = S.fixed[k];
+      const double d = damping_ratio(i);
+      x(k) = -(base_gap[i] + d * base_rate[i]) / (1. + d * c_v);
+    }
+  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF)),
+      Cr(p, dealii::Vector<double>(mF));
+  dealii::FullMatrix<double> D(p, p);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const unsigned int i = moving_in[c];
+    const InterleavedColumns& X = S.S_columns[S.position[i]];
+    const double d = damping_ratio(i);
+    // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
+    // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric).
+    for (unsigned int k = 0; k < mF; ++k)
+      if (keep[k])
+      {
+        const SparseRow& G_k = rows[S.fixed[k]].G;
+        Bc[c](k) = X.dot(G_k, lambda_column);
+        Cr[c](k) = (1. + d * c_v) * Bc[c](k) + d * X.dot(G_k, rate_column);
+      }
+    y(c) = -(base_gap[i] + d * base_rate[i]);
+    for (unsigned int r = 0; r < p; ++r)
+    {
+      const unsigned int j = moving_in[r];
+      const double d_r = damping_ratio(j);
+      D(r, c) = (1. + d_r * c_v) * X.dot(rows[j].G, lambda_column) +
+                d_r * X.dot(rows[j].G_t, lambda_column);
+    }
+    if (system.constraints[i]->is_compliant())
+      D(c, c) += 1. / system.constraints[i]->compliance().stiffness;
+  }
+  solve_bordered_batched([&](const auto& xs) { fixed_S.solve(xs); }, Bc, Cr, D, x, y,
+                         current.t + h, "generalized-alpha step");
+  std::fill(lambda.begin(), lambda.end(), 0.);
+  for (unsigned int k = 0; k < mF; ++k)
+    lambda[S.fixed[k]] = factors[k] = keep[k] ? x(k) : 0.;
+  for (unsigned int c = 0; c < p; ++c)
+    lambda[moving_in[c]] = y(c);
+}
+
+void GeneralizedAlphaIntegrator::assemble_positions(const std::vector<double>& lambda,
+                                                    dealii::Vector<double>& q) const
+{
+  q = q0;
+  fixed_S.add_columns(factors, q);
+  for (unsigned int c = 0; c < S.moving.size(); ++c)
+    if (lambda[S.moving[c]] != 0.)
+      S.S_columns[c].add_combination({{lambda[S.moving[c]], 0., 0., 0.}}, q);
+}
+
+void GeneralizedAlphaIntegrator::project_velocities(
+    const std::vector<ConstraintState>& rows, const double t1,
+    const dealii::Vector<double>& q, dealii::Vector<double>& v)
+{
+  // (G M^-1 G^T) eta = -dg/dt on the active rigid constraints, the fixed ones
+  // a sparse block, the moving ones its border; v += M^-1 G^T eta.
+  const auto& A = active_set.active_indices();
+  if (A.empty())
+    return;
+  std::fill(keep.begin(), keep.end(), false);
+  std::vector<unsigned int> moving_in;
+  for (const unsigned int i : A)
+    if (system.constraints[i]->depends_on_time())
+      moving_in.push_back(i);
+    else
+      keep[S.position[i]] = true;
+  fixed_M.select(keep);
+  const unsigned int mF = S.fixed.size(), p = moving_in.size();
+  dealii::Vector<double> x(mF), y(p);
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+      x(k) = -rows[S.fixed[k]].velocity_residual(q, v);
+  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF));
+  dealii::FullMatrix<double> D(p, p);
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const InterleavedColumns& U = S.M_columns[S.position[moving_in[c]]];
+    for (unsigned int k = 0; k < mF; ++k)
+      if (keep[k])
+        Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);
+    for (unsigned int r = 0; r < p; ++r)
+      D(r, c) = U.dot(rows[moving_in[r]].G, 0);
+    y(c) = -rows[moving_in[c]].velocity_residual(q, v);
+  }
+  const std::vector<dealii::Vector<double>> Cr(Bc);
+  solve_bordered_batched([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, t1,
+                         "velocity projection");
+  std::vector<double> eta(mF, 0.);
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k])
+      eta[k] = x(k);
+  fixed_M.add_columns(eta, v);
+  for (unsigned int c = 0; c < p; ++c)
+    S.M_columns[S.position[moving_in[c]]].add_combination({{y(c), 0., 0., 0.}}, v);
 }
 
 void GeneralizedAlphaIntegrator::save(CheckpointOut& archive) const

@@ -354,48 +354,6 @@ void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
   }
 }
 
-namespace
-{
-/**
- * Solves the bordered system [A B; C D] [x; y] = [r; s] by block elimination,
- * with A^-1 applied in place by @p solve_fixed: x0 = A^-1 r, Z = A^-1 B,
- * (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds the columns of B (becomes
- * Z), @p C the rows of C; on return @p r holds x and @p s holds y.
- */
-template <typename Solve>
-void solve_bordered(const Solve& solve_fixed, std::vector<dealii::Vector<double>>& B,
-                    const std::vector<dealii::Vector<double>>& C,
-                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
-                    dealii::Vector<double>& s, const double t, const char* what)
-{
-  const bool has_fixed = r.size() > 0;
-  if (has_fixed)
-    solve_fixed(r);
-  const unsigned int p = s.size();
-  if (p == 0)
-    return;
-  dealii::Vector<double> rhs(s);
-  if (has_fixed)
-  {
-    // A border column that no fixed row sees (an FDM contact away from every
-    // dropper node) needs no solve: A^-1 0 = 0.
-    for (auto& b : B)
-      if (b.linfty_norm() != 0.)
-        solve_fixed(b);
-    for (unsigned int k = 0; k < p; ++k)
-    {
-      rhs(k) -= C[k] * r;
-      for (unsigned int l = 0; l < p; ++l)
-        D(k, l) -= C[k] * B[l];
-    }
-  }
-  solve_multiplier_system(D, rhs, s, t, what);
-  if (has_fixed)
-    for (unsigned int l = 0; l < p; ++l)
-      r.add(-s(l), B[l]);
-}
-} // namespace
-
 void HalfExplicitIntegrator::compute_compliant_forces()
 {
   const auto& sn = at_n.states();

@@ -5,7 +5,7 @@ namespace pantocat
 IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
                                  const double damping_factor, const double mass_factor,
                                  const std::string& what, const LinearSolverType solver)
-    : S_columns(system.n_constraints()), M_columns(system.n_constraints())
+    : position(system.n_constraints())
 {
   dealii::SparseMatrix<double> S(*system.sparsity);
   S.copy_from(system.stiffness);
@@ -13,8 +13,13 @@ IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
   S.add(mass_factor, system.mass);
   inverse.factorize(S, what, solver);
   for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    (system.constraints[i]->depends_on_time() ? moving : fixed).push_back(i);
-  base_owner = moving.empty() ? system.n_constraints() : moving.front();
+  {
+    auto& list = system.constraints[i]->depends_on_time() ? moving : fixed;
+    position[i] = list.size();
+    list.push_back(i);
+  }
+  S_columns.resize(moving.size());
+  M_columns.resize(moving.size());
   for (auto* batches : {&S_columns, &M_columns})
     for (auto& X : *batches)
       X.reinit(system.n_dofs());
@@ -24,6 +29,6 @@ IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
 
 InterleavedColumns& IterationMatrix::base_batch()
 {
-  return moving.empty() ? base_only : S_columns[base_owner];
+  return moving.empty() ? base_only : S_columns.front();
 }
 } // namespace pantocat

@@ -40,10 +40,18 @@ public:
   SparseDirectSolver();
   ~SparseDirectSolver();
 
-  /// Factorises @p matrix with @p type; throws SimulationError naming @p what if it
-  /// is singular.
+  /// Half bandwidth above which `banded` goes to UMFPACK for the iteration matrices.
+  static constexpr int default_max_bandwidth = 16;
+
+  /**
+   * Factorises @p matrix with @p type; throws SimulationError naming @p what if
+   * it is singular. `banded` takes the banded Cholesky path if the half
+   * bandwidth is at most @p max_bandwidth (a wider band pays off for the small
+   * Schur complements of the constraints, FixedConstraintSchur).
+   */
   void factorize(const dealii::SparseMatrix<double>& matrix, const std::string& what,
-                 LinearSolverType type = LinearSolverType::banded);
+                 LinearSolverType type = LinearSolverType::banded,
+                 int max_bandwidth = default_max_bandwidth);
   /// x <- A^{-1} x
   void solve(dealii::Vector<double>& x) const;
   /**
@@ -63,6 +71,9 @@ public:
                               double* X_other) const;
   /// True if the banded Cholesky path is used.
   bool is_banded() const { return banded; }
+  /// Entries of the factor read by one solve (n (2 kd + 1) when banded; an
+  /// estimate of 16 per unknown otherwise): the cost model of FixedConstraintSchur.
+  double solve_cost() const { return banded ? n * (2. * kd + 1.) : 16. * n; }
 
   /// A range of unknowns [first, last) not coupled to the others, with its half
   /// bandwidth.
@@ -74,7 +85,7 @@ public:
   const std::vector<Block>& blocks() const { return independent_blocks; }
 
 private:
-  bool try_banded_cholesky(const dealii::SparseMatrix<double>& matrix);
+  bool try_banded_cholesky(const dealii::SparseMatrix<double>& matrix, int max_bandwidth);
   void find_blocks(const dealii::SparseMatrix<double>& matrix);
   /// One right-hand side with UMFPACK or KLU.
   void solve_general(dealii::Vector<double>& x) const;

@@ -8,17 +8,20 @@
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
 #include <string>
 #include <vector>
 
 namespace pantocat
 {
 /**
- * The Schur complement S = G_F A^-1 G_F^T of the rigid constraints with
+ * The Schur complement S = G_F A^-1 G_F^T + C of the constraints with
  * constant rows G_F (droppers, carrier supports: (31)) for a constant
- * symmetric positive definite A (M, or M + dt/2 D of (39), (41)): the matrix
- * of the multiplier systems of the half-explicit method restricted to those
- * constraints.
+ * symmetric positive definite A (M, or M + dt/2 D of (39), (41) for the
+ * half-explicit method; the iteration matrix K + c_D D + c_M M of the
+ * generalized-alpha method) and a constant diagonal C >= 0 (the compliance
+ * of elastic droppers in an implicit step, 0 for rigid ones): the matrix of
+ * the multiplier systems restricted to those constraints.
  *
  * S does not change during a run, so it is computed once, from one
  * application of A^-1 per constraint. It is stored sparse: an entry is kept
@@ -37,17 +40,41 @@ namespace pantocat
  * The columns A^-1 G_k^T are kept too, truncated to their entries above
  * 1e-16 of the largest (a few dozen nodes each side of the constraint for a
  * FEM wire; the row's pattern for a diagonal A): the force G_F^T lambda then
- * enters the state in O(m) work, without a solve with A.
+ * enters the state in O(m) work, without a solve with A. When the columns
+ * hold more entries than one solve with A reads (many constraints on a FEM
+ * grid), they are dropped and add_columns() solves once with G_F^T lambda.
  */
 class FixedConstraintSchur
 {
 public:
   /**
+   * column <- A^-1 row^T, for a column that is zero on entry; the second
+   * function sets the column to zero again (cheaply where A^-1 row^T is sparse).
+   */
+  struct ColumnSolver
+  {
+    std::function<void(const SparseRow&, dealii::Vector<double>&)> apply, reset;
+    /// x <- A^-1 x, and the entries one such solve reads (its cost).
+    std::function<void(dealii::Vector<double>&)> solve;
+    double solve_cost = 0.;
+  };
+
+  /**
    * Computes S for the rows @p rows (of vectors of @p n_dofs unknowns) and the
-   * inverse @p A; @p what names S in errors (a singular S: dependent constraints).
+   * inverse @p A; @p what names S in errors (a singular S: dependent
+   * constraints). @p compliance, if not empty, is the diagonal C (one entry per row).
    */
   void initialize(const std::vector<const SparseRow*>& rows, const MassInverse& A,
-                  unsigned int n_dofs, const std::string& what);
+                  unsigned int n_dofs, const std::string& what,
+                  const std::vector<double>& compliance = {});
+  /// The same for A given by its factorisation.
+  void initialize(const std::vector<const SparseRow*>& rows, const SparseDirectSolver& A,
+                  unsigned int n_dofs, const std::string& what,
+                  const std::vector<double>& compliance = {});
+  /// The same for any A.
+  void initialize(const std::vector<const SparseRow*>& rows, const ColumnSolver& A,
+                  unsigned int n_dofs, const std::string& what,
+                  const std::vector<double>& compliance);
 
   unsigned int size() const { return n; }
   /// Number of stored entries of S (for the benchmarks' reports).
@@ -59,21 +86,30 @@ public:
    */
   void select(const std::vector<bool>& keep);
 
-  /// y += sum_k factors[k] A^-1 G_k^T (the truncated columns).
+  /// y += sum_k factors[k] A^-1 G_k^T (the truncated columns, or one solve).
   void add_columns(const std::vector<double>& factors, dealii::Vector<double>& y) const;
+  /// True if add_columns() uses stored columns (false: one solve with A).
+  bool keeps_columns() const { return !columns.empty() || n == 0; }
   /// Number of stored entries of the truncated columns.
   std::size_t n_column_entries() const;
 
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
+  /// The same for several vectors, substituted side by side (four at a time).
+  void solve(const std::vector<dealii::Vector<double>*>& xs) const;
 
 private:
   unsigned int n = 0;
   std::string what;
-  std::vector<SparseRow> columns;      ///< A^-1 G_k^T, truncated
+  std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (or none)
+  std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
+  std::function<void(dealii::Vector<double>&)> solve_with_A;
+  mutable dealii::Vector<double> work; ///< G_F^T lambda, when the columns are dropped
+  mutable std::vector<double> interleaved;
   std::vector<unsigned int> new_index; ///< Cuthill-McKee position of constraint k
   dealii::SparsityPattern pattern;     ///< in the new numbering
   dealii::SparseMatrix<double> entries, selected_matrix;
+  std::vector<double> compliance; ///< C, in the original numbering
   std::vector<bool> selected;
   bool factorised = false;
   SparseDirectSolver factor;

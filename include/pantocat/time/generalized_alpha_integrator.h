@@ -5,6 +5,7 @@
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
+#include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
@@ -50,10 +51,15 @@ namespace pantocat
  * engagement (g < 0 and -k g - c dg/dt > 0 at t_{n+1}) is iterated with the
  * active set (ActiveSetIteration).
  *
- * Linear algebra as in Bdf2Integrator: S = K + gamma/(beta h) D +
- * (1 - alpha_m)/((1 - alpha_f) beta h^2) M is factorised once; a step solves
- * for the base solution and the columns S^-1 G^T, M^-1 G^T of the moving
- * contact in one batched substitution.
+ * Linear algebra, O(n + m) per step. S = K + gamma/(beta h) D +
+ * (1 - alpha_m)/((1 - alpha_f) beta h^2) M is factorised once. The
+ * constraints with constant rows (droppers, supports) enter through their
+ * Schur complements G_F S^-1 G_F^T + C and G_F M^-1 G_F^T
+ * (FixedConstraintSchur: computed once, sparse, factorised per active set)
+ * and their truncated columns S^-1 G^T, M^-1 G^T. A step solves for the base
+ * solution and the columns S^-1 G^T, S^-1 G_t^T, M^-1 G^T of the moving
+ * contacts in one batched substitution; the contacts border the fixed
+ * block (solve_bordered()).
  */
 class GeneralizedAlphaIntegrator : public TimeIntegrator
 {
@@ -82,9 +88,26 @@ public:
   };
 
 private:
-  /// Columns X = S^-1 G^T (in the column `lambda` of the S batch) and
-  /// Y = M^-1 G^T of constraint l.
-  void compute_columns(unsigned int l, const ConstraintState& r);
+  /// Columns S^-1 G^T, S^-1 G_t^T (columns 0, 1 of the S batch) and M^-1 G^T
+  /// (column 0 of the M batch) of moving constraint number @p c.
+  void compute_moving_columns(unsigned int c, const ConstraintState& r);
+  /// The Schur complements and truncated columns of the fixed constraints, once.
+  void initialize_fixed(const std::vector<ConstraintState>& rows);
+  /// d = c/k of a compliant constraint (its law divided by k), 0 for a rigid one.
+  double damping_ratio(unsigned int i) const;
+  /**
+   * The multipliers of the active rigid and the engaged compliant
+   * constraints for the current trial set: g = 0, respectively
+   * lambda/k + g + d dg/dt = 0 at t_{n+1}, with q = q0 + S^-1 G^T lambda.
+   */
+  void solve_position_level(const std::vector<ConstraintState>& rows,
+                            std::vector<double>& lambda);
+  /// q = q0 + S^-1 G^T lambda (truncated columns of the fixed constraints).
+  void assemble_positions(const std::vector<double>& lambda,
+                          dealii::Vector<double>& q) const;
+  /// v <- v + M^-1 G^T eta with dg/dt = 0 on the active rigid constraints.
+  void project_velocities(const std::vector<ConstraintState>& rows, double t1,
+                          const dealii::Vector<double>& q, dealii::Vector<double>& v);
 
   double h;
   Coefficients k;
@@ -97,8 +120,14 @@ private:
   DynamicState current;
   dealii::Vector<double> pseudo_acceleration;
   unsigned long step_number = 0;
-  dealii::FullMatrix<double> small;
-  dealii::Vector<double> small_rhs, small_solution;
-  std::vector<unsigned int> unknowns; ///< active rigid, then engaged compliant
+  /// G_F S^-1 G_F^T + C (C: the compliance of engaged elastic droppers) and
+  /// G_F M^-1 G_F^T of the fixed constraints.
+  FixedConstraintSchur fixed_S, fixed_M;
+  bool fixed_ready = false;
+  dealii::Vector<double> q0, q_hat, v_hat; ///< base solution and predictors
+  /// Per constraint at t_{n+1} for q = q0, v = v^ + c_v (q0 - q^): g and dg/dt.
+  std::vector<double> base_gap, base_rate;
+  std::vector<bool> keep;      ///< fixed constraints in the current system
+  std::vector<double> factors; ///< their multipliers (FixedConstraintSchur order)
 };
 } // namespace pantocat

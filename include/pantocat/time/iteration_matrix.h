@@ -13,11 +13,13 @@ namespace pantocat
  * The constant matrix S = K + c_D D + c_M M of an implicit step (BDF-2:
  * c_D = c, c_M = c^2; generalized-alpha: c_D = gamma/(beta h),
  * c_M = (1 - alpha_m)/((1 - alpha_f) beta h^2)), factorised once, with the
- * batches of right-hand sides that the integrators solve with it: per
- * constraint an S batch (its columns and, for the first moving constraint,
- * the base solution in the last column) and an M batch (M^-1 G^T, ...). The
- * constraints are split into those with constant rows (droppers: columns once)
- * and moving ones (the contact: columns every step).
+ * batches of right-hand sides that the integrators solve with it for the
+ * moving constraints (the contacts, whose rows change every step): per moving
+ * constraint an S batch (its columns and, for the first one, the base
+ * solution in the last column) and an M batch (M^-1 G^T, ...). The
+ * constraints with constant rows (droppers, supports) have no batch: their
+ * columns are computed once, truncated, by FixedConstraintSchur (or
+ * FixedConstraintBlock).
  */
 class IterationMatrix
 {
@@ -32,9 +34,9 @@ public:
 
   SparseDirectSolver inverse;
   std::vector<unsigned int> fixed, moving; ///< constraints with constant / moving rows
-  unsigned int base_owner; ///< the constraint whose S batch holds the base
-  std::vector<InterleavedColumns> S_columns, M_columns; ///< per constraint
+  /// position[i]: the index of constraint i in `fixed` or in `moving`.
+  std::vector<unsigned int> position;
+  std::vector<InterleavedColumns> S_columns, M_columns; ///< per moving constraint
   InterleavedColumns base_only; ///< the base solution when no constraint moves
-  bool fixed_columns_ready = false;
 };
 } // namespace pantocat

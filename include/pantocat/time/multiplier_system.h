@@ -3,6 +3,9 @@
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
+#include <functional>
+#include <vector>
+
 namespace pantocat
 {
 /**
@@ -14,4 +17,28 @@ namespace pantocat
 void solve_multiplier_system(dealii::FullMatrix<double>& A,
                              const dealii::Vector<double>& b, dealii::Vector<double>& x,
                              double t, const char* what);
+
+/**
+ * Solves the bordered multiplier system [A B; C D] [x; y] = [r; s] by block
+ * elimination: A is the (sparse, factorised once per active set) block of the
+ * constraints with constant rows, the border B, C, D that of the p moving
+ * ones (the contacts), with A^-1 applied in place by @p solve_fixed:
+ * x0 = A^-1 r, Z = A^-1 B, (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds
+ * the columns of B (becomes Z), @p C the rows of C; on return @p r holds x
+ * and @p s holds y. Costs p + 1 applications of A^-1 (none for a zero border
+ * column) and a dense p x p solve.
+ */
+void solve_bordered(const std::function<void(dealii::Vector<double>&)>& solve_fixed,
+                    std::vector<dealii::Vector<double>>& B,
+                    const std::vector<dealii::Vector<double>>& C,
+                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
+                    dealii::Vector<double>& s, double t, const char* what);
+
+/// The same with A^-1 applied to r and the border columns in one batch
+/// (FixedConstraintSchur substitutes them side by side).
+void solve_bordered_batched(
+    const std::function<void(const std::vector<dealii::Vector<double>*>&)>& solve_fixed,
+    std::vector<dealii::Vector<double>>& B, const std::vector<dealii::Vector<double>>& C,
+    dealii::FullMatrix<double>& D, dealii::Vector<double>& r, dealii::Vector<double>& s,
+    double t, const char* what);
 } // namespace pantocat
