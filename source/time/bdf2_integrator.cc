@@ -1,8 +1,10 @@
+#include <pantocat/base/input_error.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/multiplier_system.h>
 
 #include <array>
+#include <map>
 
 namespace pantocat
 {
@@ -52,15 +54,14 @@ struct Bdf2Integrator::Stage : IterationMatrix
   }
 
   /**
-   * The columns of constraint @p l for its rows @p r: the S batch
-   * (X^lambda, X^eta, X^mu, and the base solution if l owns it; its right-hand
-   * side must already be in column `base`) and the M batch (Y, Z).
+   * The columns of a constraint with rows @p r: the S batch @p X
+   * (X^lambda, X^eta, X^mu, and the base solution if it holds it; its
+   * right-hand side must already be in column `base`) and the M batch @p U (Y, Z).
    */
-  void compute_columns(const unsigned int l, const ConstraintState& r)
+  void compute_columns(InterleavedColumns& X, InterleavedColumns& U,
+                       const ConstraintState& r)
   {
     const unsigned int n = system.n_dofs();
-    InterleavedColumns &X = columns_of(l, S_columns, all_S),
-                       &U = columns_of(l, M_columns, all_M);
     for (unsigned int i = 0; i < n; ++i) // keep the base column
       X(i, lambda) = X(i, eta) = X(i, mu) = 0.;
     U.clear();
@@ -110,26 +111,33 @@ struct Bdf2Integrator::Stage : IterationMatrix
     }
   }
 
-  /// The batch of constraint l: the moving constraints' from IterationMatrix.
-  InterleavedColumns& columns_of(const unsigned int l,
-                                 std::vector<InterleavedColumns>& moving_batches,
-                                 std::vector<InterleavedColumns>& fixed_batches)
+  /// The fixed constraints' block, once.
+  void initialize_block(const std::vector<ConstraintState>& rows)
   {
-    if (system.constraints[l]->depends_on_time())
-      return moving_batches[position[l]];
-    if (fixed_batches.size() != system.n_constraints())
-      fixed_batches.resize(system.n_constraints());
-    if (fixed_batches[l].size() != system.n_dofs())
-      fixed_batches[l].reinit(system.n_dofs());
-    return fixed_batches[l];
+    std::vector<const SparseRow*> G;
+    std::vector<const Constraint*> constraints;
+    for (const unsigned int i : fixed)
+    {
+      if (rows[i].G_t.size() > 0 || rows[i].G_tt.size() > 0)
+        throw SimulationError("constraint " + system.constraints[i]->name() +
+                              " has constant rows but a time derivative");
+      G.push_back(&rows[i].G);
+      constraints.push_back(system.constraints[i].get());
+    }
+    block.initialize(G, constraints, inverse, mass_inverse, system.damping, c,
+                     system.n_dofs());
+    block_ready = true;
   }
-  const InterleavedColumns& S_of(const unsigned int l)
+
+  /// The S and M batches of border constraint @p i (a moving one, or a
+  /// touching fixed one: its columns computed on demand).
+  std::pair<const InterleavedColumns*, const InterleavedColumns*>
+  batches(const unsigned int i) const
   {
-    return columns_of(l, S_columns, all_S);
-  }
-  const InterleavedColumns& M_of(const unsigned int l)
-  {
-    return columns_of(l, M_columns, all_M);
+    if (system.constraints[i]->depends_on_time())
+      return {&S_columns[position[i]], &M_columns[position[i]]};
+    const auto& [X, U] = touching_columns.at(i);
+    return {&X, &U};
   }
 
   const SemiDiscreteSystem& system;
@@ -137,12 +145,11 @@ struct Bdf2Integrator::Stage : IterationMatrix
   const DampingOverMass& damping_over_mass;
   double c;
   SparseRow DY, DZ; ///< workspace
-  std::vector<InterleavedColumns> all_S, all_M;
-  bool fixed_columns_ready = false;
-  unsigned int base_owner() const
-  {
-    return moving.empty() ? system.n_constraints() : moving.front();
-  }
+  GglFixedBlock block;
+  bool block_ready = false;
+  /// Columns of the touching fixed constraints of the current step.
+  std::map<unsigned int, std::pair<InterleavedColumns, InterleavedColumns>>
+      touching_columns;
 };
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
@@ -158,20 +165,42 @@ Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double ti
 
 Bdf2Integrator::~Bdf2Integrator() = default;
 
+namespace
+{
+/// A border unknown (kind: lambda, eta, mu) or equation (level 0, 1, 2 or
+/// force_law) of one constraint.
+struct Slot
+{
+  unsigned int constraint, kind;
+};
+constexpr unsigned int force_law = 3; ///< the equation of an engaged spring
+
+/// Status of a constraint in a trial of the active-set iteration.
+enum class Role : char
+{
+  none,
+  force,    ///< active with force: lambda, eta, mu; levels 2, 0, 1
+  touching, ///< holds without force: eta, mu; levels 0, 1
+  engaged   ///< an engaged compliant constraint: lambda; its law
+};
+} // namespace
+
+double Bdf2Integrator::damping_ratio(const unsigned int i) const
+{
+  const Constraint& c = *system.constraints[i];
+  return c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
+}
+
 DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                                            const dealii::Vector<double>& rho_v,
                                            const double t1,
                                            const std::vector<bool>& active_at_start)
 {
-  const unsigned int n = system.n_dofs(), m_all = system.n_constraints();
+  const unsigned int m_all = system.n_constraints();
   const double c = s.c;
   const auto& rows = at_next.at(t1);
-  if (!s.fixed_columns_ready)
-  {
-    for (const unsigned int l : s.fixed)
-      s.compute_columns(l, rows[l]);
-    s.fixed_columns_ready = true;
-  }
+  if (!s.block_ready)
+    s.initialize_block(rows);
   // Base solution S^-1 (f + M (rho_v + c rho_q) + D rho_q), solved in one
   // batch with the columns of the first moving constraint.
   dealii::Vector<double> history(rho_v);
@@ -180,13 +209,13 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   operators.history(history, rho_q, s.base_batch(), IterationMatrix::base_column);
   if (s.moving.empty())
     s.inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
-  for (const unsigned int l : s.moving)
-    s.compute_columns(l, rows[l]);
+  for (unsigned int k = 0; k < s.moving.size(); ++k)
+    s.compute_columns(s.S_columns[k], s.M_columns[k], rows[s.moving[k]]);
+  s.touching_columns.clear();
   const InterleavedColumns& B = s.base_batch();
 
-  // Functionals of the base solution and of every column on every row.
-  std::vector<Levels> base_levels(m_all);
-  std::vector<std::array<Levels, 3>> F(m_all * m_all); // [k * m_all + l][kind]
+  // The levels g, dg/dt, d2g/dt2 of the base solution on every row.
+  base_levels.resize(m_all);
   for (unsigned int k = 0; k < m_all; ++k)
   {
     const ConstraintState& r = rows[k];
@@ -196,113 +225,22 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     base_levels[k][0] += r.z;
     base_levels[k][1] += r.z_t;
     base_levels[k][2] += r.z_tt;
-    for (unsigned int l = 0; l < m_all; ++l)
-    {
-      const InterleavedColumns &X = s.S_of(l), &U = s.M_of(l);
-      const double GY = U.dot(r.G, Y), GtY = U.dot(r.G_t, Y), GZ = U.dot(r.G, Z),
-                   GtZ = U.dot(r.G_t, Z);
-      for (const unsigned int kind : {lambda, eta, mu})
-        F[k * m_all + l][kind] =
-            functionals(c, X.dot(r.G, kind), X.dot(r.G_t, kind), X.dot(r.G_tt, kind),
-                        kind == eta  ? GZ
-                        : kind == mu ? GY
-                                     : 0.,
-                        kind == eta  ? GtZ
-                        : kind == mu ? GtY
-                                     : 0.,
-                        kind == eta ? GY : 0.);
-    }
   }
 
-  // Active-set iteration (Sec. 5.3) on the multiplier system alone.
+  // Active-set iteration (Sec. 5.3): each trial solves the multiplier system
+  // (the fixed block bordered by the moving and touching constraints) and
+  // assembles q, v, a; its gaps and rates decide.
   DynamicState x;
   x.t = t1;
-  x.lambda.assign(m_all, 0.);
   std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(active_at_start);
-  // Unknowns: lambda of the constraints with force, eta and mu of all that
-  // hold, lambda of the engaged compliant ones; rows: g and dg/dt of all that
-  // hold, d2g/dt2 of those with force (a touching constraint has
-  // g^(II) := lambda = 0, ActiveSetIteration), and the force law of each
-  // engaged compliant constraint (Constraint::is_compliant) divided by k,
-  //
-  //   lambda_l / k_l + g_l(t_{n+1}) + (c_l / k_l) dg_l/dt(t_{n+1}) = 0,
-  //
-  // whose g and dg/dt are the level-0 and level-1 functionals of the same
-  // columns: the compliance 1/k on the diagonal of the Schur complement
-  // (G S^-1 G^T + C) lambda = ..., the implicit force without touching S.
-  struct Entry
-  {
-    unsigned int constraint, kind_or_level;
-  };
-  constexpr unsigned int force_law = 3; // equation kind of an engaged spring
-  std::vector<Entry> unknowns, equations;
-  std::vector<double> y_lambda(m_all), y_eta(m_all), y_mu(m_all);
   for (;;)
   {
-    const auto &A = active_set.active_indices(), &A_force = active_set.force_indices();
-    unknowns.clear();
-    equations.clear();
-    for (const unsigned int l : A_force)
-      unknowns.push_back({l, lambda}), equations.push_back({l, 2});
-    for (const unsigned int l : active_set.engaged_indices())
-      unknowns.push_back({l, lambda}), equations.push_back({l, force_law});
-    for (const unsigned int l : A)
-    {
-      unknowns.push_back({l, eta});
-      unknowns.push_back({l, mu});
-      equations.push_back({l, 0});
-      equations.push_back({l, 1});
-    }
-    const unsigned int size = unknowns.size();
-    small.reinit(size, size);
-    small_rhs.reinit(size);
-    small_solution.reinit(size);
-    for (unsigned int r = 0; r < size; ++r)
-    {
-      const Entry& e = equations[r];
-      const auto entry = [&](const Entry& u, const unsigned int level)
-      { return F[e.constraint * m_all + u.constraint][u.kind_or_level][level]; };
-      if (e.kind_or_level == force_law)
-      {
-        const Compliance& law = system.constraints[e.constraint]->compliance();
-        const double damping = law.damping / law.stiffness;
-        for (unsigned int c = 0; c < size; ++c)
-          small(r, c) = entry(unknowns[c], 0) + damping * entry(unknowns[c], 1) +
-                        (unknowns[c].constraint == e.constraint &&
-                                 unknowns[c].kind_or_level == lambda
-                             ? 1. / law.stiffness
-                             : 0.);
-        small_rhs(r) =
-            -(base_levels[e.constraint][0] + damping * base_levels[e.constraint][1]);
-        continue;
-      }
-      for (unsigned int c = 0; c < size; ++c)
-        small(r, c) = entry(unknowns[c], e.kind_or_level);
-      small_rhs(r) = -base_levels[e.constraint][e.kind_or_level];
-    }
-    solve_multiplier_system(small, small_rhs, small_solution, t1, "BDF step");
-    std::fill(y_lambda.begin(), y_lambda.end(), 0.);
-    std::fill(y_eta.begin(), y_eta.end(), 0.);
-    std::fill(y_mu.begin(), y_mu.end(), 0.);
-    for (unsigned int c = 0; c < size; ++c)
-    {
-      const Entry& u = unknowns[c];
-      (u.kind_or_level == lambda ? y_lambda
-       : u.kind_or_level == eta  ? y_eta
-                                 : y_mu)[u.constraint] = small_solution(c);
-    }
-    x.lambda = y_lambda;
+    solve_trial(s, rows, rho_q, rho_v, x);
     for (unsigned int k = 0; k < m_all; ++k)
     {
-      gaps[k] = base_levels[k][0];
-      rates[k] = base_levels[k][1];
-      for (unsigned int c = 0; c < size; ++c)
-      {
-        const auto& f = F[k * m_all + unknowns[c].constraint][unknowns[c].kind_or_level];
-        gaps[k] += small_solution(c) * f[0];
-        rates[k] += small_solution(c) * f[1];
-      }
+      gaps[k] = rows[k].position_residual(x.q);
+      rates[k] = rows[k].velocity_residual(x.q, x.v);
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
@@ -311,42 +249,194 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();
   clamp_compliant_forces(system, x.lambda);
+  return x;
+}
 
-  // The accepted step's vectors:
+void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
+                                 const dealii::Vector<double>& rho_q,
+                                 const dealii::Vector<double>& rho_v, DynamicState& x)
+{
+  const unsigned int n = system.n_dofs(), m_all = system.n_constraints(),
+                     mF = s.fixed.size();
+  const double c = s.c;
+  // Roles; fixed constraints with force or engaged form the block, the
+  // moving ones and the touching fixed ones border it.
+  std::vector<Role> role(m_all, Role::none);
+  for (const unsigned int i : active_set.active_indices())
+    role[i] = Role::touching;
+  for (const unsigned int i : active_set.force_indices())
+    role[i] = Role::force;
+  for (const unsigned int i : active_set.engaged_indices())
+    role[i] = Role::engaged;
+  std::vector<bool> force(mF, false), engaged(mF, false);
+  std::vector<Slot> unknowns, equations;
+  std::vector<unsigned int> border;
+  for (unsigned int i = 0; i < m_all; ++i)
+  {
+    const bool moving = system.constraints[i]->depends_on_time();
+    if (role[i] == Role::none)
+      continue;
+    if (!moving && role[i] != Role::touching)
+    {
+      (role[i] == Role::force ? force : engaged)[s.position[i]] = true;
+      continue;
+    }
+    border.push_back(i);
+    if (role[i] == Role::force)
+      unknowns.insert(unknowns.end(), {{i, lambda}, {i, eta}, {i, mu}}),
+          equations.insert(equations.end(), {{i, 2}, {i, 0}, {i, 1}});
+    else if (role[i] == Role::touching)
+      unknowns.insert(unknowns.end(), {{i, eta}, {i, mu}}),
+          equations.insert(equations.end(), {{i, 0}, {i, 1}});
+    else
+      unknowns.push_back({i, lambda}), equations.push_back({i, force_law});
+    if (!moving && !s.touching_columns.count(i))
+    {
+      auto& [X, U] = s.touching_columns[i];
+      X.reinit(n);
+      U.reinit(n);
+      s.compute_columns(X, U, rows[i]);
+    }
+  }
+  s.block.select(force, engaged);
+  const unsigned int p = unknowns.size();
+
+  // Levels of row k against the column of border unknown u.
+  const auto border_levels = [&](const unsigned int k, const Slot& u)
+  {
+    const auto [X, U] = s.batches(u.constraint);
+    const ConstraintState& r = rows[k];
+    const double GY = U->dot(r.G, Y), GtY = U->dot(r.G_t, Y), GZ = U->dot(r.G, Z),
+                 GtZ = U->dot(r.G_t, Z);
+    const unsigned int kind = u.kind;
+    return functionals(c, X->dot(r.G, kind), X->dot(r.G_t, kind), X->dot(r.G_tt, kind),
+                       kind == eta  ? GZ
+                       : kind == mu ? GY
+                                    : 0.,
+                       kind == eta  ? GtZ
+                       : kind == mu ? GtY
+                                    : 0.,
+                       kind == eta ? GY : 0.);
+  };
+  const auto value = [&](const Levels& L, const Slot& e)
+  { return e.kind == force_law ? L[0] + damping_ratio(e.constraint) * L[1] : L[e.kind]; };
+  // The fixed rows in the block's equation slots (GglFixedBlock).
+  const auto fixed_slots =
+      [&](const unsigned int k, const Levels& L, dealii::Vector<double>& v)
+  {
+    if (force[k])
+    {
+      v[3 * k + 1] = L[0];
+      v[3 * k + 2] = L[1] - c * L[0];
+      v[3 * k] = L[2] - c * L[1];
+    }
+    else if (engaged[k])
+      v[3 * k] = L[0] + s.block.damping_ratio(k) * L[1];
+  };
+
+  dealii::Vector<double> r(3 * mF), y(p);
+  for (unsigned int k = 0; k < mF; ++k)
+  {
+    const Levels& g = base_levels[s.fixed[k]];
+    fixed_slots(k, {{-g[0], -g[1], -g[2]}}, r);
+  }
+  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(3 * mF)),
+      Cr(p, dealii::Vector<double>(3 * mF));
+  dealii::FullMatrix<double> D(p, p);
+  for (unsigned int u = 0; u < p; ++u)
+    for (unsigned int k = 0; k < mF; ++k)
+      if (force[k] || engaged[k])
+        fixed_slots(k, border_levels(s.fixed[k], unknowns[u]), Bc[u]);
+  // Border rows against the fixed unknowns, from the truncated columns.
+  const GglFixedBlock& block = s.block;
+  std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
+  unsigned int products_of = m_all;
+  for (unsigned int e = 0; e < p; ++e)
+  {
+    const Slot& eq = equations[e];
+    const ConstraintState& row = rows[eq.constraint];
+    if (products_of != eq.constraint)
+    {
+      block.lambda_columns().row_products(row.G, X0);
+      block.lambda_columns().row_products(row.G_t, X1);
+      block.lambda_columns().row_products(row.G_tt, X2);
+      block.mu_columns().row_products(row.G, V0);
+      block.mu_columns().row_products(row.G_t, V1);
+      block.mu_columns().row_products(row.G_tt, V2);
+      block.mass_columns().row_products(row.G, Y0);
+      block.mass_columns().row_products(row.G_t, Y1);
+      products_of = eq.constraint;
+    }
+    for (unsigned int l = 0; l < mF; ++l)
+    {
+      if (!force[l] && !engaged[l])
+        continue;
+      Cr[e][3 * l] = value(functionals(c, X0[l], X1[l], X2[l], 0., 0., 0.), eq);
+      if (!force[l])
+        continue;
+      Cr[e][3 * l + 1] = value(functionals(c, X0[l], X1[l], X2[l], 0., 0., Y0[l]), eq);
+      Cr[e][3 * l + 2] = value(functionals(c, V0[l], V1[l], V2[l], Y0[l], Y1[l], 0.), eq);
+    }
+    for (unsigned int u = 0; u < p; ++u)
+    {
+      D(e, u) = value(border_levels(eq.constraint, unknowns[u]), eq);
+      if (eq.kind == force_law && unknowns[u].constraint == eq.constraint)
+        D(e, u) += 1. / system.constraints[eq.constraint]->compliance().stiffness;
+    }
+    y(e) = -value(base_levels[eq.constraint], eq);
+  }
+  solve_bordered_batched([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, x.t,
+                         "BDF step");
+
+  // The multipliers, and
   //   q = base + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,
-  //   v = c q - rho_q - sum_l (mu_l Y_l + eta_l Z_l),  a = c v - rho_v - sum_l eta_l Y_l.
-  const auto& A = active_set.active_indices();
-  // One pass over the unknowns, reading the interleaved columns in place.
-  std::vector<std::pair<const double*, std::array<double, 4>>> q_terms, u_terms;
-  if (s.moving.empty())
-    q_terms.push_back({B.data(), {{0., 0., 0., 1.}}});
-  for (unsigned int l = 0; l < m_all; ++l)
-    if (x.active[l] || l == s.base_owner())
-      q_terms.push_back(
-          {s.S_of(l).data(),
-           {{y_lambda[l], y_eta[l], y_mu[l], l == s.base_owner() ? 1. : 0.}}});
-  for (const unsigned int l : A) // (mu Y + eta Z, eta Y) of constraint l
-    u_terms.push_back({s.M_of(l).data(), {{y_mu[l], y_eta[l], y_eta[l], 0.}}});
+  //   v = c q - rho_q - sum_l (mu_l Y_l + eta_l Z_l),  a = c v - rho_v - sum_l eta_l Y_l
+  // (fixed: X^eta = X^lambda, Z = 0).
+  x.lambda.assign(m_all, 0.);
+  std::vector<double> lambda_eta(mF), eta_F(mF), mu_F(mF);
+  for (unsigned int k = 0; k < mF; ++k)
+  {
+    x.lambda[s.fixed[k]] = r[3 * k];
+    lambda_eta[k] = r[3 * k] + r[3 * k + 1];
+    eta_F[k] = r[3 * k + 1];
+    mu_F[k] = r[3 * k + 2];
+  }
+  for (unsigned int u = 0; u < p; ++u)
+    if (unknowns[u].kind == lambda)
+      x.lambda[unknowns[u].constraint] = y(u);
   x.q.reinit(n, true);
-  x.v.reinit(n, true);
-  x.a.reinit(n, true);
+  x.v.reinit(n);
+  x.a.reinit(n);
+  for (unsigned int i = 0; i < n; ++i)
+    x.q[i] = s.base_batch()(i, base);
+  block.lambda_columns().add(lambda_eta, x.q);
+  block.mu_columns().add(mu_F, x.q);
+  block.mass_columns().add(mu_F, x.v);  // u1
+  block.mass_columns().add(eta_F, x.a); // u2
   constexpr unsigned int w = InterleavedColumns::width;
+  for (unsigned int u = 0; u < p; ++u)
+  {
+    const auto [X, U] = s.batches(unknowns[u].constraint);
+    const double f = y(u);
+    const unsigned int kind = unknowns[u].kind;
+    const double *Xd = X->data(), *Ud = U->data();
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      x.q[i] += f * Xd[w * i + kind];
+      if (kind == mu)
+        x.v[i] += f * Ud[w * i + Y];
+      else if (kind == eta)
+      {
+        x.v[i] += f * Ud[w * i + Z];
+        x.a[i] += f * Ud[w * i + Y];
+      }
+    }
+  }
   for (unsigned int i = 0; i < n; ++i)
   {
-    double q = 0., u1 = 0., u2 = 0.;
-    for (const auto& [X, f] : q_terms)
-      q += f[0] * X[w * i] + f[1] * X[w * i + 1] + f[2] * X[w * i + 2] +
-           f[3] * X[w * i + 3];
-    for (const auto& [U, f] : u_terms)
-    {
-      u1 += f[0] * U[w * i + Y] + f[1] * U[w * i + Z];
-      u2 += f[2] * U[w * i + Y];
-    }
-    x.q[i] = q;
-    x.v[i] = c * q - rho_q[i] - u1;
-    x.a[i] = c * x.v[i] - rho_v[i] - u2;
+    x.v[i] = c * x.q[i] - rho_q[i] - x.v[i];
+    x.a[i] = c * x.v[i] - rho_v[i] - x.a[i];
   }
-  return x;
 }
 
 void Bdf2Integrator::initialize(const DynamicState& initial)

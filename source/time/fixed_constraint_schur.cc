@@ -111,7 +111,8 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
   columns.clear();
   std::vector<Entry> lower = lower_entries(G, A, n_dofs, diagonal, columns);
   rows.clear();
-  if (static_cast<double>(n_column_entries()) > A.solve_cost && A.solve)
+  if (!A.keep_columns && static_cast<double>(n_column_entries()) > A.solve_cost &&
+      A.solve)
   {
     // One solve with G_F^T lambda reads fewer entries than the columns.
     columns.clear();
@@ -214,6 +215,21 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
   for (unsigned int k = 0; k < n; ++k)
     if (factors[k] != 0.)
       columns[k].add_transpose_to(y, factors[k]);
+}
+
+void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
+                                 const dealii::Vector<double>& in) const
+{
+  for (unsigned int k = 0; k < n; ++k)
+    permuted[new_index[k]] = in[k];
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    double s = 0.;
+    const unsigned int i = new_index[k];
+    for (auto it = entries.begin(i); it != entries.end(i); ++it)
+      s += it->value() * permuted[it->column()];
+    out[k] = s;
+  }
 }
 
 std::size_t FixedConstraintSchur::n_column_entries() const

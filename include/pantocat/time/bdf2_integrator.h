@@ -5,6 +5,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
+#include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
@@ -84,6 +85,16 @@ private:
                              const dealii::Vector<double>& rho_v, double t1,
                              const std::vector<bool>& active_at_start);
   void richardson_start();
+  /**
+   * One trial of the active-set iteration: the multipliers of the current
+   * sets (the fixed block GglFixedBlock bordered by the moving and touching
+   * constraints) and q, v, a of the step into @p x.
+   */
+  void solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
+                   const dealii::Vector<double>& rho_q,
+                   const dealii::Vector<double>& rho_v, DynamicState& x);
+  /// d = c_damping / k of a compliant constraint, 0 for a rigid one.
+  double damping_ratio(unsigned int i) const;
 
   double dt;
   LinearSolverType linear_solver;
@@ -95,7 +106,6 @@ private:
   std::unique_ptr<Stage> bdf2;
   DynamicState previous, current;
   unsigned long step_number = 0;
-  dealii::FullMatrix<double> small;
-  dealii::Vector<double> small_rhs, small_solution;
+  std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
 };
 } // namespace pantocat

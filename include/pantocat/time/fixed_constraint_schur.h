@@ -57,6 +57,8 @@ public:
     /// x <- A^-1 x, and the entries one such solve reads (its cost).
     std::function<void(dealii::Vector<double>&)> solve;
     double solve_cost = 0.;
+    /// Keep the truncated columns whatever they cost (columns() is needed).
+    bool keep_columns = false;
   };
 
   /**
@@ -71,7 +73,7 @@ public:
   void initialize(const std::vector<const SparseRow*>& rows, const SparseDirectSolver& A,
                   unsigned int n_dofs, const std::string& what,
                   const std::vector<double>& compliance = {});
-  /// The same for any A.
+  /// The same for any A (given by @p A's functions).
   void initialize(const std::vector<const SparseRow*>& rows, const ColumnSolver& A,
                   unsigned int n_dofs, const std::string& what,
                   const std::vector<double>& compliance);
@@ -90,6 +92,10 @@ public:
   void add_columns(const std::vector<double>& factors, dealii::Vector<double>& y) const;
   /// True if add_columns() uses stored columns (false: one solve with A).
   bool keeps_columns() const { return !columns.empty() || n == 0; }
+  /// The truncated columns A^-1 G_k^T (empty unless keeps_columns()).
+  const std::vector<SparseRow>& truncated_columns() const { return columns; }
+  /// out = (G_F A^-1 G_F^T) in over all constraints (no selection, no compliance).
+  void vmult(dealii::Vector<double>& out, const dealii::Vector<double>& in) const;
   /// Number of stored entries of the truncated columns.
   std::size_t n_column_entries() const;
 

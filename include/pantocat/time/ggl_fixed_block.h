@@ -1,0 +1,86 @@
+#pragma once
+
+#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/system/constraint.h>
+#include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/time/mass_inverse.h>
+#include <pantocat/time/truncated_columns.h>
+
+#include <deal.II/lac/sparse_matrix.h>
+#include <deal.II/lac/sparsity_pattern.h>
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * The block of the constraints with constant rows (droppers, supports) in
+ * the multiplier system of a BDF step on the GGL formulation (38)
+ * (Bdf2Integrator), solved in O(m) per step.
+ *
+ * With S = K + c D + c^2 M, P = G S^-1 G^T, Q = G S^-1 (c G^T + D M^-1 G^T)
+ * and N = G M^-1 G^T over these constraints (G_t = G_tt = 0), the levels
+ * g, dg/dt, d2g/dt2 of the step's solution depend on the multipliers
+ * (lambda, eta, mu) through
+ *
+ *   level 0: P (lambda + eta) + Q mu,   level 1: c level 0 - N mu,
+ *   level 2: c level 1 - N eta.
+ *
+ * So the rows "level 1 - c level 0" and "level 2 - c level 1" hold only
+ * -N mu and -N eta. For the constraints with force F and the engaged elastic
+ * ones E (law lambda/k + g + d dg/dt = 0, d = c_damping/k), the block solves
+ *
+ *   mu_F = -N_FF^-1 r_1,   eta_F = -N_FF^-1 r_2,
+ *   (P + C)_{F+E} lambda = r_0 - P eta - Q mu  (E rows: their law / (1 + d c)),
+ *
+ * with C = diag(1 / (k (1 + d c))) on E: two symmetric banded Schur
+ * complements (FixedConstraintSchur), factorised when the sets change.
+ * Touching constraints (g = dg/dt = 0 without force) and the moving
+ * contacts are not in the block: the integrator borders it with them.
+ *
+ * Block vectors have three slots per constraint k, entry 3k + s. Equations:
+ * s = 0: level 2 - c level 1 (k in F) or the law (k in E); s = 1: level 0;
+ * s = 2: level 1 - c level 0. Unknowns: s = 0: lambda, 1: eta, 2: mu.
+ */
+class GglFixedBlock
+{
+public:
+  /**
+   * Computes P, Q, N and the truncated columns S^-1 G^T, S^-1 (c G^T +
+   * D M^-1 G^T), M^-1 G^T for the rows @p G of the constraints @p constraints.
+   */
+  void initialize(const std::vector<const SparseRow*>& G,
+                  const std::vector<const Constraint*>& constraints,
+                  const SparseDirectSolver& S, const MassInverse& M,
+                  const dealii::SparseMatrix<double>& D, double c, unsigned int n_dofs);
+
+  unsigned int size() const { return m; }
+
+  /// The constraints with force (@p force) and the engaged elastic ones (@p engaged).
+  void select(const std::vector<bool>& force, const std::vector<bool>& engaged);
+  bool in_force(unsigned int k) const { return force_set[k]; }
+  bool is_engaged(unsigned int k) const { return engaged_set[k]; }
+  /// d = c_damping / k of constraint k (0 if rigid).
+  double damping_ratio(unsigned int k) const { return ratio[k]; }
+
+  /// Each x <- A^-1 x (equation slots in, unknown slots out; 0 off the sets).
+  void solve(const std::vector<dealii::Vector<double>*>& xs) const;
+
+  /// Columns S^-1 G^T (of lambda and eta), S^-1 (c G^T + D M^-1 G^T) (of mu),
+  /// M^-1 G^T.
+  const TruncatedColumns& lambda_columns() const { return X_lambda; }
+  const TruncatedColumns& mu_columns() const { return X_mu; }
+  const TruncatedColumns& mass_columns() const { return Y; }
+
+private:
+  unsigned int m = 0;
+  double c = 0.;
+  FixedConstraintSchur P, N; ///< P + C on F + E, N on F
+  dealii::SparsityPattern Q_pattern;
+  dealii::SparseMatrix<double> Q;
+  TruncatedColumns X_lambda, X_mu, Y;
+  std::vector<double> ratio;
+  std::vector<bool> force_set, engaged_set;
+};
+} // namespace pantocat

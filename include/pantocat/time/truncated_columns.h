@@ -1,0 +1,40 @@
+#pragma once
+
+#include <pantocat/system/sparse_row.h>
+
+#include <deal.II/lac/vector.h>
+
+#include <cstddef>
+#include <vector>
+
+namespace pantocat
+{
+/**
+ * The truncated columns X_l (l = 0 .. m-1, e.g. S^-1 G_l^T of the fixed
+ * constraints) stored by unknown (compressed rows of the n x m matrix X), so
+ * that both products an implicit step needs cost their non-zeros only:
+ *  - g X for a sparse row g (a moving contact's rows against all the fixed
+ *    columns: a few unknowns, each seen by the few columns that reach it);
+ *  - X c for coefficients c (the forces of all fixed constraints at once).
+ */
+class TruncatedColumns
+{
+public:
+  /// Stores @p columns (vectors of @p n_dofs entries).
+  void initialize(const std::vector<SparseRow>& columns, unsigned int n_dofs);
+
+  unsigned int n_columns() const { return m; }
+  std::size_t n_entries() const { return value.size(); }
+
+  /// out[l] = g . X_l for every column l (out is resized to m).
+  void row_products(const SparseRow& g, std::vector<double>& out) const;
+  /// y += sum_l c[l] X_l.
+  void add(const std::vector<double>& c, dealii::Vector<double>& y) const;
+
+private:
+  unsigned int m = 0;
+  std::vector<std::size_t> start; ///< entries of unknown i: [start[i], start[i+1])
+  std::vector<unsigned int> column;
+  std::vector<double> value;
+};
+} // namespace pantocat

@@ -1,0 +1,181 @@
+#include <pantocat/time/ggl_fixed_block.h>
+
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pantocat
+{
+namespace
+{
+/// The entries of @p column above 1e-16 of its largest one.
+SparseRow truncated(const dealii::Vector<double>& column)
+{
+  const double tolerance = 1e-16 * column.linfty_norm();
+  SparseRow row;
+  for (unsigned int i = 0; i < column.size(); ++i)
+    if (std::abs(column[i]) > tolerance)
+      row.add(i, column[i]);
+  return row;
+}
+
+/// A^-1 through a factorisation, with the columns kept.
+FixedConstraintSchur::ColumnSolver column_solver(const SparseDirectSolver& A)
+{
+  FixedConstraintSchur::ColumnSolver s;
+  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  {
+    row.add_transpose_to(column, 1.);
+    A.solve(column);
+  };
+  s.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
+  s.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
+  s.solve_cost = A.solve_cost();
+  s.keep_columns = true;
+  return s;
+}
+
+FixedConstraintSchur::ColumnSolver column_solver(const MassInverse& A)
+{
+  FixedConstraintSchur::ColumnSolver s;
+  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.apply_to_row(row, column); };
+  s.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.reset_column(row, column); };
+  s.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
+  s.keep_columns = true;
+  return s;
+}
+} // namespace
+
+void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
+                               const std::vector<const Constraint*>& constraints,
+                               const SparseDirectSolver& S, const MassInverse& M,
+                               const dealii::SparseMatrix<double>& D, const double c_,
+                               const unsigned int n_dofs)
+{
+  m = G.size();
+  c = c_;
+  ratio.assign(m, 0.);
+  std::vector<double> compliance(m, 0.);
+  for (unsigned int k = 0; k < m; ++k)
+    if (constraints[k]->is_compliant())
+    {
+      const Compliance& law = constraints[k]->compliance();
+      ratio[k] = law.damping / law.stiffness;
+      compliance[k] = 1. / (law.stiffness * (1. + ratio[k] * c));
+    }
+  P.initialize(G, column_solver(S), n_dofs,
+               "matrix G S^-1 G^T + C of the fixed constraints (BDF)", compliance);
+  N.initialize(G, column_solver(M), n_dofs,
+               "matrix G M^-1 G^T of the fixed constraints (BDF)", {});
+  X_lambda.initialize(P.truncated_columns(), n_dofs);
+  Y.initialize(N.truncated_columns(), n_dofs);
+
+  // Q_kl = G_k S^-1 (c G_l^T + D M^-1 G_l^T), and those columns.
+  std::vector<SparseRow> mu_columns;
+  dealii::DynamicSparsityPattern graph(m, m);
+  struct Entry
+  {
+    unsigned int k, l;
+    double value;
+  };
+  std::vector<Entry> entries;
+  dealii::Vector<double> y(n_dofs), x(n_dofs);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    y = 0.;
+    G[l]->add_transpose_to(y, 1.);
+    M.apply(y);
+    D.vmult(x, y);
+    G[l]->add_transpose_to(x, c);
+    S.solve(x);
+    mu_columns.push_back(truncated(x));
+    std::vector<double> column(m);
+    double largest = 0.;
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      column[k] = G[k]->dot(x);
+      largest = std::max(largest, std::abs(column[k]));
+    }
+    for (unsigned int k = 0; k < m; ++k)
+      if (std::abs(column[k]) > 1e-15 * largest)
+      {
+        graph.add(k, l);
+        entries.push_back({k, l, column[k]});
+      }
+  }
+  X_mu.initialize(mu_columns, n_dofs);
+  Q_pattern.copy_from(graph);
+  Q.reinit(Q_pattern);
+  for (const Entry& e : entries)
+    Q.set(e.k, e.l, e.value);
+  force_set.assign(m, false);
+  engaged_set.assign(m, false);
+}
+
+void GglFixedBlock::select(const std::vector<bool>& force,
+                           const std::vector<bool>& engaged)
+{
+  force_set = force;
+  engaged_set = engaged;
+  std::vector<bool> with_lambda(m);
+  for (unsigned int k = 0; k < m; ++k)
+    with_lambda[k] = force[k] || engaged[k];
+  P.select(with_lambda);
+  N.select(force);
+}
+
+void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
+{
+  if (m == 0 || xs.empty())
+    return;
+  const std::size_t count = xs.size();
+  // mu = -N^-1 r_2 and eta = -N^-1 r_0 on F, side by side.
+  std::vector<dealii::Vector<double>> mu(count, dealii::Vector<double>(m)),
+      eta(count, dealii::Vector<double>(m)), rhs(count, dealii::Vector<double>(m));
+  std::vector<dealii::Vector<double>*> batch;
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    for (unsigned int k = 0; k < m; ++k)
+      if (force_set[k])
+      {
+        mu[j][k] = -(*xs[j])[3 * k + 2];
+        eta[j][k] = -(*xs[j])[3 * k];
+      }
+    batch.push_back(&mu[j]);
+    batch.push_back(&eta[j]);
+  }
+  N.solve(batch);
+  // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
+  // E.
+  dealii::Vector<double> P_eta(m), Q_mu(m), N_mu(m);
+  batch.clear();
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    P.vmult(P_eta, eta[j]);
+    Q.vmult(Q_mu, mu[j]);
+    N.vmult(N_mu, mu[j]);
+    const dealii::Vector<double>& x = *xs[j];
+    for (unsigned int k = 0; k < m; ++k)
+      if (force_set[k])
+        rhs[j][k] = x[3 * k + 1] - P_eta[k] - Q_mu[k];
+      else if (engaged_set[k])
+        rhs[j][k] =
+            (x[3 * k] + ratio[k] * N_mu[k]) / (1. + ratio[k] * c) - P_eta[k] - Q_mu[k];
+    batch.push_back(&rhs[j]);
+  }
+  P.solve(batch);
+  for (std::size_t j = 0; j < count; ++j)
+  {
+    dealii::Vector<double>& x = *xs[j];
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      x[3 * k] = rhs[j][k];
+      x[3 * k + 1] = force_set[k] ? eta[j][k] : 0.;
+      x[3 * k + 2] = force_set[k] ? mu[j][k] : 0.;
+    }
+  }
+}
+} // namespace pantocat
