@@ -409,10 +409,7 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   x.a.reinit(n);
   for (unsigned int i = 0; i < n; ++i)
     x.q[i] = s.base_batch()(i, base);
-  block.lambda_columns().add(lambda_eta, x.q);
-  block.mu_columns().add(mu_F, x.q);
-  block.mass_columns().add(mu_F, x.v);  // u1
-  block.mass_columns().add(eta_F, x.a); // u2
+  block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
   constexpr unsigned int w = InterleavedColumns::width;
   for (unsigned int u = 0; u < p; ++u)
   {

@@ -164,6 +164,23 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     entries.set(new_index[e.column], new_index[e.row], e.value);
   }
   permuted.reinit(n);
+  // The same entries by original row, for vmult().
+  std::vector<unsigned int> old_index(n);
+  for (unsigned int k = 0; k < n; ++k)
+    old_index[new_index[k]] = k;
+  row_start.assign(1, 0);
+  row_column.clear();
+  row_value.clear();
+  for (unsigned int k = 0; k < n; ++k)
+  {
+    const unsigned int i = new_index[k];
+    for (auto it = entries.begin(i); it != entries.end(i); ++it)
+    {
+      row_column.push_back(old_index[it->column()]);
+      row_value.push_back(it->value());
+    }
+    row_start.push_back(row_column.size());
+  }
 }
 
 void FixedConstraintSchur::select(const std::vector<bool>& keep)
@@ -221,13 +238,10 @@ void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
                                  const dealii::Vector<double>& in) const
 {
   for (unsigned int k = 0; k < n; ++k)
-    permuted[new_index[k]] = in[k];
-  for (unsigned int k = 0; k < n; ++k)
   {
     double s = 0.;
-    const unsigned int i = new_index[k];
-    for (auto it = entries.begin(i); it != entries.end(i); ++it)
-      s += it->value() * permuted[it->column()];
+    for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
+      s += row_value[e] * in[row_column[e]];
     out[k] = s;
   }
 }

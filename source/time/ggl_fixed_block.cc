@@ -1,6 +1,5 @@
 #include <pantocat/time/ggl_fixed_block.h>
 
-#include <deal.II/lac/dynamic_sparsity_pattern.h>
 
 #include <algorithm>
 #include <cmath>
@@ -75,13 +74,7 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
 
   // Q_kl = G_k S^-1 (c G_l^T + D M^-1 G_l^T), and those columns.
   std::vector<SparseRow> mu_columns;
-  dealii::DynamicSparsityPattern graph(m, m);
-  struct Entry
-  {
-    unsigned int k, l;
-    double value;
-  };
-  std::vector<Entry> entries;
+  std::vector<SparseRow> Q_rows(m);
   dealii::Vector<double> y(n_dofs), x(n_dofs);
   for (unsigned int l = 0; l < m; ++l)
   {
@@ -101,18 +94,85 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
     }
     for (unsigned int k = 0; k < m; ++k)
       if (std::abs(column[k]) > 1e-15 * largest)
-      {
-        graph.add(k, l);
-        entries.push_back({k, l, column[k]});
-      }
+        Q_rows[k].add(l, column[k]);
   }
   X_mu.initialize(mu_columns, n_dofs);
-  Q_pattern.copy_from(graph);
-  Q.reinit(Q_pattern);
-  for (const Entry& e : entries)
-    Q.set(e.k, e.l, e.value);
+  Q_start.assign(1, 0);
+  Q_column.clear();
+  Q_value.clear();
+  for (const SparseRow& row : Q_rows)
+  {
+    Q_column.insert(Q_column.end(), row.index.begin(), row.index.end());
+    Q_value.insert(Q_value.end(), row.value.begin(), row.value.end());
+    Q_start.push_back(Q_column.size());
+  }
+  P_eta.reinit(m);
+  Q_mu.reinit(m);
+  N_mu.reinit(m);
   force_set.assign(m, false);
   engaged_set.assign(m, false);
+
+  rows.clear();
+  for (const SparseRow* g : G)
+    rows.push_back(*g);
+  S_inverse = &S;
+  M_inverse = &M;
+  damping = &D;
+  // Columns: three passes over their entries (X^lambda, X^mu, Y twice);
+  // solves: S once, M once for two right-hand sides, D once.
+  const SparseDirectSolver* M_factor = M.factorised();
+  const double solve_cost = S.solve_cost() +
+                            (M_factor ? M_factor->solve_cost() : n_dofs) +
+                            D.n_nonzero_elements();
+  solves_are_cheaper = static_cast<double>(X_lambda.n_entries() + X_mu.n_entries() +
+                                           2 * Y.n_entries()) > solve_cost;
+  if (solves_are_cheaper)
+  {
+    mass_batch.reinit(n_dofs);
+    work.reinit(n_dofs);
+    D_y.reinit(n_dofs);
+  }
+}
+
+void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
+                               const std::vector<double>& eta,
+                               const std::vector<double>& mu, dealii::Vector<double>& q,
+                               dealii::Vector<double>& u1,
+                               dealii::Vector<double>& u2) const
+{
+  if (!solves_are_cheaper)
+  {
+    X_lambda.add(lambda_plus_eta, q);
+    X_mu.add(mu, q);
+    Y.add(mu, u1);
+    Y.add(eta, u2);
+    return;
+  }
+  const unsigned int n = q.size();
+  mass_batch.clear();
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    mass_batch.add_row(0, rows[k], mu[k]);
+    mass_batch.add_row(1, rows[k], eta[k]);
+    rows[k].add_transpose_to(work, lambda_plus_eta[k] + c * mu[k]);
+  }
+  M_inverse->apply(mass_batch);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    u1[i] += mass_batch(i, 0);
+    u2[i] += mass_batch(i, 1);
+    D_y[i] = mass_batch(i, 0);
+  }
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    double s = 0.;
+    for (auto it = damping->begin(i); it != damping->end(i); ++it)
+      s += it->value() * D_y[it->column()];
+    work[i] += s;
+  }
+  S_inverse->solve(work);
+  q += work;
+  work = 0.;
 }
 
 void GglFixedBlock::select(const std::vector<bool>& force,
@@ -133,31 +193,38 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     return;
   const std::size_t count = xs.size();
   // mu = -N^-1 r_2 and eta = -N^-1 r_0 on F, side by side.
-  std::vector<dealii::Vector<double>> mu(count, dealii::Vector<double>(m)),
-      eta(count, dealii::Vector<double>(m)), rhs(count, dealii::Vector<double>(m));
+  for (auto* w : {&mu_w, &eta_w, &rhs_w})
+    if (w->size() < count)
+      w->resize(count, dealii::Vector<double>(m));
+  auto &mu = mu_w, &eta = eta_w, &rhs = rhs_w;
   std::vector<dealii::Vector<double>*> batch;
   for (std::size_t j = 0; j < count; ++j)
   {
     for (unsigned int k = 0; k < m; ++k)
-      if (force_set[k])
-      {
-        mu[j][k] = -(*xs[j])[3 * k + 2];
-        eta[j][k] = -(*xs[j])[3 * k];
-      }
+    {
+      mu[j][k] = force_set[k] ? -(*xs[j])[3 * k + 2] : 0.;
+      eta[j][k] = force_set[k] ? -(*xs[j])[3 * k] : 0.;
+    }
     batch.push_back(&mu[j]);
     batch.push_back(&eta[j]);
   }
   N.solve(batch);
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
   // E.
-  dealii::Vector<double> P_eta(m), Q_mu(m), N_mu(m);
   batch.clear();
   for (std::size_t j = 0; j < count; ++j)
   {
     P.vmult(P_eta, eta[j]);
-    Q.vmult(Q_mu, mu[j]);
     N.vmult(N_mu, mu[j]);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      double s = 0.;
+      for (unsigned int e = Q_start[k]; e < Q_start[k + 1]; ++e)
+        s += Q_value[e] * mu[j][Q_column[e]];
+      Q_mu[k] = s;
+    }
     const dealii::Vector<double>& x = *xs[j];
+    rhs[j] = 0.;
     for (unsigned int k = 0; k < m; ++k)
       if (force_set[k])
         rhs[j][k] = x[3 * k + 1] - P_eta[k] - Q_mu[k];

@@ -120,5 +120,8 @@ private:
   bool factorised = false;
   SparseDirectSolver factor;
   mutable dealii::Vector<double> permuted;
+  /// S in the original numbering, compressed rows (vmult()).
+  std::vector<unsigned int> row_start, row_column;
+  std::vector<double> row_value;
 };
 } // namespace pantocat

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/constraint.h>
 #include <pantocat/time/fixed_constraint_schur.h>
@@ -67,6 +68,19 @@ public:
   /// Each x <- A^-1 x (equation slots in, unknown slots out; 0 off the sets).
   void solve(const std::vector<dealii::Vector<double>*>& xs) const;
 
+  /**
+   * The multipliers' share of a step's vectors: q += S^-1 G^T (lambda + eta) +
+   * S^-1 (c G^T + D M^-1 G^T) mu, u1 += M^-1 G^T mu, u2 += M^-1 G^T eta
+   * (Bdf2Integrator: v = c q - rho_q - u1, a = c v - rho_v - u2). From the
+   * truncated columns, or, when they hold more entries than the solves read
+   * (many constraints on a FEM grid), from one solve with M (two right-hand
+   * sides side by side) and one with S.
+   */
+  void add_forces(const std::vector<double>& lambda_plus_eta,
+                  const std::vector<double>& eta, const std::vector<double>& mu,
+                  dealii::Vector<double>& q, dealii::Vector<double>& u1,
+                  dealii::Vector<double>& u2) const;
+
   /// Columns S^-1 G^T (of lambda and eta), S^-1 (c G^T + D M^-1 G^T) (of mu),
   /// M^-1 G^T.
   const TruncatedColumns& lambda_columns() const { return X_lambda; }
@@ -77,10 +91,21 @@ private:
   unsigned int m = 0;
   double c = 0.;
   FixedConstraintSchur P, N; ///< P + C on F + E, N on F
-  dealii::SparsityPattern Q_pattern;
-  dealii::SparseMatrix<double> Q;
+  /// Q by rows (compressed).
+  std::vector<unsigned int> Q_start, Q_column;
+  std::vector<double> Q_value;
   TruncatedColumns X_lambda, X_mu, Y;
   std::vector<double> ratio;
+  std::vector<SparseRow> rows; ///< G of the constraints
+  const SparseDirectSolver* S_inverse = nullptr;
+  const MassInverse* M_inverse = nullptr;
+  const dealii::SparseMatrix<double>* damping = nullptr;
+  bool solves_are_cheaper = false;          ///< add_forces() by solves
+  mutable InterleavedColumns mass_batch;    ///< G^T mu, G^T eta, then M^-1 of them
+  mutable dealii::Vector<double> work, D_y; ///< workspace of add_forces()
+  /// Workspace of solve().
+  mutable std::vector<dealii::Vector<double>> mu_w, eta_w, rhs_w;
+  mutable dealii::Vector<double> P_eta, Q_mu, N_mu;
   std::vector<bool> force_set, engaged_set;
 };
 } // namespace pantocat
