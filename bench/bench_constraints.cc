@@ -5,8 +5,13 @@
 // = 0 (Droppers = absent), 2, 10, 40, 100, 200. Each integrator's time per step (no
 // observers, start-up not timed, the fastest of 5 batches), and its ratio to
 // the same grid without droppers: the target is 1.5 for m up to 200.
+// Columns: FDM and FEM with the half-explicit method, BDF-2 and
+// generalized-alpha; the last line is one banded solve with the FEM BDF-2
+// matrix (the reference of the implicit methods' target, 2.5 solves per step).
 // Usage (from the repository root): bench_constraints [steps] [m ...]
+// [--only=fem+bdf2] (one column)
 #include <pantocat/app/program_parameters.h>
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -63,6 +68,38 @@ ProgramParameters span_with_droppers(const unsigned int m, const std::string& me
   p.parse_parameters(prm);
   p.time_integration.force_step_size = true;
   return p;
+}
+
+/**
+ * Microseconds of one solve with the BDF-2 iteration matrix S = K + c D +
+ * c^2 M (c = 1.5/dt) of the case without droppers, by the banded Cholesky of
+ * SparseDirectSolver (fastest of the batches): the reference of the target
+ * "FEM + BDF-2 and generalized-alpha within 2.5 banded solves per step".
+ */
+double banded_solve_time(const ProgramParameters& p)
+{
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
+  const SemiDiscreteSystem& system = simulation.system();
+  const double c = 1.5 / p.time_integration.time_step;
+  dealii::SparseMatrix<double> S(*system.sparsity);
+  S.copy_from(system.stiffness);
+  S.add(c, system.damping);
+  S.add(c * c, system.mass);
+  SparseDirectSolver solver;
+  solver.factorize(S, "S");
+  dealii::Vector<double> x(system.n_dofs());
+  double best = 1e300;
+  constexpr unsigned int repetitions = 2000;
+  for (unsigned int b = 0; b < batches; ++b)
+  {
+    x = 1.;
+    const auto t0 = Clock::now();
+    for (unsigned int k = 0; k < repetitions; ++k)
+      solver.solve(x);
+    best = std::min(best, 1e6 * std::chrono::duration<double>(Clock::now() - t0).count() /
+                              repetitions);
+  }
+  return best;
 }
 
 /// Microseconds per step of the integrator alone (fastest of the batches).
@@ -140,4 +177,7 @@ int main(int argc, char** argv)
     }
     std::cout << '\n';
   }
+  std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
+            << std::setprecision(3)
+            << banded_solve_time(span_with_droppers(0, "fem", "bdf2")) << " us\n";
 }
