@@ -12,6 +12,7 @@
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/half_explicit_integrator.h>
 
 #include <gtest/gtest.h>
@@ -592,4 +593,129 @@ TEST(Bdf2, BlockEliminationSolvesTheFullStepSystem)
   for (unsigned int k = 0; k < m; ++k)
     EXPECT_NEAR(next.lambda[A[k]], x(L + k), 1e-9 * std::abs(x(L + k)) + 1e-9)
         << sys.constraints[A[k]]->name();
+}
+
+TEST(GglFixedBlock, SolvesTheFixedBlockOfTheGglMultiplierSystem)
+{
+  // GglFixedBlock solves the droppers' block of a BDF step's multiplier
+  // system by two Schur solves with N = G M^-1 G^T and one with
+  // P + C = G S^-1 G^T + C. Here the block is assembled densely from its
+  // definition (levels 0, 1 - c 0, 2 - c 1 of the columns S^-1 G^T,
+  // S^-1 (c G^T + D M^-1 G^T), M^-1 G^T; the law of an elastic dropper,
+  // lambda/k + g + d dg/dt) and solved by Gauss-Jordan: both agree to
+  // round-off (1e-9 relative: the entries span 1e-10 .. 1 m/N). FEM, N+1 = 20,
+  // the paper's three droppers rigid with force and a copy of dropper 2 made
+  // elastic (k = 1e5 N/m, c = 50 N s/m) and engaged.
+  ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
+  p.discretisation.n_intervals = 20;
+  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
+  const SemiDiscreteSystem& sys = simulation.system();
+  const unsigned int n = sys.n_dofs();
+  const double c = 1.5 / 5e-5;
+  dealii::SparseMatrix<double> S_matrix(*sys.sparsity);
+  S_matrix.copy_from(sys.stiffness);
+  S_matrix.add(c, sys.damping);
+  S_matrix.add(c * c, sys.mass);
+  SparseDirectSolver S;
+  S.factorize(S_matrix, "S");
+  MassInverse M;
+  M.initialize(sys.mass, sys.mass_is_diagonal, "M");
+
+  std::vector<std::unique_ptr<FixedConstraint>> owned;
+  for (unsigned int i = 0; i < sys.n_constraints(); ++i)
+    if (!sys.constraints[i]->depends_on_time())
+    {
+      ConstraintState r;
+      sys.constraints[i]->evaluate(0., r);
+      owned.push_back(std::make_unique<FixedConstraint>(
+          "dropper", Constraint::Kind::unilateral, r.G, r.z));
+    }
+  ASSERT_GE(owned.size(), 2u);
+  {
+    ConstraintState r;
+    owned[1]->evaluate(0., r);
+    owned.push_back(std::make_unique<FixedConstraint>(
+        "elastic", Constraint::Kind::unilateral, r.G, r.z, Compliance{1e5, 50.}));
+  }
+  const unsigned int m = owned.size();
+  std::vector<const SparseRow*> G;
+  std::vector<const Constraint*> constraints;
+  std::vector<ConstraintState> states(m);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    owned[k]->evaluate(0., states[k]);
+    G.push_back(&states[k].G);
+    constraints.push_back(owned[k].get());
+  }
+  GglFixedBlock block;
+  block.initialize(G, constraints, S, M, sys.damping, c, n);
+  std::vector<bool> force(m, true), engaged(m, false);
+  force[m - 1] = false;
+  engaged[m - 1] = true;
+  block.select(force, engaged);
+
+  // Dense P, Q, N from full columns.
+  dealii::FullMatrix<double> P(m, m), Q(m, m), N(m, m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    dealii::Vector<double> x(n), y(n), Dy(n);
+    G[l]->add_transpose_to(x, 1.);
+    S.solve(x);
+    G[l]->add_transpose_to(y, 1.);
+    M.apply(y);
+    sys.damping.vmult(Dy, y);
+    G[l]->add_transpose_to(Dy, c);
+    S.solve(Dy);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      P(k, l) = G[k]->dot(x);
+      N(k, l) = G[k]->dot(y);
+      Q(k, l) = G[k]->dot(Dy);
+    }
+  }
+  const unsigned int e = m - 1; // the elastic dropper
+  const double k_e = 1e5, d = 50. / 1e5;
+  dealii::FullMatrix<double> A(3 * m, 3 * m);
+  for (unsigned int k = 0; k < m; ++k)
+    for (unsigned int l = 0; l < m; ++l)
+    {
+      const bool lambda_l = true, eta_mu_l = force[l]; // unknowns of l
+      if (force[k])
+      {
+        // slot 1: level 0 = P (lambda + eta) + Q mu; slot 2: -N mu; slot 0: -N eta.
+        if (lambda_l)
+          A(3 * k + 1, 3 * l) = P(k, l);
+        if (eta_mu_l)
+        {
+          A(3 * k + 1, 3 * l + 1) = P(k, l);
+          A(3 * k + 1, 3 * l + 2) = Q(k, l);
+          A(3 * k + 2, 3 * l + 2) = -N(k, l);
+          A(3 * k, 3 * l + 1) = -N(k, l);
+        }
+      }
+      else
+      {
+        // The law: level 0 + d level 1 (+ lambda/k), level 1 = c level 0 - N mu.
+        A(3 * k, 3 * l) = (1. + d * c) * P(k, l) + (k == l ? 1. / k_e : 0.);
+        if (eta_mu_l)
+        {
+          A(3 * k, 3 * l + 1) = (1. + d * c) * P(k, l);
+          A(3 * k, 3 * l + 2) = (1. + d * c) * Q(k, l) - d * N(k, l);
+        }
+      }
+    }
+  A(3 * e + 1, 3 * e + 1) = A(3 * e + 2, 3 * e + 2) = 1.; // no eta, mu: identity
+  dealii::Vector<double> r(3 * m), expected(3 * m);
+  for (unsigned int i = 0; i < 3 * m; ++i)
+    r[i] = std::sin(1. + 2. * i) * 1e-3;
+  r[3 * e + 1] = r[3 * e + 2] = 0.;
+  dealii::FullMatrix<double> A_inverse(A);
+  A_inverse.gauss_jordan();
+  A_inverse.vmult(expected, r);
+  dealii::Vector<double> x(r);
+  block.solve({&x});
+  const double scale = expected.linfty_norm();
+  for (unsigned int i = 0; i < 3 * m; ++i)
+    EXPECT_NEAR(x[i], expected[i], 1e-9 * scale) << "slot " << i;
+  EXPECT_GT(std::abs(x[3 * e]), 1e-6 * scale); // the elastic dropper carries a force
 }

@@ -41,12 +41,13 @@ namespace pantocat
  * where q0 = S^-1 (f + M (rho_v + c rho_q) + D rho_q) and the columns
  * X^lambda = S^-1 G^T, X^eta = S^-1 (G^T + c G_t^T + D Z),
  * X^mu = S^-1 (c G^T + D Y) come from the constant matrix
- * S = K + c D + c^2 M, factorised once per c. The columns of constraints with
- * constant rows (droppers) are computed once; those of the moving contact at
- * every step, in one batched substitution with the base solve. The
- * multipliers follow from a 3m x 3m dense system on the functionals of the
- * columns (m active constraints), so a trial of the active-set iteration
- * costs no vector operation of length n.
+ * S = K + c D + c^2 M, factorised once per c. The columns of the moving
+ * contacts are computed at every step, in one batched substitution with the
+ * base solve. The constraints with constant rows (droppers, supports) form
+ * a block of the multiplier system that GglFixedBlock solves in O(m) by
+ * banded Schur complements, factorised when the active set changes; the
+ * contacts and the touching fixed constraints border it. A step costs
+ * O(n + m).
  *
  * Compliant constraints (Constraint::is_compliant) are implicit forces at
  * t_{n+1}: an engaged one adds its lambda (column X^lambda) and the row
