@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/time/truncated_columns.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>
@@ -16,17 +17,6 @@ struct Entry
   unsigned int row, column;
   double value;
 };
-
-/// The entries of @p column above 1e-16 of its largest one.
-SparseRow truncated(const dealii::Vector<double>& column)
-{
-  const double tolerance = 1e-16 * column.linfty_norm();
-  SparseRow row;
-  for (unsigned int i = 0; i < column.size(); ++i)
-    if (std::abs(column[i]) > tolerance)
-      row.add(i, column[i]);
-  return row;
-}
 
 /**
  * The entries S_kl = G_k A^-1 G_l^T with k >= l that are not zero, S_kk, and
@@ -59,20 +49,44 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
 }
 } // namespace
 
+FixedConstraintSchur::ColumnSolver
+FixedConstraintSchur::column_solver(const MassInverse& A, const bool keep_columns)
+{
+  ColumnSolver s;
+  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.apply_to_row(row, column); };
+  s.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  { A.reset_column(row, column); };
+  s.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
+  const SparseDirectSolver* factor = A.factorised();
+  // A (block-)diagonal A: columns on the rows' pattern, always cheaper.
+  s.solve_cost = factor ? factor->solve_cost() : 1e300;
+  s.keep_columns = keep_columns;
+  return s;
+}
+
+FixedConstraintSchur::ColumnSolver
+FixedConstraintSchur::column_solver(const SparseDirectSolver& A, const bool keep_columns)
+{
+  ColumnSolver s;
+  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
+  {
+    row.add_transpose_to(column, 1.);
+    A.solve(column);
+  };
+  s.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
+  s.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
+  s.solve_cost = A.solve_cost();
+  s.keep_columns = keep_columns;
+  return s;
+}
+
 void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
                                       const MassInverse& A, const unsigned int n_dofs,
                                       const std::string& name,
                                       const std::vector<double>& C)
 {
-  ColumnSolver solver;
-  solver.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  { A.apply_to_row(row, column); };
-  solver.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  { A.reset_column(row, column); };
-  solver.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
-  const SparseDirectSolver* factor = A.factorised();
-  solver.solve_cost = factor ? factor->solve_cost() : n_dofs;
-  initialize(rows, solver, n_dofs, name, C);
+  initialize(rows, column_solver(A), n_dofs, name, C);
 }
 
 void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
@@ -80,16 +94,7 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& rows,
                                       const unsigned int n_dofs, const std::string& name,
                                       const std::vector<double>& C)
 {
-  ColumnSolver solver;
-  solver.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  {
-    row.add_transpose_to(column, 1.);
-    A.solve(column);
-  };
-  solver.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
-  solver.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
-  solver.solve_cost = A.solve_cost();
-  initialize(rows, solver, n_dofs, name, C);
+  initialize(rows, column_solver(A), n_dofs, name, C);
 }
 
 void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,

@@ -1,53 +1,10 @@
 #include <pantocat/time/ggl_fixed_block.h>
 
-
 #include <algorithm>
 #include <cmath>
 
 namespace pantocat
 {
-namespace
-{
-/// The entries of @p column above 1e-16 of its largest one.
-SparseRow truncated(const dealii::Vector<double>& column)
-{
-  const double tolerance = 1e-16 * column.linfty_norm();
-  SparseRow row;
-  for (unsigned int i = 0; i < column.size(); ++i)
-    if (std::abs(column[i]) > tolerance)
-      row.add(i, column[i]);
-  return row;
-}
-
-/// A^-1 through a factorisation, with the columns kept.
-FixedConstraintSchur::ColumnSolver column_solver(const SparseDirectSolver& A)
-{
-  FixedConstraintSchur::ColumnSolver s;
-  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  {
-    row.add_transpose_to(column, 1.);
-    A.solve(column);
-  };
-  s.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
-  s.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
-  s.solve_cost = A.solve_cost();
-  s.keep_columns = true;
-  return s;
-}
-
-FixedConstraintSchur::ColumnSolver column_solver(const MassInverse& A)
-{
-  FixedConstraintSchur::ColumnSolver s;
-  s.apply = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  { A.apply_to_row(row, column); };
-  s.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
-  { A.reset_column(row, column); };
-  s.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
-  s.keep_columns = true;
-  return s;
-}
-} // namespace
-
 void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
                                const std::vector<const Constraint*>& constraints,
                                const SparseDirectSolver& S, const MassInverse& M,
@@ -65,9 +22,9 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
       ratio[k] = law.damping / law.stiffness;
       compliance[k] = 1. / (law.stiffness * (1. + ratio[k] * c));
     }
-  P.initialize(G, column_solver(S), n_dofs,
+  P.initialize(G, FixedConstraintSchur::column_solver(S, true), n_dofs,
                "matrix G S^-1 G^T + C of the fixed constraints (BDF)", compliance);
-  N.initialize(G, column_solver(M), n_dofs,
+  N.initialize(G, FixedConstraintSchur::column_solver(M, true), n_dofs,
                "matrix G M^-1 G^T of the fixed constraints (BDF)", {});
   X_lambda.initialize(P.truncated_columns(), n_dofs);
   Y.initialize(N.truncated_columns(), n_dofs);

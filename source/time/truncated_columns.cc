@@ -1,7 +1,19 @@
 #include <pantocat/time/truncated_columns.h>
 
+#include <cmath>
+
 namespace pantocat
 {
+SparseRow truncated(const dealii::Vector<double>& column)
+{
+  const double tolerance = 1e-16 * column.linfty_norm();
+  SparseRow row;
+  for (unsigned int i = 0; i < column.size(); ++i)
+    if (std::abs(column[i]) > tolerance)
+      row.add(i, column[i]);
+  return row;
+}
+
 void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
                                   const unsigned int n_dofs)
 {

@@ -60,6 +60,10 @@ public:
     /// Keep the truncated columns whatever they cost (columns() is needed).
     bool keep_columns = false;
   };
+  /// A^-1 given by a MassInverse, respectively a factorisation.
+  static ColumnSolver column_solver(const MassInverse& A, bool keep_columns = false);
+  static ColumnSolver column_solver(const SparseDirectSolver& A,
+                                    bool keep_columns = false);
 
   /**
    * Computes S for the rows @p rows (of vectors of @p n_dofs unknowns) and the

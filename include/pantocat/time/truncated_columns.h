@@ -9,6 +9,10 @@
 
 namespace pantocat
 {
+/// The entries of @p column above 1e-16 of its largest one (a column A^-1 G^T
+/// of a wire decays exponentially away from the constraint).
+SparseRow truncated(const dealii::Vector<double>& column);
+
 /**
  * The truncated columns X_l (l = 0 .. m-1, e.g. S^-1 G_l^T of the fixed
  * constraints) stored by unknown (compressed rows of the n x m matrix X), so
