@@ -431,44 +431,60 @@ private:
     }
   }
 
-  /// The fused sweep: a0, v* = v_{n-1} + 2 dt a0, q* = q_n + dt (v_n + v*)/2.
-  void sweep()
+  /// The uniform coefficients of the sweep, as local values (no aliasing with stores).
+  struct SweepCoefficients
   {
-    const double* __restrict qc = q.c.data() + 2;
-    const double* __restrict qw = q.w.data() + 2;
-    const double* __restrict vc = v.c.data() + 2;
-    const double* __restrict vw = v.w.data() + 2;
-    const double* __restrict pc = v_prev.c.data() + 2;
-    const double* __restrict pw = v_prev.w.data() + 2;
-    double* __restrict nqc = q_new.c.data() + 2;
-    double* __restrict nqw = q_new.w.data() + 2;
-    double* __restrict nvc = v_new.c.data() + 2;
-    double* __restrict nvw = v_new.w.data() + 2;
-    const double h2 = 2. * dt, h_half = 0.5 * dt;
-    const auto node = [&](const int i, const double k0)
+    double fc, kc0, kc1, half_dc, ic, fw, kw0, kw1, kw2, half_dw, iw, h2, h_half;
+  };
+
+  /**
+   * Nodes [first, last) of both wires: a0, v* = v_{n-1} + 2 dt a0, q* = q_n +
+   * dt (v_n + v*)/2, with the wire's diagonal @p kw0 (the arrays have ghosts).
+   */
+  static void sweep_nodes(const int first, const int last, const SweepCoefficients k,
+                          const double kw0, const double* __restrict qc,
+                          const double* __restrict qw, const double* __restrict vc,
+                          const double* __restrict vw, const double* __restrict pc,
+                          const double* __restrict pw, double* __restrict nqc,
+                          double* __restrict nqw, double* __restrict nvc,
+                          double* __restrict nvw)
+  {
+    for (int i = first; i < last; ++i)
     {
-      const double ac =
-          (fc - kc0 * qc[i] - kc1 * (qc[i - 1] + qc[i + 1]) - half_dc * (pc[i] + vc[i])) *
-          ic;
-      const double aw = (fw - k0 * qw[i] - kw1 * (qw[i - 1] + qw[i + 1]) -
-                         kw2 * (qw[i - 2] + qw[i + 2]) - half_dw * (pw[i] + vw[i])) *
-                        iw;
-      const double vc1 = pc[i] + h2 * ac, vw1 = pw[i] + h2 * aw;
+      const double ac = (k.fc - k.kc0 * qc[i] - k.kc1 * (qc[i - 1] + qc[i + 1]) -
+                         k.half_dc * (pc[i] + vc[i])) *
+                        k.ic;
+      const double aw = (k.fw - kw0 * qw[i] - k.kw1 * (qw[i - 1] + qw[i + 1]) -
+                         k.kw2 * (qw[i - 2] + qw[i + 2]) - k.half_dw * (pw[i] + vw[i])) *
+                        k.iw;
+      const double vc1 = pc[i] + k.h2 * ac, vw1 = pw[i] + k.h2 * aw;
       nvc[i] = vc1;
       nvw[i] = vw1;
-      nqc[i] = qc[i] + h_half * (vc[i] + vc1);
-      nqw[i] = qw[i] + h_half * (vw[i] + vw1);
+      nqc[i] = qc[i] + k.h_half * (vc[i] + vc1);
+      nqw[i] = qw[i] + k.h_half * (vw[i] + vw1);
+    }
+  }
+
+  /// The fused sweep over both wires, then the pantograph's two coordinates.
+  void sweep()
+  {
+    const SweepCoefficients k{fc,  kc0, kc1,     half_dc, ic,      fw,      kw0,
+                              kw1, kw2, half_dw, iw,      2. * dt, 0.5 * dt};
+    const auto nodes = [&](const int first, const int last, const double k0)
+    {
+      sweep_nodes(first, last, k, k0, q.carrier(), q.wire(), v.carrier(), v.wire(),
+                  v_prev.carrier(), v_prev.wire(), q_new.carrier(), q_new.wire(),
+                  v_new.carrier(), v_new.wire());
     };
-    node(0, kw0_end);
-    for (int i = 1; i < N - 1; ++i)
-      node(i, kw0);
-    node(N - 1, kw0_end);
+    nodes(0, 1, kw0_end);
+    nodes(1, N - 1, kw0);
+    nodes(N - 1, N, kw0_end);
     const double a[2] = {head_free[0] - lambda_contact * wp[0],
                          head_free[1] - lambda_contact * wp[2]};
     for (int r = 0; r < 2; ++r)
     {
-      v_new.p[r] = v_prev.p[r] + h2 * a[r];
-      q_new.p[r] = q.p[r] + h_half * (v.p[r] + v_new.p[r]);
+      v_new.p[r] = v_prev.p[r] + k.h2 * a[r];
+      q_new.p[r] = q.p[r] + k.h_half * (v.p[r] + v_new.p[r]);
     }
   }
 

@@ -216,7 +216,14 @@ void banded_forces(const int n, const double* __restrict f,
           row(i, i >= B && i < n - B);
         continue;
       }
-      uniform_run_forces<B, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+      // A run's own reach: a string's rows skip the beam's zero diagonals
+      // (subtracting 0 q_j changes nothing for finite q).
+      if (B >= 3 && r.reach == 3)
+        uniform_run_forces<3, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+      else if (B >= 2 && r.reach == 2)
+        uniform_run_forces<2, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+      else
+        uniform_run_forces<1, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
     }
     return;
   }
@@ -506,16 +513,28 @@ void solve_bordered(const Solve& solve_fixed, std::vector<dealii::Vector<double>
 void HalfExplicitIntegrator::MultiplierWorkspace::prepare(const unsigned int n_fixed,
                                                           const unsigned int n_moving)
 {
-  x.reinit(n_fixed);
-  y.reinit(n_moving);
+  // Sizes change only with the active set's shape: zero in place otherwise
+  // (deal.II's reinit and vector assignment cost more than these few entries).
+  const auto zero = [](dealii::Vector<double>& v, const unsigned int n)
+  {
+    if (v.size() != n)
+      v.reinit(n);
+    else
+      std::fill(v.begin(), v.end(), 0.);
+  };
+  zero(x, n_fixed);
+  zero(y, n_moving);
   B.resize(n_moving);
   C.resize(n_moving);
   for (unsigned int c = 0; c < n_moving; ++c)
   {
-    B[c].reinit(n_fixed);
-    C[c].reinit(n_fixed);
+    zero(B[c], n_fixed);
+    zero(C[c], n_fixed);
   }
-  D.reinit(n_moving, n_moving);
+  if (D.m() != n_moving || D.n() != n_moving)
+    D.reinit(n_moving, n_moving);
+  else
+    D = 0.;
 }
 
 void HalfExplicitIntegrator::compute_compliant_forces()
@@ -567,16 +586,16 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
     const ConstraintState& s = sn[i];
     return -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
   };
-  workspace.prepare(mF, p);
-  dealii::Vector<double>& x = workspace.x;
-  dealii::Vector<double>& y = workspace.y;
+  acceleration_workspace.prepare(mF, p);
+  dealii::Vector<double>& x = acceleration_workspace.x;
+  dealii::Vector<double>& y = acceleration_workspace.y;
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       x(k) = level2(fixed[k]);
   // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
   // ((M + dt/2 D) is symmetric), D = G_c Y_c'.
-  std::vector<dealii::Vector<double>>& B = workspace.B;
-  dealii::FullMatrix<double>& D = workspace.D;
+  std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
+  dealii::FullMatrix<double>& D = acceleration_workspace.D;
   for (unsigned int c = 0; c < p; ++c)
   {
     y(c) = level2(moving_active[c]);
@@ -587,11 +606,11 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = sn[moving_active[r]].G.dot(Y);
   }
-  std::vector<dealii::Vector<double>>& C = workspace.C;
+  std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
   for (unsigned int c = 0; c < p; ++c)
     C[c] = B[c];
   solve_bordered([&](dealii::Vector<double>& r) { fixed_smoothed.solve(r); }, B, C, D, x,
-                 y, workspace.rhs, t, "acceleration level");
+                 y, acceleration_workspace.rhs, t, "acceleration level");
   // a += (M + dt/2 D)^-1 G^T lambda: the fixed rows' truncated columns.
   factors.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
@@ -670,6 +689,13 @@ void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
       merged.push_back(r);
   }
   uniform_runs.swap(merged);
+  for (UniformForceRun& r : uniform_runs)
+  {
+    r.reach = 1;
+    for (int o = 2; o <= b; ++o)
+      if (r.upper[o - 1] != 0. || r.lower[o - 1] != 0.)
+        r.reach = o;
+  }
   // Worth it only with long runs on average.
   if (uniform_runs.size() * 32 > static_cast<std::size_t>(n))
     uniform_runs.clear();
@@ -734,9 +760,9 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   const unsigned int mF = fixed.size(), p = moving_active.size();
   const double h = dt;
   // Unknowns (eta_F, mu_F | eta_C, mu_C), rows g = 0 and dg/dt = 0 at t_{n+1}.
-  workspace.prepare(2 * mF, 2 * p);
-  dealii::Vector<double>& x = workspace.x;
-  dealii::Vector<double>& y = workspace.y;
+  position_workspace.prepare(2 * mF, 2 * p);
+  dealii::Vector<double>& x = position_workspace.x;
+  dealii::Vector<double>& y = position_workspace.y;
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
     {
@@ -744,9 +770,9 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       x(k) = -(s.G.dot(q_new) + s.z);
       x(mF + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
     }
-  std::vector<dealii::Vector<double>>& B = workspace.B;
-  std::vector<dealii::Vector<double>>& C = workspace.C;
-  dealii::FullMatrix<double>& D = workspace.D;
+  std::vector<dealii::Vector<double>>& B = position_workspace.B;
+  std::vector<dealii::Vector<double>>& C = position_workspace.C;
+  dealii::FullMatrix<double>& D = position_workspace.D;
   for (unsigned int c = 0; c < p; ++c)
   {
     const ConstraintState& sc = s1[moving_active[c]];
@@ -784,10 +810,13 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   }
   // The fixed block [h^2 S, h S; 2h S, 0] (S = G_F M^-1 G_F^T) by two solves with S:
   // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta.
-  dealii::Vector<double>& r_g = workspace.r_g;
-  dealii::Vector<double>& r_v = workspace.r_v;
-  r_g.reinit(mF);
-  r_v.reinit(mF);
+  dealii::Vector<double>& r_g = position_workspace.r_g;
+  dealii::Vector<double>& r_v = position_workspace.r_v;
+  if (r_g.size() != mF)
+  {
+    r_g.reinit(mF);
+    r_v.reinit(mF);
+  }
   const auto solve_fixed = [&](dealii::Vector<double>& r)
   {
     for (unsigned int k = 0; k < mF; ++k)
@@ -804,7 +833,7 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       r(mF + k) = r_g(k) / h - h * eta;
     }
   };
-  solve_bordered(solve_fixed, B, C, D, x, y, workspace.rhs, t + dt,
+  solve_bordered(solve_fixed, B, C, D, x, y, position_workspace.rhs, t + dt,
                  "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:

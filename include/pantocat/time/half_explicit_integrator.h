@@ -22,6 +22,7 @@ struct UniformForceRun
 {
   int first = 0, last = 0;
   bool uniform = false;
+  int reach = 1; ///< the largest o with K(i, i +- o) != 0 in the run
   double f = 0., d0 = 0., scale = 0., k0 = 0.;
   double upper[3] = {0., 0., 0.}, lower[3] = {0., 0., 0.};
 };
@@ -199,8 +200,8 @@ private:
   std::vector<unsigned int> moving_active;
   DynamicState reported;
   /**
-   * The bordered multiplier systems of both levels (solve_bordered()): kept
-   * from step to step, so that a step allocates nothing.
+   * A bordered multiplier system (solve_bordered()): kept from step to step,
+   * so that a step allocates nothing.
    */
   struct MultiplierWorkspace
   {
@@ -209,7 +210,9 @@ private:
     dealii::FullMatrix<double> D;
     /// x, y, B, C, D zeroed for @p n_fixed fixed and @p n_moving moving unknowns.
     void prepare(unsigned int n_fixed, unsigned int n_moving);
-  } workspace;
+  };
+  /// One per level: their sizes differ (m and 2m), so each keeps its vectors.
+  MultiplierWorkspace acceleration_workspace, position_workspace;
   /**
    * The runs of rows with equal coefficients for compute_forces(), built at
    * its first call after a change of dt; empty when they would not pay off
