@@ -53,13 +53,15 @@ set format x '%g'
 set grid xtics ytics mxtics mytics
 set key top left
 set output 'doc/figures/scaling-unknowns.png'
-set title 'Time per step against the number of unknowns n (bench_scaling: the 20 m benchmark span repeated, dx = 0.04 m, m grows with n)'
+set title "Time per step against unknowns n (bench_scaling: 20 m spans repeated, dx = 0.04 m, m = 3 per span)" font ',11'
+set xrange [500:200000]
 set xlabel 'unknowns n'
 set ylabel 'time per step [us]'
 plot for [k=0:$((n_unknowns - 1))] '$work/unknowns.dat' index k using 1:2 with linespoints lw 2 title columnheader(1), \
      [1000:100000] x * 0.01 with lines dt 2 lc 'gray' title 'slope 1 (10 ns per unknown)'
 set output 'doc/figures/scaling-constraints.png'
-set title 'Time per step against the number of fixed constraints m (bench_constraints: one 100 m span; m = 0 drawn at 1)'
+set title "Time per step against fixed constraints m (bench_constraints: one 100 m span; m = 0 drawn at 1)" font ',11'
+set xrange [*:*]
 set xlabel 'fixed constraints m (droppers)'
 plot for [k=0:$((n_constraints - 1))] '$work/constraints.dat' index k using 1:2 with linespoints lw 2 title columnheader(1)
 EOF
