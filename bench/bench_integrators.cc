@@ -1,17 +1,22 @@
 // Time per step of the integrators on the paper's benchmark (32 m/s), for
 // N+1 = 500, 2000, 8000, against simple baselines measured in the same run:
-//  - FDM + half-explicit against a minimal hand-written loop on plain arrays
-//    that does the same arithmetic (stencils, diagonal masses, the contact
-//    row, the 3x3 and 6x6 multiplier systems);
+//  - FDM + half-explicit against a fused single-sweep kernel of the same
+//    method (bench/fused_half_explicit.h), whose contact force is checked
+//    against the library's;
 //  - FEM + BDF-2 against one hand-written banded Cholesky solve of the same size;
 // then the sparse direct solvers (banded Cholesky, UMFPACK, Trilinos KLU) on the
 // same BDF-2 iteration matrices.
 // Every figure is the fastest of 5 batches (noisy machines).
-// Usage: bench_integrators [steps] [N+1 ...]; prints a table (Markdown).
+// Usage: bench_integrators [--half-explicit-only] [steps] [N+1 ...]; prints
+// Markdown tables; exit status 1 if the fused kernel's contact force differs
+// from the library's.
+#include "fused_half_explicit.h"
+
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/space/smoothed_delta.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -23,9 +28,14 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
+#include <string>
+#include <utility>
 #include <vector>
 
 using namespace pantocat;
+using pantocat::bench::FusedContact;
+using pantocat::bench::FusedHalfExplicit;
 using Clock = std::chrono::steady_clock;
 
 namespace
@@ -69,191 +79,90 @@ double library_step(const ProgramParameters& p, unsigned int steps)
   return best;
 }
 
-/// Gaussian elimination with partial pivoting, in place (baseline only).
-void solve_dense(int n, double* A, double* b)
+/// The library's FDM + half-explicit integrator and the fused kernel on one case.
+struct HalfExplicitPair
 {
-  for (int k = 0; k < n; ++k)
+  explicit HalfExplicitPair(const ProgramParameters& p)
+      : simulation(p.make_case(), {p.output.probe_positions, p.output.energy}),
+        integrator(create_time_integrator(simulation.system(), p.time_integration)),
+        kernel(simulation.system(), simulation.initial_state(), contact(p),
+               simulation.layout().pantographs.at(0).contact,
+               simulation.layout().dropper_indices, p.time_integration.time_step)
   {
-    int p = k;
-    for (int i = k + 1; i < n; ++i)
-      if (std::abs(A[i * n + k]) > std::abs(A[p * n + k]))
-        p = i;
-    for (int j = 0; j < n; ++j)
-      std::swap(A[k * n + j], A[p * n + j]);
-    std::swap(b[k], b[p]);
-    for (int i = k + 1; i < n; ++i)
-    {
-      const double f = A[i * n + k] / A[k * n + k];
-      for (int j = k; j < n; ++j)
-        A[i * n + j] -= f * A[k * n + j];
-      b[i] -= f * b[k];
-    }
+    integrator->initialize(simulation.initial_state());
   }
-  for (int i = n - 1; i >= 0; --i)
+
+  /// The contact's motion and the grid of @p p for the kernel.
+  FusedContact contact(const ProgramParameters& p) const
   {
-    for (int j = i + 1; j < n; ++j)
-      b[i] -= A[i * n + j] * b[j];
-    b[i] /= A[i * n + i];
+    const PantographParameters& pantograph = p.pantograph();
+    FusedContact c;
+    c.initial_position = pantograph.initial_position;
+    c.speed = pantograph.speed;
+    c.half_width = p.discretisation.load_half_width;
+    c.grid_spacing = simulation.discretisation().cell_size();
+    return c;
   }
-}
+
+  CaseRunner simulation;
+  std::unique_ptr<TimeIntegrator> integrator;
+  FusedHalfExplicit kernel;
+};
+
+/// The largest difference of the contact forces of library and kernel over some steps.
+struct ForceCheck
+{
+  unsigned int steps = 0;
+  double largest_force = 0.;      ///< max |lambda_p| of the library [N]
+  double largest_difference = 0.; ///< max |lambda_p(kernel) - lambda_p(library)| [N]
+};
 
 /**
- * The FDM + half-explicit step (39)-(41) written out on plain arrays for the
- * benchmark's structure: carrier (tridiagonal), contact wire (pentadiagonal),
- * two-mass pantograph, two droppers, the smoothed contact. Microseconds per step.
+ * Runs library and kernel side by side for @p steps steps from the initial
+ * state and compares lambda_p(t_n) at every step: the kernel computes the
+ * same method, not just the same operation count.
  */
-double baseline_fdm_half_explicit(unsigned int n_intervals, double dt, unsigned int steps)
+ForceCheck check_kernel(const ProgramParameters& p, const unsigned int steps)
 {
-  const CatenaryParameters c;
-  const TwoMassPantographParameters pp;
-  const int N = n_intervals - 1; // unknowns per wire
-  const double dx = c.span / n_intervals;
-  const double tc = c.carrier.tension / dx, tw = c.contact_wire.tension / dx,
-               bw = c.contact_wire.bending_stiffness / (dx * dx * dx);
-  const double mc = c.carrier.mass_per_length * dx,
-               mw = c.contact_wire.mass_per_length * dx;
-  const double dc = c.carrier.damping * dx, dw = c.contact_wire.damping * dx;
-  const int n = 2 * N + 2, P = 2 * N;
-  std::vector<double> q(n, 0.), v(n, 0.), vp(n, 0.), a(n), f(n), w(n);
-  for (int i = 0; i < N; ++i)
-    f[i] = -c.carrier.mass_per_length * c.gravity * dx,
-    f[N + i] = -c.contact_wire.mass_per_length * c.gravity * dx;
-  f[P + 1] = pp.uplift_force;
-  // A physically meaningless but generic state (the timing does not depend on it).
-  for (int i = 0; i < n; ++i)
-    q[i] = 1e-3 * std::sin(0.1 * i);
-  const int d1 = static_cast<int>(std::floor(5.5 / dx + 0.5)) - 1,
-            d2 = static_cast<int>(std::floor(14.5 / dx + 0.5)) - 1;
-  const double z = 0.95 - c.support_height;
-  const SmoothedDelta delta(0.2);
-  // Contact rows at a time: wire indices first..last, G and G_t values.
-  struct Row
+  HalfExplicitPair pair(p);
+  const unsigned int contact = pair.simulation.layout().pantographs.at(0).contact;
+  ForceCheck check;
+  check.steps = steps;
+  for (unsigned int k = 0; k < steps; ++k)
   {
-    int first = 0, last = 0;
-    std::vector<double> G, Gt, Gtt;
-  };
-  const std::size_t support = 2 * static_cast<std::size_t>(std::ceil(0.2 / dx)) + 4;
-  auto contact_row = [&](double t, Row& r, bool second)
-  {
-    const double x = 2. + 32. * t, xd = 32.;
-    r.first = std::max(1, static_cast<int>(std::floor((x - 0.2) / dx + 0.5)));
-    r.last = std::min(N, static_cast<int>(std::floor((x + 0.2) / dx + 0.5)));
-    for (int i = r.first; i <= r.last; ++i)
-    {
-      const double lo = (i - 0.5) * dx - x, hi = (i + 0.5) * dx - x;
-      r.G[i - r.first] = delta.integral_up_to(hi) - delta.integral_up_to(lo);
-      r.Gt[i - r.first] = -xd * (delta.value(hi) - delta.value(lo));
-      if (second)
-        r.Gtt[i - r.first] =
-            xd * xd * (delta.derivative(hi, 1) - delta.derivative(lo, 1));
-    }
-  };
-  auto dot =
-      [&](const Row& r, const std::vector<double>& row, const std::vector<double>& x)
-  {
-    double s = 0.;
-    for (int i = r.first; i <= r.last; ++i)
-      s += row[i - r.first] * x[N + i - 1];
-    return s;
-  };
-  const double m1 = pp.head_mass, m2 = pp.frame_mass, c1 = pp.head_stiffness,
-               e1 = pp.head_damping, e2 = pp.frame_damping;
-  Row rn, rh, r1;
-  for (Row* r : {&rn, &rh, &r1})
-    r->G.resize(support), r->Gt.resize(support), r->Gtt.resize(support);
-  double t = 0.;
-  const auto t0 = Clock::now();
-  for (unsigned int step = 0; step < steps; ++step)
-  {
-    contact_row(t, rn, true);
-    contact_row(t + 0.5 * dt, rh, false);
-    contact_row(t + dt, r1, false);
-    // Step 1: forces with the smoothed damping (41), diagonal masses.
-    for (int i = 0; i < n; ++i)
-      w[i] = 0.5 * (vp[i] + v[i]);
-    for (int i = 0; i < N; ++i)
-    {
-      const double l = i > 0 ? q[i - 1] : 0., r = i + 1 < N ? q[i + 1] : 0.;
-      a[i] = (f[i] - tc * (2. * q[i] - l - r) - dc * w[i]) / (mc + 0.5 * dt * dc);
-    }
-    for (int i = 0; i < N; ++i)
-    {
-      const double* u = &q[N];
-      const double l1 = i > 0 ? u[i - 1] : 0., r1v = i + 1 < N ? u[i + 1] : 0.,
-                   l2 = i > 1 ? u[i - 2] : 0., r2 = i + 2 < N ? u[i + 2] : 0.;
-      const double diag = (i == 0 || i == N - 1) ? 5. : 6.;
-      a[N + i] = (f[N + i] - tw * (2. * u[i] - l1 - r1v) -
-                  bw * (diag * u[i] - 4. * (l1 + r1v) + l2 + r2) - dw * w[N + i]) /
-                 (mw + 0.5 * dt * dw);
-    }
-    {
-      const double s = q[P] - q[P + 1], sd = w[P] - w[P + 1];
-      const double F1 = -c1 * s - e1 * sd,
-                   F2 = c1 * s + e1 * sd - e2 * w[P + 1] + f[P + 1];
-      // 2x2 smoothed mass of the pantograph: [m1 + h/2 e1, -h/2 e1; -h/2 e1, m2 + h/2
-      // (e1+e2)]
-      const double A11 = m1 + 0.5 * dt * e1, A12 = -0.5 * dt * e1,
-                   A22 = m2 + 0.5 * dt * (e1 + e2), det = A11 * A22 - A12 * A12;
-      a[P] = (A22 * F1 - A12 * F2) / det;
-      a[P + 1] = (A11 * F2 - A12 * F1) / det;
-    }
-    // Multipliers lambda (3x3): rows d1, d2, contact; columns M~^-1 G^T.
-    double S[9], b[3];
-    const double ic = 1. / (mc + 0.5 * dt * dc), iw = 1. / (mw + 0.5 * dt * dw);
-    const double head_inv =
-        (m2 + 0.5 * dt * (e1 + e2)) /
-        ((m1 + 0.5 * dt * e1) * (m2 + 0.5 * dt * (e1 + e2)) - 0.25 * dt * dt * e1 * e1);
-    double gg = 0.;
-    for (int i = rn.first; i <= rn.last; ++i)
-      gg += rn.G[i - rn.first] * rn.G[i - rn.first] * iw;
-    const double gd1 =
-        (d1 + 1 >= rn.first && d1 + 1 <= rn.last) ? rn.G[d1 + 1 - rn.first] * iw : 0.;
-    const double gd2 =
-        (d2 + 1 >= rn.first && d2 + 1 <= rn.last) ? rn.G[d2 + 1 - rn.first] * iw : 0.;
-    S[0] = iw + ic, S[1] = 0., S[2] = gd1;
-    S[3] = 0., S[4] = iw + ic, S[5] = gd2;
-    S[6] = gd1, S[7] = gd2, S[8] = gg + head_inv;
-    b[0] = -(a[N + d1] - a[d1]);
-    b[1] = -(a[N + d2] - a[d2]);
-    b[2] = -(dot(rn, rn.G, a) - a[P] + 2. * dot(rn, rn.Gt, v) + dot(rn, rn.Gtt, q));
-    solve_dense(3, S, b);
-    a[N + d1] += b[0] * iw, a[d1] -= b[0] * ic;
-    a[N + d2] += b[1] * iw, a[d2] -= b[1] * ic;
-    for (int i = rn.first; i <= rn.last; ++i)
-      a[N + i - 1] += b[2] * rn.G[i - rn.first] * iw;
-    a[P] -= b[2] * head_inv;
-    // Step 2: leapfrog, then the 6x6 projection (eta, mu) at t_{n+1}.
-    for (int i = 0; i < n; ++i)
-    {
-      const double vn = vp[i] + 2. * dt * a[i];
-      w[i] = q[i] + 0.5 * dt * (v[i] + vn);
-      vp[i] = v[i];
-      v[i] = vn;
-    }
-    double T[36] = {0.}, e[6];
-    const double jm = 1. / mw, jc = 1. / c.carrier.mass_per_length / dx;
-    T[0] = dt * (jm + jc), T[7] = dt * (jm + jc), T[14] = dt * (jm + 1. / m1);
-    T[21] = 2. * dt * (jm + jc), T[28] = 2. * dt * (jm + jc),
-    T[35] = 2. * dt * (jm + 1. / m1);
-    e[0] = -(w[N + d1] - w[d1] + z), e[1] = -(w[N + d2] - w[d2] + z);
-    e[2] = -(dot(r1, r1.G, w) - w[P]);
-    e[3] = -(v[N + d1] - v[d1]), e[4] = -(v[N + d2] - v[d2]);
-    e[5] = -(dot(r1, r1.Gt, w) + dot(r1, r1.G, v) - v[P]);
-    solve_dense(6, T, e);
-    for (int k = 0; k < 2; ++k)
-    {
-      const int d = k == 0 ? d1 : d2;
-      w[N + d] += dt * e[k] * jm, w[d] -= dt * e[k] * jc;
-      v[N + d] += 2. * dt * e[3 + k] * jm, v[d] -= 2. * dt * e[3 + k] * jc;
-    }
-    for (int i = rh.first; i <= rh.last; ++i)
-      w[N + i - 1] += dt * (e[2] * rh.G[i - rh.first] + e[5] * rh.Gt[i - rh.first]) * jm;
-    w[P] -= dt * e[2] / m1;
-    v[P] -= 2. * dt * e[5] / m1;
-    std::swap(q, w);
-    t += dt;
+    pair.integrator->advance();
+    pair.kernel.step();
+    const double library = pair.integrator->latest().lambda.at(contact);
+    check.largest_force = std::max(check.largest_force, std::abs(library));
+    check.largest_difference = std::max(check.largest_difference,
+                                        std::abs(pair.kernel.contact_force() - library));
   }
-  return 1e6 * seconds_since(t0) / steps;
+  return check;
+}
+
+/// Microseconds per step of library and kernel, batches interleaved, the fastest of each.
+std::pair<double, double> time_half_explicit(const ProgramParameters& p,
+                                             const unsigned int steps)
+{
+  HalfExplicitPair pair(p);
+  pair.integrator->advance(); // start-up not timed
+  pair.kernel.step();
+  const unsigned int per_batch = std::max(1u, steps / batches);
+  double library = 1e300, kernel = 1e300;
+  for (unsigned int b = 0; b < batches; ++b)
+  {
+    auto t0 = Clock::now();
+    for (unsigned int k = 0; k < per_batch; ++k)
+      pair.integrator->advance();
+    library = std::min(library, 1e6 * seconds_since(t0) / per_batch);
+    t0 = Clock::now();
+    for (unsigned int k = 0; k < per_batch; ++k)
+      pair.kernel.step();
+    kernel = std::min(kernel, 1e6 * seconds_since(t0) / per_batch);
+  }
+  volatile double sink = pair.kernel.contact_force();
+  (void)sink;
+  return {library, kernel};
 }
 
 /// One hand-written banded Cholesky solve (forward and backward substitution
@@ -360,31 +269,56 @@ void compare_linear_solvers(const std::vector<unsigned int>& grids, unsigned int
   }
 }
 
-int main(int argc, char** argv)
-{
-  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
-  dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
-  const unsigned int steps = argc > 1 ? std::atoi(argv[1]) : 2000;
-  std::vector<unsigned int> grids;
-  for (int i = 2; i < argc; ++i)
-    grids.push_back(std::atoi(argv[i]));
-  if (grids.empty())
-    grids = {500, 2000, 8000};
+/// Relative tolerance of the kernel's contact force against the library's.
+constexpr double force_tolerance = 1e-6;
 
-  std::cout
-      << "| N+1 | FDM+HE [us/step] | hand-written loop [us/step] | ratio | FEM+BDF2 "
-         "[us/step] | banded solve [us] | ratio | FDM+BDF2 [us/step] |\n"
-      << "|---|---|---|---|---|---|---|---|\n";
+/**
+ * FDM + half-explicit against the fused kernel: time per step and ratio, then
+ * the check of the kernel's contact force. Returns false if the check fails.
+ */
+bool half_explicit_table(const std::vector<unsigned int>& grids, const unsigned int steps)
+{
+  std::cout << "| N+1 | FDM+HE [us/step] | fused kernel [us/step] | ratio | kernel [ns "
+               "per unknown and step] |\n|---|---|---|---|---|\n";
   for (const unsigned int n : grids)
   {
     // dt = c dx^2 as in Sec. 5.2, scaled from the paper's 5e-5 s at N+1 = 500.
     const double scale = 500. / n, dt = 5e-5 * scale * scale;
-    const double he =
-        library_step(benchmark(n, SpaceMethod::fdm, "half-explicit", dt), steps);
-    double loop = 1e300;
-    for (unsigned int b = 0; b < batches; ++b)
-      loop = std::min(loop,
-                      baseline_fdm_half_explicit(n, dt, std::max(1u, steps / batches)));
+    const auto [library, kernel] =
+        time_half_explicit(benchmark(n, SpaceMethod::fdm, "half-explicit", dt), steps);
+    std::cout << std::setprecision(3) << "| " << n << " | " << library << " | " << kernel
+              << " | " << library / kernel << " | " << 1e3 * kernel / (2. * n) << " |"
+              << std::endl;
+  }
+  // The check: 4400 steps at N+1 = 500 (x_p from 2 to 13 m, under dropper 1 at
+  // 5.5 m), and 1000 steps on the finer grids.
+  std::cout << "\n| N+1 | steps compared | max abs(lambda_p) [N] | max abs(kernel - "
+               "library) [N] | relative |\n|---|---|---|---|---|\n";
+  bool passed = true;
+  for (const unsigned int n : grids)
+  {
+    const double scale = 500. / n, dt = 5e-5 * scale * scale;
+    const ForceCheck c = check_kernel(benchmark(n, SpaceMethod::fdm, "half-explicit", dt),
+                                      n <= 500 ? 4400 : 1000);
+    const double relative = c.largest_difference / c.largest_force;
+    passed = passed && relative < force_tolerance;
+    std::cout << std::setprecision(4) << "| " << n << " | " << c.steps << " | "
+              << c.largest_force << " | " << std::setprecision(2) << c.largest_difference
+              << " | " << relative << " |" << std::endl;
+  }
+  std::cout << "kernel check (relative difference below " << force_tolerance
+            << "): " << (passed ? "passed" : "FAILED") << std::endl;
+  return passed;
+}
+
+/// FEM + BDF-2 against one banded solve of the same size, and FDM + BDF-2.
+void bdf2_table(const std::vector<unsigned int>& grids, const unsigned int steps)
+{
+  std::cout << "\n| N+1 | FEM+BDF2 [us/step] | banded solve [us] | ratio | FDM+BDF2 "
+               "[us/step] |\n|---|---|---|---|---|\n";
+  for (const unsigned int n : grids)
+  {
+    const double scale = 500. / n, dt = 5e-5 * scale * scale;
     const unsigned int bdf_steps = std::max(20u, steps / (n / 250));
     const double bdf =
         library_step(benchmark(n, SpaceMethod::fem, "bdf2", dt), bdf_steps);
@@ -392,9 +326,36 @@ int main(int argc, char** argv)
         baseline_banded_solve(3 * n + 1, 500); // FEM system size: N + (2N+2) + 2
     const double fdm_bdf =
         library_step(benchmark(n, SpaceMethod::fdm, "bdf2", dt), bdf_steps);
-    std::cout << std::setprecision(3) << "| " << n << " | " << he << " | " << loop
-              << " | " << he / loop << " | " << bdf << " | " << banded << " | "
-              << bdf / banded << " | " << fdm_bdf << " |" << std::endl;
+    std::cout << std::setprecision(3) << "| " << n << " | " << bdf << " | " << banded
+              << " | " << bdf / banded << " | " << fdm_bdf << " |" << std::endl;
   }
-  compare_linear_solvers(grids, steps / 4);
+}
+
+int main(int argc, char** argv)
+{
+  dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
+  dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
+  bool half_explicit_only = false;
+  std::vector<std::string> args;
+  for (int i = 1; i < argc; ++i)
+  {
+    if (std::string(argv[i]) == "--half-explicit-only")
+      half_explicit_only = true;
+    else
+      args.push_back(argv[i]);
+  }
+  const unsigned int steps = args.size() > 0 ? std::stoi(args[0]) : 2000;
+  std::vector<unsigned int> grids;
+  for (std::size_t i = 1; i < args.size(); ++i)
+    grids.push_back(std::stoi(args[i]));
+  if (grids.empty())
+    grids = {500, 2000, 8000};
+
+  const bool passed = half_explicit_table(grids, steps);
+  if (!half_explicit_only)
+  {
+    bdf2_table(grids, steps);
+    compare_linear_solvers(grids, steps / 4);
+  }
+  return passed ? 0 : 1;
 }

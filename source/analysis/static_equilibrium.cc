@@ -14,7 +14,8 @@ const char* const dependent_constraints =
 } // namespace
 
 StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& system,
-                                                 const double t)
+                                                 const double t,
+                                                 const double column_budget)
     : system(system), states(system.n_constraints())
 {
   try
@@ -27,17 +28,31 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
                           "(a body without tension, bending or support?)");
   }
   const unsigned int m = states.size();
-  X.assign(m, dealii::Vector<double>(system.n_dofs()));
   for (unsigned int i = 0; i < m; ++i)
-  {
     system.constraints[i]->evaluate(t, states[i]);
-    states[i].G.add_transpose_to(X[i], 1.);
-    K_inverse.solve(X[i]);
-  }
+  // K^-1 G^T is dense along a wire held only at its ends: m columns of n
+  // cost O(n m) memory, quadratic in the number of spans. Kept within a
+  // budget; beyond it each column is formed again when needed (the same
+  // arithmetic, so the same numbers).
+  const bool keep = static_cast<double>(system.n_dofs()) * m <= column_budget;
+  X.assign(keep ? m : 0, dealii::Vector<double>(system.n_dofs()));
   schur.reinit(m, m);
-  for (unsigned int k = 0; k < m; ++k)
-    for (unsigned int l = 0; l < m; ++l)
-      schur(k, l) = states[k].G.dot(X[l]);
+  dealii::Vector<double> work(keep ? 0 : system.n_dofs());
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    dealii::Vector<double>& x = keep ? X[l] : work;
+    column(l, x);
+    for (unsigned int k = 0; k < m; ++k)
+      schur(k, l) = states[k].G.dot(x);
+  }
+}
+
+void StaticEquilibriumSolver::column(const unsigned int i,
+                                     dealii::Vector<double>& x) const
+{
+  x = 0.;
+  states[i].G.add_transpose_to(x, 1.);
+  K_inverse.solve(x);
 }
 
 void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& active,
@@ -79,9 +94,12 @@ void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& act
   }
   out.q = q_free;
   out.multipliers.assign(states.size(), 0.);
+  dealii::Vector<double> work(X.empty() && m > 0 ? system.n_dofs() : 0);
   for (unsigned int k = 0; k < m; ++k)
   {
-    out.q.add(lambda(k), X[act[k]]);
+    if (X.empty())
+      column(act[k], work);
+    out.q.add(lambda(k), X.empty() ? work : X[act[k]]);
     out.multipliers[act[k]] = lambda(k);
   }
   out.gaps.resize(states.size());

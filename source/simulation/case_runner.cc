@@ -100,8 +100,30 @@ double largest_magnitude(const dealii::Vector<double>& x)
          poison[2] + poison[3];
 }
 
+/**
+ * The number of entries with !(|x_i| <= bound): not finite, or beyond
+ * @p bound. A comparison and an integer sum per entry, which vectorises
+ * (largest_magnitude()'s floating-point reductions do not without
+ * -ffast-math): the every-step test of check_bounded().
+ */
+std::size_t count_outside(const dealii::Vector<double>& x, const double bound)
+{
+  const double* __restrict p = x.begin();
+  const std::size_t n = x.size();
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    count += !(std::abs(p[i]) <= bound);
+  return count;
+}
+
 void check_bounded(const DynamicState& s, const unsigned long step, const double bound)
 {
+  bool all_finite = true;
+  for (const double l : s.lambda)
+    all_finite = all_finite && std::isfinite(l);
+  if (all_finite && count_outside(s.q, bound) == 0 &&
+      count_outside(s.v, std::numeric_limits<double>::max()) == 0)
+    return; // the usual case; otherwise the message below says what is wrong
   const double largest = largest_magnitude(s.q);
   bool finite = std::isfinite(largest) && std::isfinite(largest_magnitude(s.v));
   for (const double l : s.lambda)
@@ -294,19 +316,33 @@ void CaseRunner::check_load_resolution() const
 
 TimePoint CaseRunner::time_point(const DynamicState& s) const
 {
-  const SemiDiscreteSystem& sys = system();
   TimePoint p;
+  TimePointWorkspace rows;
+  fill_time_point(s, p, rows);
+  return p;
+}
+
+void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
+                                 TimePointWorkspace& workspace) const
+{
+  const SemiDiscreteSystem& sys = system();
   p.t = s.t;
+  p.x_p.clear();
   for (const ScenePantograph& pantograph : scene->built.pantographs)
     p.x_p.push_back(pantograph.motion.position(s.t));
   p.lambda = s.lambda;
   p.active = s.active;
   const unsigned int m = sys.n_constraints();
   p.gap.resize(m);
-  ConstraintState rows;
+  p.position_residual = p.velocity_residual = 0.;
+  // Constant rows (droppers, supports) are evaluated at the first time point only.
+  const bool first = workspace.rows.size() != m;
+  workspace.rows.resize(m);
   for (unsigned int i = 0; i < m; ++i)
   {
-    sys.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
+    ConstraintState& rows = workspace.rows[i];
+    if (first || sys.constraints[i]->depends_on_time())
+      sys.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
     p.gap[i] = rows.position_residual(s.q);
     if (s.active[i] && !sys.constraints[i]->is_compliant()) // springs deflect
     {
@@ -315,6 +351,7 @@ TimePoint CaseRunner::time_point(const DynamicState& s) const
           std::max(p.velocity_residual, std::abs(rows.velocity_residual(s.q, s.v)));
     }
   }
+  p.pantograph.clear();
   for (const ScenePantograph& pantograph : scene->built.pantographs)
     if (pantograph.model)
     {
@@ -322,11 +359,11 @@ TimePoint CaseRunner::time_point(const DynamicState& s) const
       for (unsigned int i = 0; i < b.size; ++i)
         p.pantograph.push_back(s.q(b.first + i));
     }
+  p.probes.clear();
   for (const SparseRow& row : probe_rows)
     p.probes.push_back(row.dot(s.q));
   if (layout_.energy)
     p.energy = sys.energy(s.q, s.v, s.t);
-  return p;
 }
 
 RunGuard CaseRunner::make_guard() const
@@ -358,9 +395,13 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
   RunGuard guard = make_guard();
   std::vector<SimulationObserver*> all = observers;
   all.push_back(&guard);
+  // One time point and one row workspace for the whole run: no allocations
+  // per step.
+  TimePoint p;
+  TimePointWorkspace rows;
   const auto notify = [&](const DynamicState& s)
   {
-    const TimePoint p = time_point(s);
+    fill_time_point(s, p, rows);
     for (auto* o : all)
     {
       o->observe(p);

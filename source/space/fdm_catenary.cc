@@ -124,12 +124,16 @@ void FdmCatenary::load_row(const double x_c, const unsigned int k, SparseRow& ro
   const int first = std::max(1, static_cast<int>(std::floor((x_c - eps) / dx + 0.5)));
   const int last =
       std::min(static_cast<int>(n), static_cast<int>(std::floor((x_c + eps) / dx + 0.5)));
+  // The antiderivative (k = 0) or derivative k - 1 at the edges of the
+  // control volumes: each edge is shared by two neighbours, evaluated once.
+  const auto at_edge = [&](const double xi)
+  { return k == 0 ? delta.integral_up_to(xi) : delta.derivative(xi, k - 1); };
+  double left = at_edge((first - 0.5) * dx - x_c);
   for (int i = first; i <= last; ++i)
   {
-    const double a = (i - 0.5) * dx - x_c, b = (i + 0.5) * dx - x_c;
-    const double v = k == 0 ? delta.integral_up_to(b) - delta.integral_up_to(a)
-                            : delta.derivative(b, k - 1) - delta.derivative(a, k - 1);
-    row.add(i - 1, v);
+    const double right = at_edge((i + 0.5) * dx - x_c);
+    row.add(i - 1, right - left);
+    left = right;
   }
 }
 } // namespace pantocat

@@ -95,6 +95,18 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     for (unsigned int i = 0; i < n; ++i)
       if (forces.half_damping[b][i] != 0.)
         forces.listed_damping.push_back({i, i, forces.half_damping[b][i]});
+  // The rows whose a changes after the sweep with a constant pattern: the
+  // coupled rows, and the rows of the fixed constraints (their columns
+  // (M + dt/2 D)^-1 G^T live there and on the coupled rows when it is diagonal).
+  for (const auto& entry : forces.listed_damping)
+    constant_refresh_rows.push_back(entry.row);
+  for (const unsigned int i : fixed)
+    for (const unsigned int j : at_n.states()[i].G.index)
+      constant_refresh_rows.push_back(j);
+  std::sort(constant_refresh_rows.begin(), constant_refresh_rows.end());
+  constant_refresh_rows.erase(
+      std::unique(constant_refresh_rows.begin(), constant_refresh_rows.end()),
+      constant_refresh_rows.end());
 }
 
 namespace
@@ -105,17 +117,79 @@ namespace
  * K(i, i+o) = K(i+o, i) is read from the upper diagonals only (fewer streams
  * through the cache), the offsets are compile-time constants (the row loop
  * vectorises), and the diagonal scaling of (M + dt/2 D)^-1 is fused in.
+ *
+ * With @p predict, the same sweep also writes the unconstrained step of (40),
+ * v* = v_prev + 2 dt a and q* = q + dt (v + v*)/2, into @p v_new and
+ * @p q_new: one pass over the unknowns per step instead of two. Rows whose a
+ * changes afterwards (constraint forces, coupled rows) are predicted again
+ * from their final a (HalfExplicitIntegrator::refresh_prediction()).
  */
-template <int B, bool damped>
+/**
+ * banded_forces() on the rows of one uniform run: its coefficients as local
+ * scalars, every pointer restrict, so that the loop vectorises. The
+ * operations and their order are those of banded_forces()'s rows.
+ */
+template <int B, bool damped, bool predict>
+void uniform_run_forces(const UniformForceRun& run, const double* __restrict q,
+                        const double* __restrict vp, const double* __restrict v,
+                        double* __restrict out, const double dt, double* __restrict q_new,
+                        double* __restrict v_new)
+{
+  const double f = run.f, k0 = run.k0, d0 = run.d0, scale = run.scale;
+  const double u1 = run.upper[0], l1 = run.lower[0], u2 = run.upper[1], l2 = run.lower[1],
+               u3 = run.upper[2], l3 = run.lower[2];
+  const double two_dt = 2. * dt, half_dt = 0.5 * dt;
+  for (int i = run.first; i < run.last; ++i)
+  {
+    double s = f - k0 * q[i];
+    if constexpr (damped)
+      s -= d0 * (vp[i] + v[i]);
+    s -= u1 * q[i + 1];
+    s -= l1 * q[i - 1];
+    if constexpr (B >= 2)
+    {
+      s -= u2 * q[i + 2];
+      s -= l2 * q[i - 2];
+    }
+    if constexpr (B >= 3)
+    {
+      s -= u3 * q[i + 3];
+      s -= l3 * q[i - 3];
+    }
+    const double acceleration = s * scale;
+    out[i] = acceleration;
+    if constexpr (predict)
+    {
+      const double vn = vp[i] + two_dt * acceleration;
+      v_new[i] = vn;
+      q_new[i] = q[i] + half_dt * (v[i] + vn);
+    }
+  }
+}
+
+template <int B, bool damped, bool predict>
 void banded_forces(const int n, const double* __restrict f,
                    const std::vector<std::vector<double>>& K, const double* __restrict d0,
                    const double* __restrict scale, const double* __restrict q,
                    const double* __restrict vp, const double* __restrict v,
-                   double* __restrict out)
+                   double* __restrict out, const double dt, double* __restrict q_new,
+                   double* __restrict v_new,
+                   const std::vector<UniformForceRun>* runs = nullptr)
 {
   const double* k[B + 1]; // k[o][i] = K(i, i + o)
   for (int o = 0; o <= B; ++o)
     k[o] = K[B + o].data();
+  const auto finish = [&](const int i, const double acceleration)
+  {
+    out[i] = acceleration;
+    if constexpr (predict)
+    {
+      // As compute_update() writes them, to the bit.
+      const double vn = vp[i] + 2. * dt * acceleration;
+      v_new[i] = vn;
+      q_new[i] = q[i] + 0.5 * dt * (v[i] + vn);
+    }
+  };
   auto row = [&](const int i, const bool interior)
   {
     double s = f[i] - k[0][i] * q[i];
@@ -128,8 +202,31 @@ void banded_forces(const int n, const double* __restrict f,
       if (interior || i - o >= 0)
         s -= k[o][i - o] * q[i - o];
     }
-    out[i] = s * scale[i];
+    finish(i, s * scale[i]);
   };
+  if (runs)
+  {
+    // The same operations in the same order, with the coefficients of a run
+    // of equal rows held in registers: three streams read instead of eight.
+    for (const UniformForceRun& r : *runs)
+    {
+      if (!r.uniform)
+      {
+        for (int i = r.first; i < r.last; ++i)
+          row(i, i >= B && i < n - B);
+        continue;
+      }
+      // A run's own reach: a string's rows skip the beam's zero diagonals
+      // (subtracting 0 q_j changes nothing for finite q).
+      if (B >= 3 && r.reach == 3)
+        uniform_run_forces<3, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+      else if (B >= 2 && r.reach == 2)
+        uniform_run_forces<2, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+      else
+        uniform_run_forces<1, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+    }
+    return;
+  }
   for (int i = 0; i < std::min(B, n); ++i)
     row(i, false);
   for (int i = B; i < n - B; ++i)
@@ -152,7 +249,7 @@ void HalfExplicitIntegrator::compute_forces()
   const int n = q.size(), b = forces.bandwidth;
   const double* __restrict qq = q.begin();
   const double* __restrict vv = v.begin();
-  const double* __restrict vp = v_prev.begin();
+  const double* __restrict vp = previous->begin();
   double* __restrict out = a.begin();
   // Damping is diagonal but for a few rows (a lumped pantograph's dampers):
   // the fused sweep with the diagonal, then those entries.
@@ -163,16 +260,27 @@ void HalfExplicitIntegrator::compute_forces()
     const double* d0 = forces.half_damping[b].data();
     const double* f = load_at_time_n();
     const double* scale = scaling->begin();
+    double* qn = q_new.begin();
+    double* vn = v_new.begin();
+    if (!uniform_runs_built)
+      build_uniform_runs(scale);
+    const std::vector<UniformForceRun>* runs =
+        uniform_runs.empty() || system.has_time_dependent_load() ? nullptr
+                                                                 : &uniform_runs;
     const auto sweep = [&](auto damped)
     {
       constexpr bool D = decltype(damped)::value;
       if (b == 1)
-        banded_forces<1, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+        banded_forces<1, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
+                                  qn, vn, runs);
       else if (b == 2)
-        banded_forces<2, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+        banded_forces<2, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
+                                  qn, vn, runs);
       else
-        banded_forces<3, D>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out);
+        banded_forces<3, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
+                                  qn, vn, runs);
     };
+    predicted = true;
     if (forces.damped_rows_coupled)
       sweep(std::false_type{});
     else
@@ -184,6 +292,7 @@ void HalfExplicitIntegrator::compute_forces()
     smoothed_mass_inverse.apply_coupled_rows(a);
     return;
   }
+  predicted = false;
   const double* f = load_at_time_n();
   std::copy(f, f + n, out);
   // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
@@ -229,6 +338,7 @@ void HalfExplicitIntegrator::factorize()
 void HalfExplicitIntegrator::set_time_step(const double time_step)
 {
   dt = time_step;
+  uniform_runs_built = false; // the scaling of (M + dt/2 D)^-1 changes
   factorize();
 }
 
@@ -241,6 +351,7 @@ void HalfExplicitIntegrator::initialize(const DynamicState& initial)
   // v_{-1} = v_0 - dt a_0.
   v_prev = initial.v;
   v_prev.add(-dt, initial.a);
+  previous = &v_prev;
   active_now = initial.active;
   reported = initial;
   step_number = 0;
@@ -249,6 +360,7 @@ void HalfExplicitIntegrator::initialize(const DynamicState& initial)
 void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>& vp)
 {
   v_prev = vp;
+  previous = &v_prev;
 }
 
 void HalfExplicitIntegrator::compute_moving_columns()
@@ -354,6 +466,77 @@ void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
   }
 }
 
+namespace
+{
+/**
+ * Solves the bordered system [A B; C D] [x; y] = [r; s] by block elimination,
+ * with A^-1 applied in place by @p solve_fixed: x0 = A^-1 r, Z = A^-1 B,
+ * (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds the columns of B (becomes
+ * Z), @p C the rows of C; on return @p r holds x and @p s holds y. @p rhs
+ * is a workspace.
+ */
+template <typename Solve>
+void solve_bordered(const Solve& solve_fixed, std::vector<dealii::Vector<double>>& B,
+                    const std::vector<dealii::Vector<double>>& C,
+                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
+                    dealii::Vector<double>& s, dealii::Vector<double>& rhs,
+                    const double t, const char* what)
+{
+  const bool has_fixed = r.size() > 0;
+  if (has_fixed)
+    solve_fixed(r);
+  const unsigned int p = s.size();
+  if (p == 0)
+    return;
+  rhs = s;
+  if (has_fixed)
+  {
+    // A border column that no fixed row sees (an FDM contact away from every
+    // dropper node) needs no solve: A^-1 0 = 0.
+    for (auto& b : B)
+      if (b.linfty_norm() != 0.)
+        solve_fixed(b);
+    for (unsigned int k = 0; k < p; ++k)
+    {
+      rhs(k) -= C[k] * r;
+      for (unsigned int l = 0; l < p; ++l)
+        D(k, l) -= C[k] * B[l];
+    }
+  }
+  solve_multiplier_system(D, rhs, s, t, what);
+  if (has_fixed)
+    for (unsigned int l = 0; l < p; ++l)
+      r.add(-s(l), B[l]);
+}
+} // namespace
+
+void HalfExplicitIntegrator::MultiplierWorkspace::prepare(const unsigned int n_fixed,
+                                                          const unsigned int n_moving)
+{
+  // Sizes change only with the active set's shape: zero in place otherwise
+  // (deal.II's reinit and vector assignment cost more than these few entries).
+  const auto zero = [](dealii::Vector<double>& v, const unsigned int n)
+  {
+    if (v.size() != n)
+      v.reinit(n);
+    else
+      std::fill(v.begin(), v.end(), 0.);
+  };
+  zero(x, n_fixed);
+  zero(y, n_moving);
+  B.resize(n_moving);
+  C.resize(n_moving);
+  for (unsigned int c = 0; c < n_moving; ++c)
+  {
+    zero(B[c], n_fixed);
+    zero(C[c], n_fixed);
+  }
+  if (D.m() != n_moving || D.n() != n_moving)
+    D.reinit(n_moving, n_moving);
+  else
+    D = 0.;
+}
+
 void HalfExplicitIntegrator::compute_compliant_forces()
 {
   const auto& sn = at_n.states();
@@ -363,7 +546,7 @@ void HalfExplicitIntegrator::compute_compliant_forces()
     // the damping forces of (39), (41), v_{n-1/2} = (v_{n-1} + v_n)/2.
     const ConstraintState& s = sn[i];
     const double gap = s.position_residual(q);
-    const double rate = s.G_t.dot(q) + 0.5 * (s.G.dot(v_prev) + s.G.dot(v)) + s.z_t;
+    const double rate = s.G_t.dot(q) + 0.5 * (s.G.dot(*previous) + s.G.dot(v)) + s.z_t;
     const Constraint& c = *system.constraints[i];
     lambda[i] = c.compliant_force(gap, rate);
     const bool engaged = !c.is_unilateral() || lambda[i] > 0.;
@@ -403,14 +586,16 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
     const ConstraintState& s = sn[i];
     return -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
   };
-  dealii::Vector<double> x(mF), y(p);
+  acceleration_workspace.prepare(mF, p);
+  dealii::Vector<double>& x = acceleration_workspace.x;
+  dealii::Vector<double>& y = acceleration_workspace.y;
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       x(k) = level2(fixed[k]);
   // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
   // ((M + dt/2 D) is symmetric), D = G_c Y_c'.
-  std::vector<dealii::Vector<double>> B(p, dealii::Vector<double>(mF));
-  dealii::FullMatrix<double> D(p, p);
+  std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
+  dealii::FullMatrix<double>& D = acceleration_workspace.D;
   for (unsigned int c = 0; c < p; ++c)
   {
     y(c) = level2(moving_active[c]);
@@ -421,9 +606,11 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = sn[moving_active[r]].G.dot(Y);
   }
-  const std::vector<dealii::Vector<double>> C(B);
+  std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
+  for (unsigned int c = 0; c < p; ++c)
+    C[c] = B[c];
   solve_bordered([&](dealii::Vector<double>& r) { fixed_smoothed.solve(r); }, B, C, D, x,
-                 y, t, "acceleration level");
+                 y, acceleration_workspace.rhs, t, "acceleration level");
   // a += (M + dt/2 D)^-1 G^T lambda: the fixed rows' truncated columns.
   factors.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
@@ -448,6 +635,92 @@ void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int
   // (41).
   compute_forces();
   add_acceleration_multipliers(A);
+  if (predicted)
+    refresh_prediction();
+}
+
+void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
+{
+  uniform_runs.clear();
+  uniform_runs_built = true;
+  if (system.has_time_dependent_load())
+    return;
+  const int n = q.size(), b = forces.bandwidth;
+  const bool damped = !forces.damped_rows_coupled;
+  const auto coefficients = [&](const int i)
+  {
+    UniformForceRun r;
+    r.first = i;
+    r.last = i + 1;
+    r.uniform = i >= b && i < n - b;
+    r.f = system.load(i);
+    r.d0 = damped ? forces.half_damping[b][i] : 0.;
+    r.scale = scale[i];
+    r.k0 = forces.stiffness[b][i];
+    for (int o = 1; o <= b && r.uniform; ++o)
+    {
+      r.upper[o - 1] = forces.stiffness[b + o][i];
+      r.lower[o - 1] = forces.stiffness[b + o][i - o];
+    }
+    return r;
+  };
+  const auto same = [](const UniformForceRun& x, const UniformForceRun& y)
+  {
+    return x.uniform && y.uniform && x.f == y.f && x.d0 == y.d0 && x.scale == y.scale &&
+           x.k0 == y.k0 && std::equal(x.upper, x.upper + 3, y.upper) &&
+           std::equal(x.lower, x.lower + 3, y.lower);
+  };
+  for (int i = 0; i < n; ++i)
+  {
+    UniformForceRun r = coefficients(i);
+    if (!uniform_runs.empty() && same(uniform_runs.back(), r))
+      uniform_runs.back().last = i + 1;
+    else
+      uniform_runs.push_back(r);
+  }
+  // Short runs are cheaper row by row: merge them into runs that are not uniform.
+  std::vector<UniformForceRun> merged;
+  for (UniformForceRun r : uniform_runs)
+  {
+    r.uniform = r.uniform && r.last - r.first >= 8;
+    if (!r.uniform && !merged.empty() && !merged.back().uniform)
+      merged.back().last = r.last;
+    else
+      merged.push_back(r);
+  }
+  uniform_runs.swap(merged);
+  for (UniformForceRun& r : uniform_runs)
+  {
+    r.reach = 1;
+    for (int o = 2; o <= b; ++o)
+      if (r.upper[o - 1] != 0. || r.lower[o - 1] != 0.)
+        r.reach = o;
+  }
+  // Worth it only with long runs on average.
+  if (uniform_runs.size() * 32 > static_cast<std::size_t>(n))
+    uniform_runs.clear();
+}
+
+void HalfExplicitIntegrator::refresh_prediction()
+{
+  const double* __restrict qq = q.begin();
+  const double* __restrict vv = v.begin();
+  const double* __restrict vp = previous->begin();
+  const double* __restrict aa = a.begin();
+  double* __restrict qn = q_new.begin();
+  double* __restrict vn = v_new.begin();
+  const auto refresh = [&](const unsigned int i)
+  {
+    vn[i] = vp[i] + 2. * dt * aa[i];
+    qn[i] = qq[i] + 0.5 * dt * (vv[i] + vn[i]);
+  };
+  for (const unsigned int i : constant_refresh_rows)
+    refresh(i);
+  const auto& sn = at_n.states();
+  for (const auto* list : {&moving, &compliant})
+    for (const unsigned int c : *list)
+      for (const unsigned int i : sn[c].G.index)
+        refresh(i);
 }
 
 void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
@@ -455,12 +728,14 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   const auto& sn = at_n.states();
   const auto& sh = at_half.states();
   const auto& s1 = at_next.states();
-  // Unconstrained part: v* = v_{n-1} + 2 dt a_n, q* = q_n + dt (v_n + v*)/2.
+  // Unconstrained part: v* = v_{n-1} + 2 dt a_n, q* = q_n + dt (v_n + v*)/2
+  // (already there when compute_forces() predicted it).
+  if (!predicted)
   {
     const unsigned int n = q.size();
     const double* __restrict qq = q.begin();
     const double* __restrict vv = v.begin();
-    const double* __restrict vp = v_prev.begin();
+    const double* __restrict vp = previous->begin();
     const double* __restrict aa = a.begin();
     double* __restrict qn = q_new.begin();
     double* __restrict vn = v_new.begin();
@@ -485,7 +760,9 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   const unsigned int mF = fixed.size(), p = moving_active.size();
   const double h = dt;
   // Unknowns (eta_F, mu_F | eta_C, mu_C), rows g = 0 and dg/dt = 0 at t_{n+1}.
-  dealii::Vector<double> x(2 * mF), y(2 * p);
+  position_workspace.prepare(2 * mF, 2 * p);
+  dealii::Vector<double>& x = position_workspace.x;
+  dealii::Vector<double>& y = position_workspace.y;
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
     {
@@ -493,9 +770,9 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       x(k) = -(s.G.dot(q_new) + s.z);
       x(mF + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
     }
-  std::vector<dealii::Vector<double>> B(2 * p, dealii::Vector<double>(2 * mF)),
-      C(2 * p, dealii::Vector<double>(2 * mF));
-  dealii::FullMatrix<double> D(2 * p, 2 * p);
+  std::vector<dealii::Vector<double>>& B = position_workspace.B;
+  std::vector<dealii::Vector<double>>& C = position_workspace.C;
+  dealii::FullMatrix<double>& D = position_workspace.D;
   for (unsigned int c = 0; c < p; ++c)
   {
     const ConstraintState& sc = s1[moving_active[c]];
@@ -533,7 +810,13 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   }
   // The fixed block [h^2 S, h S; 2h S, 0] (S = G_F M^-1 G_F^T) by two solves with S:
   // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta.
-  dealii::Vector<double> r_g(mF), r_v(mF);
+  dealii::Vector<double>& r_g = position_workspace.r_g;
+  dealii::Vector<double>& r_v = position_workspace.r_v;
+  if (r_g.size() != mF)
+  {
+    r_g.reinit(mF);
+    r_v.reinit(mF);
+  }
   const auto solve_fixed = [&](dealii::Vector<double>& r)
   {
     for (unsigned int k = 0; k < mF; ++k)
@@ -550,7 +833,8 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       r(mF + k) = r_g(k) / h - h * eta;
     }
   };
-  solve_bordered(solve_fixed, B, C, D, x, y, t + dt, "position/velocity level");
+  solve_bordered(solve_fixed, B, C, D, x, y, position_workspace.rhs, t + dt,
+                 "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
   // the fixed rows' truncated columns M^-1 G^T (their G_t = 0).
@@ -602,9 +886,11 @@ void HalfExplicitIntegrator::advance()
   reported.t = t;
   reported.q.swap(q); // q_n
   q.swap(q_new);      // q_{n+1}
-  reported.v = v;     // v_n
-  v_prev.swap(v);     // v_prev = v_n
+  // v_n is both the reported velocity and v_{n-1} of the next step: one
+  // vector, reported.v, without a copy.
+  reported.v.swap(v); // v_n
   v.swap(v_new);      // v_{n+1}
+  previous = &reported.v;
   reported.a.swap(a);
   reported.lambda = lambda;
   reported.active = active_now;
@@ -629,6 +915,11 @@ void HalfExplicitIntegrator::finish()
       A.push_back(i);
   compute_acceleration(A);
   reset_moving_columns();
+  if (previous == &reported.v) // v_{n-1} stays the integrator's own
+  {
+    v_prev = reported.v;
+    previous = &v_prev;
+  }
   reported.t = t;
   reported.q = q;
   reported.v = v;
@@ -640,13 +931,14 @@ void HalfExplicitIntegrator::finish()
 void HalfExplicitIntegrator::save(CheckpointOut& archive) const
 {
   // a_n and lambda_n are recomputed from these in the next step (39).
-  archive << t << step_number << q << v << v_prev << active_now << reported;
+  archive << t << step_number << q << v << *previous << active_now << reported;
   save_statistics(archive);
 }
 
 void HalfExplicitIntegrator::load(CheckpointIn& archive)
 {
   archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported;
+  previous = &v_prev;
   load_statistics(archive);
   if (!std::isfinite(t))
     throw InputError("the time t_n is not finite");

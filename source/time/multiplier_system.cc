@@ -24,21 +24,6 @@ void solve_multiplier_system(dealii::FullMatrix<double>& A,
     }
 }
 
-void solve_bordered(const std::function<void(dealii::Vector<double>&)>& solve_fixed,
-                    std::vector<dealii::Vector<double>>& B,
-                    const std::vector<dealii::Vector<double>>& C,
-                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
-                    dealii::Vector<double>& s, const double t, const char* what)
-{
-  solve_bordered_batched(
-      [&](const std::vector<dealii::Vector<double>*>& xs)
-      {
-        for (dealii::Vector<double>* x : xs)
-          solve_fixed(*x);
-      },
-      B, C, D, r, s, t, what);
-}
-
 void solve_bordered_batched(
     const std::function<void(const std::vector<dealii::Vector<double>*>&)>& solve_fixed,
     std::vector<dealii::Vector<double>>& B, const std::vector<dealii::Vector<double>>& C,

@@ -46,8 +46,18 @@ struct StaticEquilibrium
 class StaticEquilibriumSolver
 {
 public:
-  /// Throws SimulationError if K is singular.
-  explicit StaticEquilibriumSolver(const SemiDiscreteSystem& system, double t = 0.);
+  /**
+   * The columns K^-1 G_i^T are kept while n m stays within this many numbers
+   * (8 MB): all shipped cases. Beyond, solve() forms the active ones again.
+   */
+  static constexpr double default_column_budget = 1 << 20;
+
+  /**
+   * Throws SimulationError if K is singular. @p column_budget: see
+   * default_column_budget (the results do not depend on it, to the bit).
+   */
+  explicit StaticEquilibriumSolver(const SemiDiscreteSystem& system, double t = 0.,
+                                   double column_budget = default_column_budget);
 
   /**
    * The equilibrium under f + @p extra_load, the active set iterated from
@@ -76,8 +86,10 @@ private:
 
   const SemiDiscreteSystem& system;
   dealii::SparseDirectUMFPACK K_inverse;
-  std::vector<ConstraintState> states;   ///< G and z of every constraint at t
-  std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i
+  std::vector<ConstraintState> states; ///< G and z of every constraint at t
+  /// column <- K^-1 G_i^T.
+  void column(unsigned int i, dealii::Vector<double>& column) const;
+  std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i, or empty
   dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
 };
 

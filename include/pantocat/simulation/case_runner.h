@@ -132,6 +132,19 @@ public:
   std::string step_size_problem() const;
   /// Builds the time point of a state (gaps and residuals evaluated here).
   TimePoint time_point(const DynamicState& state) const;
+  /// The constraint rows fill_time_point() keeps from one time point to the next.
+  struct TimePointWorkspace
+  {
+    /// Per constraint; the constant ones evaluated at the first time point only.
+    std::vector<ConstraintState> rows;
+  };
+  /**
+   * time_point() into @p point, reusing its vectors and the constraint rows
+   * of @p workspace: what the time loop calls every step, without
+   * allocations, evaluating only the constraints that depend on t.
+   */
+  void fill_time_point(const DynamicState& state, TimePoint& point,
+                       TimePointWorkspace& workspace) const;
   /// One line per effect of the scene (what is assembled), and the effects left out.
   const std::vector<std::string>& active_effects() const;
   const std::vector<std::string>& inactive_effects() const;

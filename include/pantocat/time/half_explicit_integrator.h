@@ -12,6 +12,22 @@
 namespace pantocat
 {
 /**
+ * Rows [first, last) of the force sweep of HalfExplicitIntegrator that share
+ * their coefficients (uniform: f, D/2, the scaling of (M + dt/2 D)^-1, and
+ * K(i, i), K(i, i + o), K(i, i - o) for o = 1..3), so that the sweep reads
+ * them once instead of once per row; rows with their own coefficients (ends
+ * of the bodies, point masses and loads) form runs that are not uniform.
+ */
+struct UniformForceRun
+{
+  int first = 0, last = 0;
+  bool uniform = false;
+  int reach = 1; ///< the largest o with K(i, i +- o) != 0 in the run
+  double f = 0., d0 = 0., scale = 0., k0 = 0.;
+  double upper[3] = {0., 0., 0.}, lower[3] = {0., 0., 0.};
+};
+
+/**
  * The reversible half-explicit two-step method (39)-(41) of Sec. 5.2 for the
  * GGL-stabilised system (38), with the active-set strategy of Sec. 5.3.
  *
@@ -74,7 +90,7 @@ public:
 
   const dealii::Vector<double>& positions() const { return q; }
   const dealii::Vector<double>& velocities() const { return v; }
-  const dealii::Vector<double>& previous_velocities() const { return v_prev; }
+  const dealii::Vector<double>& previous_velocities() const { return *previous; }
 
 private:
   /// lambda_n of the compliant constraints, and their engagement in active_now.
@@ -111,6 +127,13 @@ private:
   /// the compliant forces lambda_c, in one pass over the
   /// rows where (M + dt/2 D) is diagonal but for a few coupled rows.
   void compute_forces();
+  /**
+   * After compute_forces() predicted q*, v* in its sweep: predicts them again
+   * on the rows whose a changed after the sweep (coupled rows, the rows of the
+   * constraints' forces), from the final a_n, so that q*, v* are those of
+   * compute_update()'s separate pass to the bit.
+   */
+  void refresh_prediction();
   /// f(t_n): the system's constant load, or f(t_n) in load_now if it depends on t.
   const double* load_at_time_n();
 
@@ -143,6 +166,12 @@ private:
   double t = 0.;
   unsigned long step_number = 0;
   dealii::Vector<double> q, v, v_prev, a, q_new, v_new;
+  /**
+   * v_{n-1}: v_prev after initialize(), set_previous_velocity() and load(),
+   * afterwards reported.v (v_n of the step before is both), which saves a
+   * copy of a vector per step. The integrator is not copied or moved.
+   */
+  dealii::Vector<double>* previous = &v_prev;
   dealii::Vector<double> load_now;   ///< f(t_n), only for a time-dependent load
   MassInverse smoothed_mass_inverse; ///< (M + dt/2 D)^{-1}
   MassInverse mass_inverse;          ///< M^{-1}
@@ -170,5 +199,31 @@ private:
   std::vector<bool> keep;
   std::vector<unsigned int> moving_active;
   DynamicState reported;
+  /**
+   * A bordered multiplier system (solve_bordered()): kept from step to step,
+   * so that a step allocates nothing.
+   */
+  struct MultiplierWorkspace
+  {
+    dealii::Vector<double> x, y, rhs, r_g, r_v;
+    std::vector<dealii::Vector<double>> B, C;
+    dealii::FullMatrix<double> D;
+    /// x, y, B, C, D zeroed for @p n_fixed fixed and @p n_moving moving unknowns.
+    void prepare(unsigned int n_fixed, unsigned int n_moving);
+  };
+  /// One per level: their sizes differ (m and 2m), so each keeps its vectors.
+  MultiplierWorkspace acceleration_workspace, position_workspace;
+  /**
+   * The runs of rows with equal coefficients for compute_forces(), built at
+   * its first call after a change of dt; empty when they would not pay off
+   * (many short runs) or the load depends on t.
+   */
+  void build_uniform_runs(const double* scale);
+  std::vector<UniformForceRun> uniform_runs;
+  bool uniform_runs_built = false;
+  /// compute_forces() wrote q* and v* into q_new and v_new (the diagonal case).
+  bool predicted = false;
+  /// Rows refreshed every step by refresh_prediction(): coupled rows, fixed constraints.
+  std::vector<unsigned int> constant_refresh_rows;
 };
 } // namespace pantocat

@@ -26,16 +26,10 @@ void solve_multiplier_system(dealii::FullMatrix<double>& A,
  * x0 = A^-1 r, Z = A^-1 B, (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds
  * the columns of B (becomes Z), @p C the rows of C; on return @p r holds x
  * and @p s holds y. Costs p + 1 applications of A^-1 (none for a zero border
- * column) and a dense p x p solve.
+ * column), side by side in batches (FixedConstraintSchur), and a dense
+ * p x p solve. (The half-explicit method keeps its own allocation-free
+ * single-solve version.)
  */
-void solve_bordered(const std::function<void(dealii::Vector<double>&)>& solve_fixed,
-                    std::vector<dealii::Vector<double>>& B,
-                    const std::vector<dealii::Vector<double>>& C,
-                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
-                    dealii::Vector<double>& s, double t, const char* what);
-
-/// The same with A^-1 applied to r and the border columns in one batch
-/// (FixedConstraintSchur substitutes them side by side).
 void solve_bordered_batched(
     const std::function<void(const std::vector<dealii::Vector<double>*>&)>& solve_fixed,
     std::vector<dealii::Vector<double>>& B, const std::vector<dealii::Vector<double>>& C,
