@@ -385,8 +385,10 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     }
     y(e) = -value(base_levels[eq.constraint], eq);
   }
-  solve_bordered_batched([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, x.t,
-                         "BDF step");
+  dealii::Vector<double> rhs;
+  std::vector<dealii::Vector<double>*> batch;
+  solve_bordered([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, rhs, batch,
+                 x.t, "BDF step");
 
   // The multipliers, and
   //   q = base + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,

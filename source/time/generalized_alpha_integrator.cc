@@ -243,8 +243,10 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     if (system.constraints[i]->is_compliant())
       D(c, c) += 1. / system.constraints[i]->compliance().stiffness;
   }
-  solve_bordered_batched([&](const auto& xs) { fixed_S.solve(xs); }, Bc, Cr, D, x, y,
-                         current.t + h, "generalized-alpha step");
+  dealii::Vector<double> rhs;
+  std::vector<dealii::Vector<double>*> batch;
+  solve_bordered([&](const auto& xs) { fixed_S.solve(xs); }, Bc, Cr, D, x, y, rhs, batch,
+                 current.t + h, "generalized-alpha step");
   std::fill(lambda.begin(), lambda.end(), 0.);
   for (unsigned int k = 0; k < mF; ++k)
     lambda[S.fixed[k]] = factors[k] = keep[k] ? x(k) : 0.;
@@ -297,8 +299,10 @@ void GeneralizedAlphaIntegrator::project_velocities(
     y(c) = -rows[moving_in[c]].velocity_residual(q, v);
   }
   const std::vector<dealii::Vector<double>> Cr(Bc);
-  solve_bordered_batched([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, t1,
-                         "velocity projection");
+  dealii::Vector<double> rhs;
+  std::vector<dealii::Vector<double>*> batch;
+  solve_bordered([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, rhs, batch,
+                 t1, "velocity projection");
   std::vector<double> eta(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])

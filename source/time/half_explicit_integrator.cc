@@ -466,50 +466,6 @@ void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
   }
 }
 
-namespace
-{
-/**
- * Solves the bordered system [A B; C D] [x; y] = [r; s] by block elimination,
- * with A^-1 applied in place by @p solve_fixed: x0 = A^-1 r, Z = A^-1 B,
- * (D - C Z) y = s - C x0, x = x0 - Z y. @p B holds the columns of B (becomes
- * Z), @p C the rows of C; on return @p r holds x and @p s holds y. @p rhs
- * is a workspace.
- */
-template <typename Solve>
-void solve_bordered(const Solve& solve_fixed, std::vector<dealii::Vector<double>>& B,
-                    const std::vector<dealii::Vector<double>>& C,
-                    dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
-                    dealii::Vector<double>& s, dealii::Vector<double>& rhs,
-                    const double t, const char* what)
-{
-  const bool has_fixed = r.size() > 0;
-  if (has_fixed)
-    solve_fixed(r);
-  const unsigned int p = s.size();
-  if (p == 0)
-    return;
-  rhs = s;
-  if (has_fixed)
-  {
-    // A border column that no fixed row sees (an FDM contact away from every
-    // dropper node) needs no solve: A^-1 0 = 0.
-    for (auto& b : B)
-      if (b.linfty_norm() != 0.)
-        solve_fixed(b);
-    for (unsigned int k = 0; k < p; ++k)
-    {
-      rhs(k) -= C[k] * r;
-      for (unsigned int l = 0; l < p; ++l)
-        D(k, l) -= C[k] * B[l];
-    }
-  }
-  solve_multiplier_system(D, rhs, s, t, what);
-  if (has_fixed)
-    for (unsigned int l = 0; l < p; ++l)
-      r.add(-s(l), B[l]);
-}
-} // namespace
-
 void HalfExplicitIntegrator::MultiplierWorkspace::prepare(const unsigned int n_fixed,
                                                           const unsigned int n_moving)
 {
@@ -609,8 +565,14 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
   for (unsigned int c = 0; c < p; ++c)
     C[c] = B[c];
-  solve_bordered([&](dealii::Vector<double>& r) { fixed_smoothed.solve(r); }, B, C, D, x,
-                 y, acceleration_workspace.rhs, t, "acceleration level");
+  solve_bordered(
+      [&](const std::vector<dealii::Vector<double>*>& xs)
+      {
+        for (dealii::Vector<double>* v : xs)
+          fixed_smoothed.solve(*v);
+      },
+      B, C, D, x, y, acceleration_workspace.rhs, acceleration_workspace.batch, t,
+      "acceleration level");
   // a += (M + dt/2 D)^-1 G^T lambda: the fixed rows' truncated columns.
   factors.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
@@ -817,7 +779,7 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
     r_g.reinit(mF);
     r_v.reinit(mF);
   }
-  const auto solve_fixed = [&](dealii::Vector<double>& r)
+  const auto solve_one = [&](dealii::Vector<double>& r)
   {
     for (unsigned int k = 0; k < mF; ++k)
     {
@@ -833,8 +795,14 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       r(mF + k) = r_g(k) / h - h * eta;
     }
   };
-  solve_bordered(solve_fixed, B, C, D, x, y, position_workspace.rhs, t + dt,
-                 "position/velocity level");
+  solve_bordered(
+      [&](const std::vector<dealii::Vector<double>*>& xs)
+      {
+        for (dealii::Vector<double>* v : xs)
+          solve_one(*v);
+      },
+      B, C, D, x, y, position_workspace.rhs, position_workspace.batch, t + dt,
+      "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
   // the fixed rows' truncated columns M^-1 G^T (their G_t = 0).

@@ -207,6 +207,7 @@ private:
   {
     dealii::Vector<double> x, y, rhs, r_g, r_v;
     std::vector<dealii::Vector<double>> B, C;
+    std::vector<dealii::Vector<double>*> batch;
     dealii::FullMatrix<double> D;
     /// x, y, B, C, D zeroed for @p n_fixed fixed and @p n_moving moving unknowns.
     void prepare(unsigned int n_fixed, unsigned int n_moving);
