@@ -143,4 +143,9 @@ void clamp_compliant_forces(const SemiDiscreteSystem& system, std::vector<double
     if (system.constraints[i]->is_compliant() && system.constraints[i]->is_unilateral())
       lambda[i] = std::max(lambda[i], 0.);
 }
+
+double damping_ratio(const Constraint& c)
+{
+  return c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
+}
 } // namespace pantocat

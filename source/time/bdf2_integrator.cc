@@ -185,12 +185,6 @@ enum class Role : char
 };
 } // namespace
 
-double Bdf2Integrator::damping_ratio(const unsigned int i) const
-{
-  const Constraint& c = *system.constraints[i];
-  return c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
-}
-
 DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                                            const dealii::Vector<double>& rho_v,
                                            const double t1,
@@ -319,7 +313,11 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
                        kind == eta ? GY : 0.);
   };
   const auto value = [&](const Levels& L, const Slot& e)
-  { return e.kind == force_law ? L[0] + damping_ratio(e.constraint) * L[1] : L[e.kind]; };
+  {
+    return e.kind == force_law
+               ? L[0] + damping_ratio(*system.constraints[e.constraint]) * L[1]
+               : L[e.kind];
+  };
   // The fixed rows in the block's equation slots (GglFixedBlock).
   const auto fixed_slots =
       [&](const unsigned int k, const Levels& L, dealii::Vector<double>& v)

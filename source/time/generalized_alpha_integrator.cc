@@ -60,12 +60,6 @@ void GeneralizedAlphaIntegrator::compute_moving_columns(const unsigned int c,
   }
 }
 
-double GeneralizedAlphaIntegrator::damping_ratio(const unsigned int i) const
-{
-  const Constraint& c = *system.constraints[i];
-  return c.is_compliant() ? c.compliance().damping / c.compliance().stiffness : 0.;
-}
-
 void GeneralizedAlphaIntegrator::initialize_fixed(
     const std::vector<ConstraintState>& rows)
 {
@@ -84,7 +78,7 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
     G.push_back(&rows[i].G);
     const Constraint& c = *system.constraints[i];
     compliance.push_back(
-        c.is_compliant() ? 1. / (c.compliance().stiffness * (1. + damping_ratio(i) * c_v))
+        c.is_compliant() ? 1. / (c.compliance().stiffness * (1. + damping_ratio(c) * c_v))
                          : 0.);
   }
   fixed_S.initialize(G, S.inverse, system.n_dofs(),
@@ -212,7 +206,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     if (keep[k])
     {
       const unsigned int i = S.fixed[k];
-      const double d = damping_ratio(i);
+      const double d = damping_ratio(*system.constraints[i]);
       x(k) = -(base_gap[i] + d * base_rate[i]) / (1. + d * c_v);
     }
   std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF)),
@@ -222,7 +216,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
   {
     const unsigned int i = moving_in[c];
     const InterleavedColumns& X = S.S_columns[S.position[i]];
-    const double d = damping_ratio(i);
+    const double d = damping_ratio(*system.constraints[i]);
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
     // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric).
     for (unsigned int k = 0; k < mF; ++k)
@@ -236,7 +230,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     for (unsigned int r = 0; r < p; ++r)
     {
       const unsigned int j = moving_in[r];
-      const double d_r = damping_ratio(j);
+      const double d_r = damping_ratio(*system.constraints[j]);
       D(r, c) = (1. + d_r * c_v) * X.dot(rows[j].G, lambda_column) +
                 d_r * X.dot(rows[j].G_t, lambda_column);
     }

@@ -1,3 +1,4 @@
+#include <pantocat/time/active_set.h>
 #include <pantocat/time/ggl_fixed_block.h>
 
 #include <algorithm>
@@ -16,12 +17,11 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   ratio.assign(m, 0.);
   std::vector<double> compliance(m, 0.);
   for (unsigned int k = 0; k < m; ++k)
+  {
+    ratio[k] = pantocat::damping_ratio(*constraints[k]);
     if (constraints[k]->is_compliant())
-    {
-      const Compliance& law = constraints[k]->compliance();
-      ratio[k] = law.damping / law.stiffness;
-      compliance[k] = 1. / (law.stiffness * (1. + ratio[k] * c));
-    }
+      compliance[k] = 1. / (constraints[k]->compliance().stiffness * (1. + ratio[k] * c));
+  }
   P.initialize(G, FixedConstraintSchur::column_solver(S, true), n_dofs,
                "matrix G S^-1 G^T + C of the fixed constraints (BDF)", compliance);
   N.initialize(G, FixedConstraintSchur::column_solver(M, true), n_dofs,

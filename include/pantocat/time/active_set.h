@@ -97,6 +97,9 @@ private:
   std::vector<std::vector<Status>> visited;
 };
 
+/// d = c/k of a compliant constraint (its law divided by k), 0 for a rigid one.
+double damping_ratio(const Constraint& constraint);
+
 /**
  * Sets the forces of the compliant unilateral constraints in @p lambda to
  * max(0, lambda): an engaged spring's force solved from its law is positive up

@@ -94,8 +94,6 @@ private:
   void solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                    const dealii::Vector<double>& rho_q,
                    const dealii::Vector<double>& rho_v, DynamicState& x);
-  /// d = c_damping / k of a compliant constraint, 0 for a rigid one.
-  double damping_ratio(unsigned int i) const;
 
   double dt;
   LinearSolverType linear_solver;

@@ -94,9 +94,8 @@ public:
 
   /// y += sum_k factors[k] A^-1 G_k^T (the truncated columns, or one solve).
   void add_columns(const std::vector<double>& factors, dealii::Vector<double>& y) const;
-  /// True if add_columns() uses stored columns (false: one solve with A).
-  bool keeps_columns() const { return !columns.empty() || n == 0; }
-  /// The truncated columns A^-1 G_k^T (empty unless keeps_columns()).
+  /// The truncated columns A^-1 G_k^T (empty if add_columns() solves instead,
+  /// unless ColumnSolver::keep_columns).
   const std::vector<SparseRow>& truncated_columns() const { return columns; }
   /// out = (G_F A^-1 G_F^T) in over all constraints (no selection, no compliance).
   void vmult(dealii::Vector<double>& out, const dealii::Vector<double>& in) const;

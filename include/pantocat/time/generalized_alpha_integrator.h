@@ -93,8 +93,6 @@ private:
   void compute_moving_columns(unsigned int c, const ConstraintState& r);
   /// The Schur complements and truncated columns of the fixed constraints, once.
   void initialize_fixed(const std::vector<ConstraintState>& rows);
-  /// d = c/k of a compliant constraint (its law divided by k), 0 for a rigid one.
-  double damping_ratio(unsigned int i) const;
   /**
    * The multipliers of the active rigid and the engaged compliant
    * constraints for the current trial set: g = 0, respectively

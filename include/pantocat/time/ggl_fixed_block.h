@@ -60,8 +60,6 @@ public:
 
   /// The constraints with force (@p force) and the engaged elastic ones (@p engaged).
   void select(const std::vector<bool>& force, const std::vector<bool>& engaged);
-  bool in_force(unsigned int k) const { return force_set[k]; }
-  bool is_engaged(unsigned int k) const { return engaged_set[k]; }
   /// d = c_damping / k of constraint k (0 if rigid).
   double damping_ratio(unsigned int k) const { return ratio[k]; }
 

@@ -27,7 +27,6 @@ public:
   /// Stores @p columns (vectors of @p n_dofs entries).
   void initialize(const std::vector<SparseRow>& columns, unsigned int n_dofs);
 
-  unsigned int n_columns() const { return m; }
   std::size_t n_entries() const { return value.size(); }
 
   /// out[l] = g . X_l for every column l (out is resized to m).
