@@ -5,6 +5,7 @@
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/run_statistics.h>
 
 #include <support/case_files.h>
 
@@ -43,6 +44,31 @@ bool run_completes(const Case& c)
   }
 }
 
+/**
+ * True if the run is destroyed: stopped by a guard, or the contact lost for
+ * more than half of the time points. Since impacts are impulses (issue 17),
+ * the instability of the moving contact may end in a contact that chatters
+ * (each impact takes energy out) instead of a blow-up: at 32 m/s the contact
+ * is never lost below the limit.
+ */
+bool run_is_destroyed(const Case& c)
+{
+  CaseRunner runner(c);
+  RunStatistics stats;
+  try
+  {
+    runner.run({&stats});
+  }
+  catch (const SimulationError&)
+  {
+    return true;
+  }
+  double lost = 0.;
+  for (const auto& [t0, t1] : stats.contact_loss_intervals())
+    lost += t1 - t0;
+  return lost > 0.5 * c.end_time();
+}
+
 struct Limit
 {
   double unconstrained = 0.; ///< 2/omega_max
@@ -61,7 +87,8 @@ Limit compute_limit(const unsigned int n)
 } // namespace
 
 // The computed critical step against the run: 3 % below it the run completes,
-// 3 % above the smallest unstable step found it is stopped by a guard (so the
+// 3 % above the smallest unstable step found it is stopped by a guard or its
+// contact chatters for more than half of the run (so the
 // limit predicts the measured blow-up threshold to within 3 %, bisection 1 %);
 // and the critical step lies where doc/stability.md measured the threshold
 // (N+1 = 250: 0.72 runs, 0.76 blows up; N+1 = 500: 0.89 runs, 0.90 blows up).
@@ -73,7 +100,7 @@ TEST(StepLimit, MovingContactLimitPredictsTheBlowUpOnN250)
   EXPECT_LE(l.moving.critical / l.unconstrained, 0.76);
   EXPECT_GT(l.moving.growth_unstable, 1. + StepLimitOptions().growth_tolerance);
   EXPECT_TRUE(run_completes(benchmark_32(250, 0.97 * l.moving.critical)));
-  EXPECT_FALSE(run_completes(benchmark_32(250, 1.03 * l.moving.unstable)));
+  EXPECT_TRUE(run_is_destroyed(benchmark_32(250, 1.03 * l.moving.unstable)));
 }
 
 TEST(StepLimit, MovingContactLimitPredictsTheBlowUpOnN500)
@@ -83,7 +110,7 @@ TEST(StepLimit, MovingContactLimitPredictsTheBlowUpOnN500)
   EXPECT_GE(l.moving.critical / l.unconstrained, 0.87);
   EXPECT_LE(l.moving.critical / l.unconstrained, 0.91);
   EXPECT_TRUE(run_completes(benchmark_32(500, 0.97 * l.moving.critical)));
-  EXPECT_FALSE(run_completes(benchmark_32(500, 1.03 * l.moving.unstable)));
+  EXPECT_TRUE(run_is_destroyed(benchmark_32(500, 1.03 * l.moving.unstable)));
   // The paper's step (Sec. 6) is allowed with the margin.
   EXPECT_LT(5e-5, l.moving.allowed);
 }

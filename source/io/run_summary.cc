@@ -56,7 +56,7 @@ std::vector<ConstraintEvent> run_events(const RunRecord& r)
   std::vector<ConstraintEvent> list;
   for (const SwitchEvent& e : r.result.integrator.localised_events)
     list.push_back({e.t, layout.constraint_names[e.constraint],
-                    event_kind(layout, e.constraint, e.closes)});
+                    event_kind(layout, e.constraint, e.closes), e.impulse});
   return list;
 }
 
@@ -66,12 +66,27 @@ void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
   json.begin_array("events");
   for (const ConstraintEvent& e : events)
     if (only_constraint.empty() || e.constraint == only_constraint)
+    {
       json.begin_object()
           .value("t", e.t)
           .value("constraint", e.constraint)
-          .value("kind", e.kind)
-          .end_object();
+          .value("kind", e.kind);
+      if (e.kind == "contact_return" || e.kind == "dropper_taut")
+        json.value("impulse", e.impulse); // [N s], inelastic (Sec. 5.3)
+      json.end_object();
+    }
   json.end_array();
+}
+
+/// Impacts (inelastic, Sec. 5.3): count, summed and largest impulse [N s].
+void write_impulses(JsonWriter& json, const std::string& name,
+                    const RunStatistics::ImpulseStatistics& s)
+{
+  json.begin_object(name)
+      .value("count", s.count)
+      .value("total_impulse", s.total)
+      .value("max_impulse", s.max)
+      .end_object();
 }
 
 void write_pantographs(JsonWriter& json, const RunRecord& r,
@@ -96,6 +111,7 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
         write_statistics(json, r.contacts[k]->result(),
                          slack_in_window(r.statistics, r.contacts[k]->result()));
       json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
+      write_impulses(json, "impacts", r.statistics.impulses(p.contact));
       write_events(json, events, layout.constraint_names[p.contact]);
     }
     json.end_object();
@@ -160,6 +176,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   write_slack_events(json, "dropper_slack_events", stats.dropper_slack_events());
   if (r.runner.layout().has_contact())
     json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+  write_impulses(json, "dropper_impacts", stats.dropper_impulses());
   json.value("max_droppers_slack_at_once",
              static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
   // Events: located in time by the integrator (IDA's root finding), or at

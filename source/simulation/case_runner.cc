@@ -332,6 +332,7 @@ void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
     p.x_p.push_back(pantograph.motion.position(s.t));
   p.lambda = s.lambda;
   p.active = s.active;
+  p.impulse = s.impulse;
   const unsigned int m = sys.n_constraints();
   p.gap.resize(m);
   p.position_residual = p.velocity_residual = 0.;
@@ -428,8 +429,10 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
   for (unsigned long n = first_step; n <= n_steps; ++n)
   {
     integrator->advance();
-    check_bounded(integrator->latest(), n, data.catenary.length());
+    // After the outputs, like the guards: the time series ends with the
+    // time point that failed.
     notify(integrator->latest());
+    check_bounded(integrator->latest(), n, data.catenary.length());
     if (n == n_steps)
       break;
     if (checkpoints.writer && checkpoints.interval > 0 && n % checkpoints.interval == 0)

@@ -19,7 +19,8 @@ void EventLog::observe(const TimePoint& p)
         const bool contact = layout.contact_owner(i) != nullptr;
         const char* kind = contact ? (p.active[i] ? "contact_return" : "contact_loss")
                                    : (p.active[i] ? "dropper_taut" : "dropper_slack");
-        list.push_back({p.t, layout.constraint_names[i], kind});
+        const double impulse = p.active[i] && !p.impulse.empty() ? p.impulse[i] : 0.;
+        list.push_back({p.t, layout.constraint_names[i], kind, impulse});
       }
   previous = p.active;
 }
@@ -28,7 +29,7 @@ void EventLog::save(CheckpointOut& archive) const
 {
   archive << previous << static_cast<unsigned long>(list.size());
   for (const ConstraintEvent& e : list)
-    archive << e.t << e.constraint << e.kind;
+    archive << e.t << e.constraint << e.kind << e.impulse;
 }
 
 void EventLog::resume(const SimulationLayout& l, CheckpointIn& archive)
@@ -41,7 +42,7 @@ void EventLog::resume(const SimulationLayout& l, CheckpointIn& archive)
   for (unsigned long k = 0; k < size; ++k)
   {
     ConstraintEvent e;
-    archive >> e.t >> e.constraint >> e.kind;
+    archive >> e.t >> e.constraint >> e.kind >> e.impulse;
     list.push_back(std::move(e));
   }
 }

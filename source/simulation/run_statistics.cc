@@ -37,6 +37,19 @@ void RunStatistics::start(const SimulationLayout& l)
   forces.assign(l.pantographs.size(), {});
   intervals.assign(l.constraint_names.size(), {});
   open_since.assign(l.constraint_names.size(), std::nan(""));
+  impacts.assign(l.constraint_names.size(), {});
+}
+
+RunStatistics::ImpulseStatistics RunStatistics::dropper_impulses() const
+{
+  ImpulseStatistics sum;
+  for (const unsigned int i : layout.dropper_indices)
+  {
+    sum.count += impacts[i].count;
+    sum.total += impacts[i].total;
+    sum.max = std::max(sum.max, impacts[i].max);
+  }
+  return sum;
 }
 
 void RunStatistics::observe(const TimePoint& p)
@@ -50,6 +63,18 @@ void RunStatistics::observe(const TimePoint& p)
   for (const unsigned int i : layout.dropper_indices)
     slack += p.active[i] ? 0 : 1;
   max_slack = std::max(max_slack, slack);
+  // An impact of constraint i: it closed at this time point. The impulses
+  // of the constraints that held already (their share of a neighbour's
+  // impact) join the total only.
+  for (unsigned int i = 0; i < p.impulse.size(); ++i)
+  {
+    impacts[i].total += p.impulse[i];
+    if (p.active[i] && !std::isnan(open_since[i]))
+    {
+      ++impacts[i].count;
+      impacts[i].max = std::max(impacts[i].max, p.impulse[i]);
+    }
+  }
   for (unsigned int i = 0; i < p.active.size(); ++i)
   {
     const bool open = !std::isnan(open_since[i]);
@@ -114,6 +139,8 @@ void RunStatistics::save(CheckpointOut& archive) const
   for (const ForceStatistics& f : forces)
     archive << f.max << f.min << f.mean << f.m2 << f.count;
   archive << max_pos << max_vel << last_t << intervals << open_since << max_slack;
+  for (const ImpulseStatistics& s : impacts)
+    archive << s.count << s.total << s.max;
 }
 
 void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
@@ -123,5 +150,8 @@ void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
   for (ForceStatistics& f : forces)
     archive >> f.max >> f.min >> f.mean >> f.m2 >> f.count;
   archive >> max_pos >> max_vel >> last_t >> intervals >> open_since >> max_slack;
+  impacts.assign(l.constraint_names.size(), {});
+  for (ImpulseStatistics& s : impacts)
+    archive >> s.count >> s.total >> s.max;
 }
 } // namespace pantocat

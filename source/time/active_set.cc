@@ -8,8 +8,10 @@ namespace pantocat
 {
 ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
                                        const unsigned int max_iterations,
+                                       const ClosingConstraint closing,
                                        const bool allow_touching)
-    : system(system), max_iterations(max_iterations), allow_touching(allow_touching)
+    : system(system), max_iterations(max_iterations), closing(closing),
+      allow_touching(allow_touching)
 {
 }
 
@@ -39,7 +41,7 @@ void ActiveSetIteration::update_indices()
     holds[i] = current[i] != Status::inactive;
     if (current[i] == Status::engaged)
       engaged.push_back(i);
-    else if (holds[i])
+    else if (holds[i] && current[i] != Status::impacting)
       indices.push_back(i);
     if (current[i] == Status::active)
       force.push_back(i);
@@ -55,9 +57,10 @@ std::string ActiveSetIteration::describe(const std::vector<Status>& set) const
     if (set[i] != Status::inactive)
     {
       s << (first ? "" : ", ") << system.constraints[i]->name()
-        << (set[i] == Status::touching  ? " (touching)"
-            : set[i] == Status::engaged ? " (engaged spring)"
-                                        : "");
+        << (set[i] == Status::touching    ? " (touching)"
+            : set[i] == Status::engaged   ? " (engaged spring)"
+            : set[i] == Status::impacting ? " (impact)"
+                                          : "");
       first = false;
     }
   s << '}';
@@ -96,7 +99,12 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
     {
       // Released in this step for a negative force, yet penetrating without
       // it: touching. Otherwise it closes (an impact).
-      next[i] = allow_touching && released[i] ? Status::touching : Status::active;
+      if (!allow_touching)
+        next[i] = Status::active; // the paper's iteration
+      else if (released[i] || closing == ClosingConstraint::touching)
+        next[i] = Status::touching;
+      else
+        next[i] = Status::impacting;
       changed = true;
     }
     else if (current[i] == Status::active && at_start[i] && lambda[i] < 0.)
@@ -135,6 +143,23 @@ unsigned int ActiveSetIteration::changes_in_step() const
   for (unsigned int i = 0; i < holds.size(); ++i)
     n += holds[i] != at_start[i];
   return n;
+}
+
+bool ActiveSetIteration::impact_in_step() const
+{
+  for (unsigned int i = 0; i < holds.size(); ++i)
+    if (holds[i] && !at_start[i] && system.constraints[i]->is_rigid_unilateral())
+      return true;
+  return false;
+}
+
+std::vector<unsigned int> ActiveSetIteration::holding_indices() const
+{
+  std::vector<unsigned int> h;
+  for (unsigned int i = 0; i < current.size(); ++i)
+    if (holds[i] && current[i] != Status::engaged)
+      h.push_back(i);
+  return h;
 }
 
 void clamp_compliant_forces(const SemiDiscreteSystem& system, std::vector<double>& lambda)

@@ -157,7 +157,7 @@ Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double ti
                                const LinearSolverType linear_solver)
     : TimeIntegrator(system), dt(time_step), linear_solver(linear_solver),
       damping_over_mass(system), operators(system), at_next(system),
-      active_set(system, max_iterations)
+      active_set(system, max_iterations), impacts(system, mass_inverse)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
@@ -243,8 +243,35 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();
   clamp_compliant_forces(system, x.lambda);
+  // A constraint that closed in the step (taken without it): the impact at
+  // t_{n+1}, by projection; P is its impulse.
+  if (active_set.impact_in_step())
+  {
+    ImpactProjection::Result r =
+        impacts.project(rows, active_set.holding_indices(), t1, x.lambda, dt, x.q, x.v);
+    x.impulse.swap(r.impulse);
+    for (const unsigned int i : r.separated)
+      x.active[i] = false, x.lambda[i] = 0.;
+  }
   return x;
 }
+
+namespace
+{
+/// a + b entry by entry; an empty vector counts as zeros.
+std::vector<double> combined_impulses(const std::vector<double>& a, const double fa,
+                                      const std::vector<double>& b, const double fb)
+{
+  if (a.empty() && b.empty())
+    return {};
+  std::vector<double> sum(std::max(a.size(), b.size()), 0.);
+  for (unsigned int i = 0; i < a.size(); ++i)
+    sum[i] += fa * a[i];
+  for (unsigned int i = 0; i < b.size(); ++i)
+    sum[i] += fb * b[i];
+  return sum;
+}
+} // namespace
 
 void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                                  const dealii::Vector<double>& rho_q,
@@ -404,6 +431,7 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   for (unsigned int u = 0; u < p; ++u)
     if (unknowns[u].kind == lambda)
       x.lambda[unknowns[u].constraint] = y(u);
+
   x.q.reinit(n, true);
   x.v.reinit(n);
   x.a.reinit(n);
@@ -439,16 +467,24 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
 void Bdf2Integrator::initialize(const DynamicState& initial)
 {
   current = initial;
+  current.impulse.clear();
   previous = DynamicState();
   step_number = 0;
+  restart = false;
 }
 
 void Bdf2Integrator::richardson_start()
 {
   // Backward Euler with dt, and twice with dt/2; extrapolate (2nd order), Sec. 5.2.
   const DynamicState x0 = current;
-  Stage full(system, mass_inverse, damping_over_mass, 1. / dt, linear_solver),
-      half(system, mass_inverse, damping_over_mass, 2. / dt, linear_solver);
+  if (!start_full) // kept: a restart after an impact uses them again
+  {
+    start_full = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1. / dt,
+                                         linear_solver);
+    start_half = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 2. / dt,
+                                         linear_solver);
+  }
+  Stage &full = *start_full, &half = *start_half;
   dealii::Vector<double> rho_q(x0.q), rho_v(x0.v);
   rho_q *= 1. / dt;
   rho_v *= 1. / dt;
@@ -463,7 +499,9 @@ void Bdf2Integrator::richardson_start()
   rho_q *= 2. / dt;
   rho_v *= 2. / dt;
   DynamicState fine = implicit_step(half, rho_q, rho_v, x0.t + dt, mid.active);
-  if (fine.active == coarse.active)
+  // The impulses of both half steps.
+  fine.impulse = combined_impulses(mid.impulse, 1., fine.impulse, 1.);
+  if (fine.active == coarse.active && mid.impulse.empty() == coarse.impulse.empty())
   {
     fine.q.sadd(2., -1., coarse.q);
     fine.v.sadd(2., -1., coarse.v);
@@ -471,15 +509,17 @@ void Bdf2Integrator::richardson_start()
     for (unsigned int i = 0; i < fine.lambda.size(); ++i)
       fine.lambda[i] = 2. * fine.lambda[i] - coarse.lambda[i];
     clamp_compliant_forces(system, fine.lambda);
+    fine.impulse = combined_impulses(fine.impulse, 2., coarse.impulse, -1.);
   }
-  // else: the active set changed inside the first step; keep the dt/2 result.
+  // else: the active set changed inside the first step, or an impact falls in
+  // one half and not in the other; keep the dt/2 result.
   previous = x0;
   current = std::move(fine);
 }
 
 void Bdf2Integrator::advance()
 {
-  if (step_number == 0)
+  if (step_number == 0 || restart)
     richardson_start();
   else
   {
@@ -495,19 +535,22 @@ void Bdf2Integrator::advance()
     previous = std::move(current);
     current = std::move(next);
   }
+  // After an impact the BDF-2 history (x_n, x_{n-1}) spans the jump of the
+  // velocities: start afresh from the state after it (Sec. 5.2's start).
+  restart = !current.impulse.empty();
   ++step_number;
   ++stats.steps;
 }
 
 void Bdf2Integrator::save(CheckpointOut& archive) const
 {
-  archive << step_number << previous << current;
+  archive << step_number << previous << current << restart;
   save_statistics(archive);
 }
 
 void Bdf2Integrator::load(CheckpointIn& archive)
 {
-  archive >> step_number >> previous >> current;
+  archive >> step_number >> previous >> current >> restart;
   load_statistics(archive);
   check_loaded(previous, "x_{n-1}");
   check_loaded(current, "x_n");

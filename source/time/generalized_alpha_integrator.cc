@@ -28,7 +28,9 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
       c_v(k.gamma / (k.beta * h)),
       S(system, c_v, c_q, "generalized-alpha iteration matrix K + c_v D + c_q M",
         linear_solver),
-      operators(system), at_next(system), active_set(system, max_iterations, false)
+      operators(system), at_next(system),
+      active_set(system, max_iterations, ActiveSetIteration::ClosingConstraint::touching),
+      impacts(system, mass_inverse)
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
@@ -37,6 +39,7 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
 void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
 {
   current = initial;
+  current.impulse.clear();
   pseudo_acceleration = initial.a; // a_0 = a_c,0 (Arnold and Bruels)
   step_number = 0;
 }
@@ -141,10 +144,20 @@ void GeneralizedAlphaIntegrator::advance()
   x.q.reinit(n, true);
   std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(current.active);
+  bool touching = false;
   for (;;)
   {
     solve_position_level(rows, x.lambda);
     assemble_positions(x.lambda, x.q);
+    touching = active_set.force_indices().size() != active_set.active_indices().size();
+    if (touching)
+    {
+      // Touching constraints hold by the position projection alone.
+      q_newmark = x.q;
+      project(
+          rows, t1, [&](const unsigned int i) { return rows[i].position_residual(x.q); },
+          x.q, position_multipliers, "position projection");
+    }
     for (unsigned int i = 0; i < m_all; ++i)
     {
       const ConstraintState& r = rows[i];
@@ -160,8 +173,9 @@ void GeneralizedAlphaIntegrator::advance()
   x.active = active_set.active();
   clamp_compliant_forces(system, x.lambda);
 
-  // a, v, a_c from the Newmark relations.
-  dealii::Vector<double> a_next(x.q);
+  // a, v, a_c from the Newmark relations (with q before the position
+  // projection: mu corrects positions only, like the GGL multiplier of (38)).
+  dealii::Vector<double> a_next(touching ? q_newmark : x.q);
   a_next.add(-1., q_hat);
   a_next *= 1. / (h * h * k.beta);
   x.v = v_hat;
@@ -169,7 +183,24 @@ void GeneralizedAlphaIntegrator::advance()
   x.a.reinit(n, true);
   x.a.equ((1. - k.alpha_m) / (1. - k.alpha_f), a_next);
   x.a += w;
-  project_velocities(rows, t1, x.q, x.v);
+  if (active_set.impact_in_step())
+  {
+    // The impact: velocities onto dg/dt = 0 with the complementary impulses
+    // (positions hold already); the pseudo-acceleration restarts, a_{n+1} =
+    // a_c,{n+1}.
+    ImpactProjection::Result r =
+        impacts.project(rows, active_set.holding_indices(), t1, x.lambda, h, x.q, x.v);
+    x.impulse.swap(r.impulse);
+    for (const unsigned int i : r.separated)
+      x.active[i] = false, x.lambda[i] = 0.;
+    x.a = true_acceleration(x, rows);
+    a_next = x.a;
+  }
+  else
+    project(
+        rows, t1,
+        [&](const unsigned int i) { return rows[i].velocity_residual(x.q, x.v); }, x.v,
+        velocity_multipliers, "velocity projection");
   pseudo_acceleration.swap(a_next);
   current = std::move(x);
   ++step_number;
@@ -194,7 +225,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     else
       keep[S.position[i]] = true;
   };
-  for (const unsigned int i : active_set.active_indices())
+  for (const unsigned int i : active_set.force_indices()) // touching: no lambda
     select(i);
   for (const unsigned int i : active_set.engaged_indices())
     select(i);
@@ -258,12 +289,16 @@ void GeneralizedAlphaIntegrator::assemble_positions(const std::vector<double>& l
       S.S_columns[c].add_combination({{lambda[S.moving[c]], 0., 0., 0.}}, q);
 }
 
-void GeneralizedAlphaIntegrator::project_velocities(
-    const std::vector<ConstraintState>& rows, const double t1,
-    const dealii::Vector<double>& q, dealii::Vector<double>& v)
+template <typename Residual>
+void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& rows,
+                                         const double t1, Residual residual,
+                                         dealii::Vector<double>& target,
+                                         std::vector<double>& multipliers,
+                                         const char* what)
 {
-  // (G M^-1 G^T) eta = -dg/dt on the active rigid constraints, the fixed ones
-  // a sparse block, the moving ones its border; v += M^-1 G^T eta.
+  // (G M^-1 G^T) y = -residual on the rigid constraints that hold, the fixed
+  // ones a sparse block, the moving ones its border; target += M^-1 G^T y.
+  multipliers.assign(system.n_constraints(), 0.);
   const auto& A = active_set.active_indices();
   if (A.empty())
     return;
@@ -279,7 +314,7 @@ void GeneralizedAlphaIntegrator::project_velocities(
   dealii::Vector<double> x(mF), y(p);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
-      x(k) = -rows[S.fixed[k]].velocity_residual(q, v);
+      x(k) = -residual(S.fixed[k]);
   std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF));
   dealii::FullMatrix<double> D(p, p);
   for (unsigned int c = 0; c < p; ++c)
@@ -290,20 +325,39 @@ void GeneralizedAlphaIntegrator::project_velocities(
         Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = U.dot(rows[moving_in[r]].G, 0);
-    y(c) = -rows[moving_in[c]].velocity_residual(q, v);
+    y(c) = -residual(moving_in[c]);
   }
   const std::vector<dealii::Vector<double>> Cr(Bc);
   dealii::Vector<double> rhs;
   std::vector<dealii::Vector<double>*> batch;
   solve_bordered([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, rhs, batch,
-                 t1, "velocity projection");
-  std::vector<double> eta(mF, 0.);
+                 t1, what);
+  std::vector<double> fixed_part(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
-      eta[k] = x(k);
-  fixed_M.add_columns(eta, v);
+      multipliers[S.fixed[k]] = fixed_part[k] = x(k);
+  fixed_M.add_columns(fixed_part, target);
   for (unsigned int c = 0; c < p; ++c)
-    S.M_columns[S.position[moving_in[c]]].add_combination({{y(c), 0., 0., 0.}}, v);
+  {
+    multipliers[moving_in[c]] = y(c);
+    S.M_columns[S.position[moving_in[c]]].add_combination({{y(c), 0., 0., 0.}}, target);
+  }
+}
+
+dealii::Vector<double> GeneralizedAlphaIntegrator::true_acceleration(
+    const DynamicState& x, const std::vector<ConstraintState>& rows) const
+{
+  dealii::Vector<double> a(system.n_dofs()), Kq(system.n_dofs());
+  system.load_at(x.t, a);
+  system.stiffness.vmult(Kq, x.q);
+  a -= Kq;
+  system.damping.vmult(Kq, x.v);
+  a -= Kq;
+  for (unsigned int i = 0; i < rows.size(); ++i)
+    if (x.lambda[i] != 0.)
+      rows[i].G.add_transpose_to(a, x.lambda[i]);
+  mass_inverse.apply(a);
+  return a;
 }
 
 void GeneralizedAlphaIntegrator::save(CheckpointOut& archive) const

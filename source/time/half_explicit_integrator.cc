@@ -14,7 +14,7 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
                                                const double time_step,
                                                const unsigned int max_iterations)
     : TimeIntegrator(system), dt(time_step), at_n(system), at_half(system),
-      at_next(system), active_set(system, max_iterations)
+      at_next(system), active_set(system, max_iterations), impacts(system, mass_inverse)
 {
   const unsigned int n = system.n_dofs(), m = system.n_constraints();
   for (auto* x : {&q, &v, &v_prev, &a, &q_new, &v_new})
@@ -354,6 +354,8 @@ void HalfExplicitIntegrator::initialize(const DynamicState& initial)
   previous = &v_prev;
   active_now = initial.active;
   reported = initial;
+  reported.impulse.clear();
+  pending_impulse.clear();
   step_number = 0;
 }
 
@@ -847,6 +849,21 @@ void HalfExplicitIntegrator::advance()
   }
   reset_moving_columns();
   stats.active_set_changes += active_set.changes_in_step();
+  // A constraint that closed in this step (taken without it: it had no
+  // contact at t_n, so no force lambda_n) is an impact at t_{n+1}: q_{n+1},
+  // v_{n+1} are projected onto the holding constraints; P is the impulse.
+  std::vector<double> impulse;
+  std::vector<unsigned int> separated;
+  const bool impact = active_set.impact_in_step();
+  if (impact)
+  {
+    jump = v_new;
+    ImpactProjection::Result r = impacts.project(
+        at_next.states(), active_set.holding_indices(), t + dt, lambda, dt, q_new, v_new);
+    impulse.swap(r.impulse);
+    separated.swap(r.separated);
+    jump.sadd(-1., 1., v_new); // v+ - v- = M^-1 G^T P
+  }
 
   // Report t_n: q_n, v_n satisfy the constraints of J_n; lambda_n belongs to
   // the set J_{n+1} of this step (a constraint closing in this step already
@@ -859,12 +876,29 @@ void HalfExplicitIntegrator::advance()
   reported.v.swap(v); // v_n
   v.swap(v_new);      // v_{n+1}
   previous = &reported.v;
+  if (impact)
+  {
+    // The two-step update (40) takes v_{n+2} from v_n: with the jump added
+    // there as well, the impact is not forgotten at the next step (nor
+    // undone when the constraint separates again). A restart from the state
+    // after the impact (v_n := v_{n+1} - dt a_{n+1}) would do the same, but
+    // its one-step map amplifies the stiffest modes by up to sqrt(3) when
+    // impacts follow each other closely.
+    v_prev = reported.v;
+    v_prev += jump;
+    previous = &v_prev;
+  }
   reported.a.swap(a);
   reported.lambda = lambda;
   reported.active = active_now;
+  reported.impulse.swap(pending_impulse); // the impact at t_n, if any
+  pending_impulse.swap(impulse);
   active_now = active_set.active();
   for (const unsigned int i : compliant) // explicit: engaged at t_n, not iterated
     active_now[i] = reported.active[i];
+  if (impact)
+    for (const unsigned int i : separated) // their impulse would pull: they separate
+      active_now[i] = false;
   t += dt;
   ++step_number;
   ++stats.steps;
@@ -894,18 +928,21 @@ void HalfExplicitIntegrator::finish()
   reported.a = a;
   reported.lambda = lambda;
   reported.active = active_now;
+  reported.impulse = pending_impulse;
 }
 
 void HalfExplicitIntegrator::save(CheckpointOut& archive) const
 {
   // a_n and lambda_n are recomputed from these in the next step (39).
-  archive << t << step_number << q << v << *previous << active_now << reported;
+  archive << t << step_number << q << v << *previous << active_now << reported
+          << pending_impulse;
   save_statistics(archive);
 }
 
 void HalfExplicitIntegrator::load(CheckpointIn& archive)
 {
-  archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported;
+  archive >> t >> step_number >> q >> v >> v_prev >> active_now >> reported >>
+      pending_impulse;
   previous = &v_prev;
   load_statistics(archive);
   if (!std::isfinite(t))

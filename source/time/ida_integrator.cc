@@ -466,14 +466,28 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
   dealii::Vector<double> a(n), f(n);
   system.load_at(t, f);
   std::vector<double> lambda(m, 0.);
+  bool closes = false;
+  for (unsigned int k = 0; k < m; ++k)
+    closes =
+        closes || (set[k] && !active[k] && system.constraints[k]->is_rigid_unilateral());
+  if (closes && pending_impulse.empty())
+    pending_impulse.assign(m, 0.);
+  std::vector<double> event_impulse(m, 0.);
   for (unsigned int round = 0; round <= m; ++round)
   {
     // Positions and velocities onto g = dg/dt = 0 (an inelastic impact where a
-    // constraint closes; round-off elsewhere).
+    // constraint closes; round-off elsewhere). v += M^-1 G^T P: P is the
+    // impulse [N s].
     project(
         q, [&](unsigned int k) { return c[k].position_residual(q); }, "IDA event");
-    project(
+    const auto [held, impulse] = project(
         v, [&](unsigned int k) { return c[k].velocity_residual(q, v); }, "IDA event");
+    if (closes)
+      for (unsigned int l = 0; l < held.size(); ++l)
+      {
+        pending_impulse[held[l]] += impulse(l);
+        event_impulse[held[l]] += impulse(l);
+      }
     // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0,
     // with the forces of the compliant constraints (engaged as in the set:
     // at a root the toggled branch, the sign of the crossing) in the load.
@@ -507,7 +521,8 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
   for (unsigned int k = 0; k < m; ++k)
     if (set[k] != active[k])
     {
-      stats.localised_events.push_back({t, k, set[k]});
+      stats.localised_events.push_back(
+          {t, k, set[k], set[k] && closes ? event_impulse[k] : 0.});
       ++stats.active_set_changes;
     }
   active = set;
@@ -571,6 +586,8 @@ void IdaIntegrator::initialize(const DynamicState& initial)
   if (!ok)
     throw SimulationError("IDA: the solver could not be set up");
   current = initial;
+  current.impulse.clear();
+  pending_impulse.clear();
   stats.localised_events.clear();
   counted.clear();
 }
@@ -589,6 +606,9 @@ void IdaIntegrator::read_state(const double t)
   current.lambda.assign(y + 2 * n, y + 2 * n + m);
   clamp_compliant_forces(system, current.lambda);
   current.active = active;
+  // The impacts located since the last output point are reported with it.
+  current.impulse.swap(pending_impulse);
+  pending_impulse.clear();
 }
 
 void IdaIntegrator::advance()

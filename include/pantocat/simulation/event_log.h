@@ -14,6 +14,9 @@ struct ConstraintEvent
   double t = 0.;          ///< first reported time with the new state [s]
   std::string constraint; ///< e.g. "dropper 2", "contact"
   std::string kind; ///< dropper_slack | dropper_taut | contact_loss | contact_return
+  /// The impulse [N s] of the impact of a closing event (Sec. 5.3: inelastic);
+  /// 0 for a release.
+  double impulse = 0.;
 };
 
 /**

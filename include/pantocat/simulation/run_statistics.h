@@ -47,6 +47,23 @@ public:
     double std() const;
   };
 
+  /**
+   * Impacts of one constraint (Sec. 5.3: a closing unilateral constraint,
+   * inelastic): how often it closed, the largest impulse at a closing [N s],
+   * and the sum of all its impulses (with its share of the impacts of other
+   * constraints while it held). The force statistics hold lambda only; an
+   * impulse is a Dirac measure of the force and is counted here, never in them.
+   */
+  struct ImpulseStatistics
+  {
+    unsigned long count = 0;
+    double total = 0., max = 0.;
+  };
+  /// Of constraint @p i.
+  const ImpulseStatistics& impulses(unsigned int i) const { return impacts[i]; }
+  /// Summed over the droppers.
+  ImpulseStatistics dropper_impulses() const;
+
   /// Of pantograph @p k's contact (k in the order of SimulationLayout::pantographs).
   const ForceStatistics& contact_force(unsigned int k) const { return forces[k]; }
   /// Of the first pantograph in contact (pantograph 1 in version 1's outputs).
@@ -89,6 +106,7 @@ private:
   double last_t = 0.;
   unsigned int max_slack = 0;
   std::vector<std::vector<Interval>> intervals;
-  std::vector<double> open_since; ///< start of the open interval, or NaN
+  std::vector<double> open_since;         ///< start of the open interval, or NaN
+  std::vector<ImpulseStatistics> impacts; ///< per constraint
 };
 } // namespace pantocat

@@ -48,10 +48,13 @@ struct SimulationLayout
 struct TimePoint
 {
   double t = 0.;
-  std::vector<double> x_p;        ///< position of each pantograph [m]
-  std::vector<double> lambda;     ///< per constraint [N]
-  std::vector<double> gap;        ///< g_i(t, q) per constraint [m]
-  std::vector<bool> active;       ///< per constraint
+  std::vector<double> x_p;    ///< position of each pantograph [m]
+  std::vector<double> lambda; ///< per constraint [N]
+  std::vector<double> gap;    ///< g_i(t, q) per constraint [m]
+  std::vector<bool> active;   ///< per constraint
+  /// Impulse [N s] per constraint of an impact since the previous time point
+  /// (DynamicState::impulse); empty without one.
+  std::vector<double> impulse;
   std::vector<double> pantograph; ///< q_MBS of every pantograph body, in order
   double position_residual = 0.;  ///< max |g_i| over active constraints
   double velocity_residual = 0.;  ///< max |dg_i/dt| over active constraints

@@ -11,13 +11,18 @@ namespace pantocat
  * The active-set strategy of Sec. 5.3 for one time step t_n -> t_{n+1}.
  *
  * Start with J_{n+1} := J_n. After a trial step:
- *  - an inactive unilateral constraint with g_i(t_{n+1}, q_{n+1}) < 0 becomes
- *    active (contact or a taut dropper again: an inelastic impact, since the
- *    velocity constraint g^(I) = 0 then holds at t_{n+1});
- *  - a constraint of J_n with lambda_i < 0 becomes inactive.
- * A constraint added in this step is not released in the same step: its
- * multiplier on acceleration level may be negative at the impact, and
- * releasing it would undo the impact and cycle.
+ *  - an inactive unilateral constraint with g_i(t_{n+1}, q_{n+1}) < 0 closes
+ *    (contact or a taut dropper again). This is an inelastic impact
+ *    (restitution 0): g = dg/dt = 0 hold at t_{n+1}, and the velocities jump
+ *    by M^-1 G^T P with the impulse P that stops the approach
+ *    (DynamicState::impulse). The closing constraint carries no force at
+ *    t_{n+1}: it is held by a projection after the step or by the
+ *    integrator's position- and velocity-level multipliers
+ *    (ClosingConstraint); the next step starts with it active, and releases
+ *    it if its force pulls. So no negative force of a unilateral constraint
+ *    is ever accepted, and no impact is reported as a force;
+ *  - a constraint of J_n with lambda_i < 0 becomes inactive (it separates:
+ *    g = dg/dt = 0 at t_n and d2g/dt2 > 0 without it).
  *
  * Touching constraints. (36), (37) and g^(II) state complementarity level by
  * level. A constraint of J_n may have lambda_i < 0 when active and a negative
@@ -43,11 +48,35 @@ namespace pantocat
  * All violations are toggled together and the step is repeated; a set seen
  * before in the same step, or more than the allowed number of repetitions,
  * stops the run with a SimulationError that names time, step and constraints.
+ *
+ * Without touching (`allow_touching` false: the paper's iteration, for
+ * tests), a closing constraint is active with whatever force it gets.
  */
 class ActiveSetIteration
 {
 public:
+  /// How a constraint that closes in a step (an impact) enters it.
+  enum class ClosingConstraint : char
+  {
+    /**
+     * Not in the step: the step is taken without it (it penetrates), and the
+     * integrator projects positions and velocities at t_{n+1} onto the
+     * holding constraints (ImpactProjection): the impact located to within
+     * one step, its impulse kept apart from every force. For the GGL methods
+     * (BDF-2, half-explicit), whose multipliers eta, mu would otherwise stop
+     * a moving contact partly through G_t q, not by a jump of the velocities.
+     */
+    after_step,
+    /**
+     * Touching: held at t_{n+1} without force, by the integrator's own
+     * projections (generalized-alpha: its index-3 multiplier would carry the
+     * impact's momentum as a force of order 1/h).
+     */
+    touching
+  };
+
   ActiveSetIteration(const SemiDiscreteSystem& system, unsigned int max_iterations,
+                     ClosingConstraint closing = ClosingConstraint::after_step,
                      bool allow_touching = true);
 
   /// Begin a step from the active set J_n.
@@ -73,6 +102,13 @@ public:
   const std::vector<unsigned int>& force_indices() const { return force; }
   /// Number of constraints whose state changed in the accepted step.
   unsigned int changes_in_step() const;
+  /// True if a rigid unilateral constraint closed in the accepted step (an impact).
+  bool impact_in_step() const;
+  /**
+   * The constraints that hold at t_{n+1} for an impact projection: the
+   * active and touching ones and those closed after the step (after_step).
+   */
+  std::vector<unsigned int> holding_indices() const;
   unsigned int iterations_in_step() const { return visited.size(); }
 
 private:
@@ -81,7 +117,8 @@ private:
     inactive,
     active,
     touching,
-    engaged ///< a compliant constraint whose linear force law applies
+    engaged,  ///< a compliant constraint whose linear force law applies
+    impacting ///< closed in this step, held by the projection after it
   };
   /// The status of compliant constraint @p i at t_{n+1} from its gap and rate.
   Status compliant_status(unsigned int i, double gap, double rate) const;
@@ -90,6 +127,7 @@ private:
 
   const SemiDiscreteSystem& system;
   unsigned int max_iterations;
+  ClosingConstraint closing;
   bool allow_touching;
   std::vector<bool> at_start, holds, released;
   std::vector<Status> current;

@@ -6,6 +6,7 @@
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/ggl_fixed_block.h>
+#include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
@@ -56,6 +57,15 @@ namespace pantocat
  * engaged set starts from the previous step's and is iterated with the
  * active set (ActiveSetIteration): engaged at t_{n+1} iff g < 0 and
  * -k g - c dg/dt > 0 there.
+ *
+ * Impacts (Sec. 5.3, restitution 0). A constraint that closes in a step is
+ * left out of it; at t_{n+1} the positions and velocities are projected onto
+ * g = dg/dt = 0 of the holding constraints (ImpactProjection), which gives
+ * the impulse [N s] (DynamicState::impulse). Held by the GGL multipliers
+ * instead, a closing moving contact (G_t != 0) would be stopped partly by
+ * mu through G_t q rather than by a jump of the velocities. Since the BDF-2
+ * history would span the jump, the step after an impact is the Richardson
+ * start again, from the state after it.
  */
 class Bdf2Integrator : public TimeIntegrator
 {
@@ -102,7 +112,11 @@ private:
   PatternOperators operators;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
+  ImpactProjection impacts;
   std::unique_ptr<Stage> bdf2;
+  std::unique_ptr<Stage> start_full, start_half; ///< c = 1/dt, 2/dt of the start
+  /// The last step had an impact: the next one is a Richardson start.
+  bool restart = false;
   DynamicState previous, current;
   unsigned long step_number = 0;
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base

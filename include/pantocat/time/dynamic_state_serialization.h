@@ -5,7 +5,8 @@
 
 namespace pantocat
 {
-/// A state of (35) in a checkpoint: every bit of q, v, a, lambda and the active set.
+/// A state of (35) in a checkpoint: every bit of q, v, a, lambda, the active set
+/// and the impulses.
 template <class Archive>
 void serialize(Archive& archive, DynamicState& s, const unsigned int /*version*/)
 {
@@ -15,5 +16,6 @@ void serialize(Archive& archive, DynamicState& s, const unsigned int /*version*/
   archive& s.a;
   archive& s.lambda;
   archive& s.active;
+  archive& s.impulse;
 }
 } // namespace pantocat

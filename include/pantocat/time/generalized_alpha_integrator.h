@@ -6,6 +6,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
@@ -38,9 +39,19 @@ namespace pantocat
  * v <- v + M^-1 G^T eta, so that both residuals stay at round-off like those
  * of the GGL methods (38), and a constraint that closes in a step (Sec. 5.3)
  * closes with an inelastic impact. Unilateral constraints switch by the
- * active-set strategy of Sec. 5.3, without the touching state of
- * ActiveSetIteration (index 3 has no position-level multiplier besides
- * lambda to hold a constraint without force).
+ * active-set strategy of Sec. 5.3.
+ *
+ * Impacts (Sec. 5.3, restitution 0). The index-3 multiplier lambda of a
+ * constraint closing in a step would stop its approach within the step, as a
+ * force of order 1/h that overshoots the momentum and pulls on its
+ * neighbours (the contact would open for a step at a dropper's re-tension).
+ * A closing constraint therefore touches (ActiveSetIteration): it carries no
+ * lambda; the positions are projected onto g = 0 of the holding constraints
+ * (q <- q + M^-1 G^T mu, after the Newmark relations have given v and a from
+ * q before the projection), and the velocities onto dg/dt = 0 with
+ * complementary impulses [N s] (ImpactProjection, DynamicState::impulse). The
+ * pseudo-acceleration restarts from the true acceleration after the impact,
+ * a = a_c (as at t_0).
  *
  * Compliant constraints (Constraint::is_compliant) are implicit forces at
  * t_{n+1}: with q = q0 + sum_l lambda_l S^-1 G_l^T and
@@ -103,9 +114,20 @@ private:
   /// q = q0 + S^-1 G^T lambda (truncated columns of the fixed constraints).
   void assemble_positions(const std::vector<double>& lambda,
                           dealii::Vector<double>& q) const;
-  /// v <- v + M^-1 G^T eta with dg/dt = 0 on the active rigid constraints.
-  void project_velocities(const std::vector<ConstraintState>& rows, double t1,
-                          const dealii::Vector<double>& q, dealii::Vector<double>& v);
+  /**
+   * x <- x + M^-1 G^T y with residual(i) + G_i M^-1 G^T y = 0 on the
+   * constraints that hold (active and touching): the projection of the
+   * positions (residual g) or of the velocities (residual dg/dt). Returns y
+   * per constraint (0 elsewhere) in @p multipliers.
+   */
+  template <typename Residual>
+  void project(const std::vector<ConstraintState>& rows, double t1, Residual residual,
+               dealii::Vector<double>& x, std::vector<double>& multipliers,
+               const char* what);
+  /// a_c = M^-1 (f - K q - D v + G^T lambda) at t of @p x (the restart after an impact).
+  dealii::Vector<double>
+  true_acceleration(const DynamicState& x,
+                    const std::vector<ConstraintState>& rows) const;
 
   double h;
   Coefficients k;
@@ -115,6 +137,7 @@ private:
   PatternOperators operators;
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
+  ImpactProjection impacts; ///< velocities at an impact
   DynamicState current;
   dealii::Vector<double> pseudo_acceleration;
   unsigned long step_number = 0;
@@ -127,5 +150,9 @@ private:
   std::vector<double> base_gap, base_rate;
   std::vector<bool> keep;      ///< fixed constraints in the current system
   std::vector<double> factors; ///< their multipliers (FixedConstraintSchur order)
+  /// mu of the position projection (touching constraints) and eta of the
+  /// velocity projection, per constraint.
+  std::vector<double> position_multipliers, velocity_multipliers;
+  dealii::Vector<double> q_newmark; ///< q_{n+1} before the position projection
 };
 } // namespace pantocat

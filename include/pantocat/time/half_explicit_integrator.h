@@ -3,6 +3,7 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
@@ -59,9 +60,19 @@ struct UniformForceRun
  * of K + sum k_i G_i^T G_i (largest_circular_frequency).
  *
  * The first step needs v_{-1}: v_0 - dt a_0 (one Euler step back; the method
- * stays second order). With D = 0 the map (v_{n-1}, q_n, v_n) -> (v_n,
- * q_{n+1}, v_{n+1}) is reversible: stepping with -dt from (v_{n+1}, q_{n+1},
- * v_n) returns (v_n, q_n, v_{n-1}).
+ * stays second order).
+ *
+ * Impacts (Sec. 5.3, restitution 0): the step t_n -> t_{n+1} is taken
+ * without a constraint that closes in it (it had no contact at t_n, so no
+ * force lambda_n); q_{n+1}, v_{n+1} are then projected onto g = dg/dt = 0 of
+ * the holding constraints (ImpactProjection), whose impulses [N s] are
+ * reported with t_{n+1} (DynamicState::impulse), and the jump of the
+ * velocities is added to v_n as well, which the two-step update of the next
+ * step starts from.
+ *
+ * With D = 0 the map
+ * (v_{n-1}, q_n, v_n) -> (v_n, q_{n+1}, v_{n+1}) is reversible: stepping with -dt from
+ * (v_{n+1}, q_{n+1}, v_n) returns (v_n, q_n, v_{n-1}).
  */
 class HalfExplicitIntegrator : public TimeIntegrator
 {
@@ -177,6 +188,7 @@ private:
   MassInverse mass_inverse;          ///< M^{-1}
   ConstraintEvaluator at_n, at_half, at_next;
   ActiveSetIteration active_set;
+  ImpactProjection impacts; ///< after a step in which a constraint closed
   std::vector<bool> active_now;
   std::vector<unsigned int> fixed;     ///< rigid constraints with constant rows
   std::vector<unsigned int> moving;    ///< rigid constraints whose rows move
@@ -194,6 +206,9 @@ private:
   std::vector<MovingColumns> columns;
   InterleavedColumns batch_W, batch_M; ///< workspace of compute_factorised_columns()
   std::vector<double> lambda, gaps;
+  /// The impulses of the impact at t_{n+1} (reported with t_{n+1}), or empty.
+  std::vector<double> pending_impulse;
+  dealii::Vector<double> jump;            ///< v+ - v- of an impact
   std::vector<unsigned int> compliant;    ///< indices of the compliant constraints
   std::vector<double> factors, factors_v; ///< workspace
   std::vector<bool> keep;

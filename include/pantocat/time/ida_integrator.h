@@ -40,6 +40,9 @@ enum class IdaLinearSolver
  * velocities projected onto g = dg/dt = 0 with M^-1 G^T), the multipliers
  * are recomputed on acceleration level, constraints with a negative force are
  * released (they separate), and IDA restarts from this consistent state.
+ * The multipliers of the velocity projection at a closing event are the
+ * impulses [N s] of the impact, reported with the next output point
+ * (DynamicState::impulse).
  * advance() integrates to the next output time t + dt.
  *
  * Compliant constraints (Constraint::is_compliant) are forces: F_v -= G^T
@@ -86,6 +89,8 @@ private:
   ConstraintEvaluator rows;
   std::unique_ptr<Sundials> sun;
   std::vector<bool> active;
+  /// Impulses [N s] of the impacts since the last output point (empty: none).
+  std::vector<double> pending_impulse;
   DynamicState current;
   std::vector<std::pair<std::string, long>> counted; ///< IDA's counters before restarts
 };

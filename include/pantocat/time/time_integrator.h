@@ -18,6 +18,7 @@ struct SwitchEvent
   double t = 0.;
   unsigned int constraint = 0;
   bool closes = false; ///< true: becomes active (impact); false: released
+  double impulse = 0.; ///< of the impact [N s] (closing events)
 };
 
 /// Work counters of an integrator run.
