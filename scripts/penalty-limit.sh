@@ -78,7 +78,7 @@ for which, label in ((0, f"x_p in [{window}] m"), (1, "whole run")):
         k, d = run.split("=", 1)
         f = figures(d) if os.path.exists(os.path.join(d, "summary.json")) else None
         if f is None:
-            print(f"| {k} | {reason(d)[:100]} ... |||||||")
+            print(f"| {k} | {reason(d)[:125]} ... |||||||")
             previous = None
             continue
         diff = [a - b for a, b in zip(f[which], rigid[which])]
