@@ -11,6 +11,8 @@ namespace pantocat
 namespace
 {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+/// Event times that differ by less than this [s] are the same time point.
+constexpr double rounding = 1e-12;
 
 /// Each compared constraint's events, in time order.
 std::map<unsigned int, std::vector<StudyEvent>>
@@ -35,7 +37,9 @@ double max_time_difference(const std::vector<StudyEvent>& a,
   {
     if (a[i].closes != b[i].closes)
       return nan;
-    d = std::max(d, std::abs(a[i].t - b[i].t));
+    // Below 1e-12 s a difference is the rounding of t = n dt: none.
+    const double t = std::abs(a[i].t - b[i].t);
+    d = std::max(d, t < rounding ? 0. : t);
   }
   return d;
 }

@@ -26,9 +26,10 @@ struct EventTimeDifference
  * Matches the switch events of two runs constraint by constraint, each
  * constraint's events in time order: if every constraint has the same
  * sequence of switches (closing, opening) in @p a as in @p b, the largest
- * |t_i(a) - t_i(b)| of its i-th events over all constraints; otherwise no
- * match. Matching per constraint keeps two nearly simultaneous switches of
- * different constraints from being paired crosswise when their order flips.
+ * |t_i(a) - t_i(b)| of its i-th events over all constraints (differences
+ * below 1e-12 s, the rounding of t = n dt, count as 0); otherwise no match. Matching per
+ * constraint keeps two nearly simultaneous switches of different constraints from being
+ * paired crosswise when their order flips.
  * @p only_constraint: compare that constraint's events alone (e.g. a contact's).
  */
 EventTimeDifference compare_event_times(const std::vector<StudyEvent>& a,
