@@ -337,6 +337,7 @@ TEST(ContactConvergence, EventsThatDoNotMatchAndFailedRunsGiveNoDifference)
   }
   EXPECT_EQ(n, 3u);
   EXPECT_NE(csv.str().find(",failed,"), std::string::npos);
+  EXPECT_EQ(csv.str().find("differ"), std::string::npos); // not compared: empty
 }
 
 TEST(StudyPlan, WorkPrecisionNeedsASeparateReference)

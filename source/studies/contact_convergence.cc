@@ -260,8 +260,11 @@ std::string ContactConvergence::csv_header()
 
 void ContactConvergence::write_csv(std::ostream& out) const
 {
-  const auto match = [](const std::size_t k, const EventTimeDifference& d) {
-    return k == 0 ? "" : d.match ? "agree" : "differ";
+  // Empty on the first line and next to a run that did not complete.
+  const auto done = [&](const std::size_t i)
+  { return runs_[i].status == RunOutcome::Status::completed; };
+  const auto match = [&](const std::size_t k, const EventTimeDifference& d) {
+    return k == 0 || !done(k - 1) || !done(k) ? "" : d.match ? "agree" : "differ";
   };
   for (std::size_t k = 0; k < runs_.size(); ++k)
   {
