@@ -124,6 +124,7 @@ StudyCase ProgramParameters::make_study_case() const
   StudyCase s;
   static_cast<Case&>(s) = make_case();
   s.study = study;
+  s.statistics = statistics;
   s.output.directory = output.directory;
   s.output.plots = output.plots;
   return s;

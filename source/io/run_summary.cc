@@ -3,6 +3,7 @@
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>
+#include <pantocat/simulation/run_events.h>
 #include <pantocat/time/integrator_registry.h>
 
 #include <fstream>
@@ -38,28 +39,6 @@ DropperSlackEvents slack_in_window(const RunStatistics& run,
   return run.dropper_slack_events(s.first_time, s.last_time);
 }
 
-/// Kind of a switch of constraint @p i: a dropper's or a contact's.
-std::string event_kind(const SimulationLayout& layout, const unsigned int i,
-                       const bool closes)
-{
-  if (layout.contact_owner(i) != nullptr)
-    return closes ? "contact_return" : "contact_loss";
-  return closes ? "dropper_taut" : "dropper_slack";
-}
-
-/// Every event of the run, located (IDA) or at step resolution.
-std::vector<ConstraintEvent> run_events(const RunRecord& r)
-{
-  const SimulationLayout& layout = r.runner.layout();
-  if (!r.result.integrator.events_localised)
-    return r.events.events();
-  std::vector<ConstraintEvent> list;
-  for (const SwitchEvent& e : r.result.integrator.localised_events)
-    list.push_back({e.t, layout.constraint_names[e.constraint],
-                    event_kind(layout, e.constraint, e.closes), e.impulse});
-  return list;
-}
-
 void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
                   const std::string& only_constraint = "")
 {
@@ -71,7 +50,7 @@ void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
           .value("t", e.t)
           .value("constraint", e.constraint)
           .value("kind", e.kind);
-      if (e.kind == "contact_return" || e.kind == "dropper_taut")
+      if (closes(e))
         json.value("impulse", e.impulse); // [N s], inelastic (Sec. 5.3)
       json.end_object();
     }
@@ -125,7 +104,7 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   const Case& c = r.runner.case_data();
   const SemiDiscreteSystem& system = r.runner.system();
   const RunStatistics& stats = r.statistics;
-  const auto events = run_events(r);
+  const auto events = run_events(r.runner.layout(), r.result.integrator, r.events);
   std::ostringstream out;
   JsonWriter json(out);
   json.begin_object()

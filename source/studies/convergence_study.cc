@@ -67,22 +67,30 @@ std::vector<Column> columns(const StudyParameters& s, const bool refines_space)
 
 ConvergenceStudy::ConvergenceStudy(const StudyCase& p) : parameters(p), plan_(p) {}
 
+double ConvergenceStudy::refinement_parameter(const StudyRun& run) const
+{
+  return plan_.refines_space() ? parameters.catenary.length() / run.n_intervals
+                               : run.time_step;
+}
+
 std::vector<double> ConvergenceStudy::refinement_parameters(const unsigned int m) const
 {
   std::vector<double> s;
   for (const Row& r : rows_[m])
-    s.push_back(plan_.refines_space() ? parameters.catenary.length() / r.run.n_intervals
-                                      : r.run.time_step);
+    s.push_back(refinement_parameter(r.run));
   return s;
 }
 
 void ConvergenceStudy::run()
 {
   check_study_grids(plan_.runs(), parameters);
+  const StudyParameters& s = parameters.study;
   RunRequest request;
-  request.wire_samples = parameters.study.wire_errors ? plan_.finest_n_intervals() : 0;
+  request.wire_samples = s.error_table && s.wire_errors ? plan_.finest_n_intervals() : 0;
   request.eigenfrequencies =
-      parameters.study.eigenfrequency_errors && plan_.refines_space();
+      s.error_table && s.eigenfrequency_errors && plan_.refines_space();
+  if (s.contact_statistics)
+    request.contact_statistics = parameters.statistics;
   const RunDistribution distribution;
   root = distribution.is_root();
   const std::vector<RunOutcome> outcomes = distribution.run_and_gather(
@@ -90,8 +98,34 @@ void ConvergenceStudy::run()
       { return execute_study_run(plan_.runs()[k], parameters, request); });
   if (!root)
     return;
-
   rows_.assign(plan_.n_methods(), {});
+  if (s.contact_statistics)
+    collect_contact_statistics(outcomes);
+  if (s.error_table)
+    compare_with_references(outcomes);
+}
+
+void ConvergenceStudy::collect_contact_statistics(const std::vector<RunOutcome>& outcomes)
+{
+  contact_.clear();
+  for (unsigned int m = 0; m < plan_.n_methods(); ++m)
+  {
+    std::vector<ContactConvergence::Run> runs;
+    std::vector<double> s;
+    for (unsigned int k = 0; k < plan_.n_refinements(); ++k)
+    {
+      const StudyRun& run = plan_.runs()[plan_.index(m, k)];
+      const RunOutcome& o = outcomes[plan_.index(m, k)];
+      runs.push_back(
+          {run, run.contact_law_in(parameters), o.status, o.message, o.contact});
+      s.push_back(refinement_parameter(run));
+    }
+    contact_.emplace_back(std::move(runs), std::move(s));
+  }
+}
+
+void ConvergenceStudy::compare_with_references(const std::vector<RunOutcome>& outcomes)
+{
   for (unsigned int m = 0; m < plan_.n_methods(); ++m)
   {
     const RunOutcome& ref = outcomes[plan_.reference_index(m)];
@@ -129,12 +163,21 @@ void ConvergenceStudy::write(std::ostream& out) const
     return;
   const StudyParameters& s = parameters.study;
   const std::string name = s.output_name.empty() ? "convergence" : s.output_name;
+  if (s.error_table)
+    write_errors(out, name);
+  if (s.contact_statistics)
+    write_contact_statistics(out, name);
+}
+
+void ConvergenceStudy::write_errors(std::ostream& out, const std::string& name) const
+{
+  const StudyParameters& s = parameters.study;
   const std::string dir = parameters.output.directory;
   const bool space = plan_.refines_space();
   const std::vector<Column> cols = columns(s, space);
   std::ofstream txt(dir + "/" + name + ".txt");
   std::ofstream csv(dir + "/" + name + ".csv");
-  csv << "discretisation,integrator,n_intervals,time_step";
+  csv << "discretisation,integrator,contact_law,n_intervals,time_step";
   for (const auto& c : cols)
     csv << ',' << c.csv << ',' << c.csv << "_order";
   csv << ",cpu_seconds,status\n";
@@ -215,7 +258,8 @@ void ConvergenceStudy::write(std::ostream& out) const
     {
       const Row& r = rows[k];
       csv << to_string(r.run.discretisation) << ',' << r.run.integrator << ','
-          << r.run.n_intervals << ',' << r.run.time_step;
+          << r.run.contact_law_in(parameters) << ',' << r.run.n_intervals << ','
+          << r.run.time_step;
       for (std::size_t c = 0; c < cols.size(); ++c)
       {
         const double e = value(r, cols[c].csv);
@@ -253,6 +297,53 @@ void ConvergenceStudy::write(std::ostream& out) const
       }
   }
   out << " to " << dir << '\n';
+}
+
+void ConvergenceStudy::write_contact_statistics(std::ostream& out,
+                                                const std::string& name) const
+{
+  const std::string dir = parameters.output.directory;
+  const StatisticsParameters& st = parameters.statistics;
+  std::ostringstream text;
+  const ContactConvergence::Run* smallest = nullptr;
+  for (unsigned int m = 0; m < plan_.n_methods(); ++m)
+  {
+    text << "Contact statistics of " << plan_.runs()[plan_.index(m, 0)].method()
+         << ": pantograph 1, "
+         << st.evaluation_window(parameters.catenary.support_positions()).describe()
+         << ", ";
+    if (st.low_pass_cutoff > 0.)
+      text << "low pass " << st.low_pass_cutoff << " Hz (order " << st.low_pass_order
+           << ")";
+    else
+      text << "no low pass (Statistics/Low-pass cut-off = 0: no filtered figures)";
+    text << "; min unilat.: the smallest force of any unilateral constraint at any "
+            "time point\n";
+    contact_[m].write_text(text, plan_.refines_space());
+    const ContactConvergence::Run* r = contact_[m].smallest_unilateral_force();
+    if (r && (!smallest ||
+              r->figures.min_unilateral_force < smallest->figures.min_unilateral_force))
+      smallest = r;
+  }
+  if (smallest)
+    text << "Smallest unilateral force of all runs: "
+         << smallest->figures.min_unilateral_force << " N ("
+         << smallest->figures.min_unilateral_constraint
+         << ", t = " << smallest->figures.min_unilateral_time << " s, "
+         << smallest->run.label()
+         << "): " << (smallest->figures.min_unilateral_force >= 0. ? ">= 0" : "NEGATIVE")
+         << '\n';
+  out << text.str();
+  std::ofstream txt(dir + "/" + name + "_contact.txt");
+  std::ofstream csv(dir + "/" + name + "_contact.csv");
+  txt << text.str();
+  csv << ContactConvergence::csv_header() << '\n';
+  for (const ContactConvergence& c : contact_)
+    c.write_csv(csv);
+  if (!txt || !csv)
+    throw SimulationError("cannot write " + dir + "/" + name + "_contact.txt or .csv");
+  out << "  wrote " << name << "_contact.txt, " << name << "_contact.csv to " << dir
+      << '\n';
 }
 
 void run_convergence_study(const StudyCase& parameters, std::ostream& out)

@@ -4,6 +4,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
 using dealii::Patterns::List;
@@ -30,6 +32,13 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Time integrators to study; empty: Time integration/Integrator. "
                     "Half-explicit runs with dt above 2/omega_max are skipped and "
                     "reported.");
+  prm.declare_entry("Contact laws", "",
+                    List(Selection("unilateral|bilateral|penalty"), 0),
+                    "Contact laws of the pantographs to study (each with every "
+                    "discretisation and integrator): unilateral (rigid), bilateral or "
+                    "penalty (with Scene/Contact stiffness and Scene/Contact damping, "
+                    "whatever Scene/Contact is); the law is set for every pantograph. "
+                    "Empty: Scene/Contact.");
   prm.declare_entry("Reference", "finest run", Selection("finest run|separate run"),
                     "Errors against the finest (last) refinement of each method, or "
                     "against one separate reference run (required in work "
@@ -42,11 +51,17 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "N+1 of the separate reference run.");
   prm.declare_entry("Reference time step", "1e-5", dealii::Patterns::Double(0.),
                     "dt [s] of the separate reference run.");
-  prm.declare_entry("Quantities", "lambda_p, wire, eigenfrequencies",
-                    List(Selection("lambda_p|wire|eigenfrequencies"), 1),
-                    "Convergence study: lambda_p over time (L2 and max norm, always), "
-                    "the contact wire at the final time (L2 and H1), the lowest "
-                    "eigenfrequency of each wire.");
+  prm.declare_entry(
+      "Quantities", "lambda_p, wire, eigenfrequencies",
+      List(Selection("lambda_p|wire|eigenfrequencies|contact statistics"), 1),
+      "Convergence study: the errors against the reference of lambda_p over time "
+      "(L2 and max norm; with any of lambda_p, wire, eigenfrequencies), of the "
+      "contact wire at the final time (L2 and H1) and of the lowest eigenfrequency "
+      "of each wire; contact statistics: per run pantograph 1's contact loss [%] and "
+      "its low-passed max, min and std in the window of subsection Statistics, the "
+      "smallest force of any unilateral constraint, the switch events and their "
+      "times, and the successive differences between runs with observed orders "
+      "(<name>_contact.txt, .csv; needs no reference).");
   prm.declare_entry("Target relative error", "0.01", dealii::Patterns::Double(0.),
                     "Work precision: report the cheapest run of each method whose "
                     "relative error in lambda_p (max norm, and in max lambda_p) is "
@@ -55,6 +70,21 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Base name of the tables and the plot; empty: convergence or "
                     "work_precision.");
   prm.leave_subsection();
+}
+
+void StudyParameters::parse_penalty(dealii::ParameterHandler& prm)
+{
+  penalty = {};
+  if (std::find(contact_laws.begin(), contact_laws.end(), "penalty") ==
+      contact_laws.end())
+    return;
+  prm.enter_subsection("Scene");
+  penalty = {prm.get_double("Contact stiffness"), prm.get_double("Contact damping")};
+  prm.leave_subsection();
+  require(penalty.stiffness > 0., "Scene/Contact stiffness", penalty.stiffness,
+          "must be > 0 with Study/Contact laws = penalty");
+  require(penalty.damping >= 0., "Scene/Contact damping", penalty.damping,
+          "must be >= 0");
 }
 
 void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -83,12 +113,17 @@ void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
   reference_integrator = prm.get("Reference integrator");
   reference_n_intervals = prm.get_integer("Reference number of intervals");
   reference_time_step = prm.get_double("Reference time step");
+  contact_laws = split_string_list(prm.get("Contact laws"));
   const std::string q = prm.get("Quantities");
   wire_errors = q.find("wire") != std::string::npos;
   eigenfrequency_errors = q.find("eigenfrequencies") != std::string::npos;
+  contact_statistics = q.find("contact statistics") != std::string::npos;
+  error_table =
+      q.find("lambda_p") != std::string::npos || wire_errors || eigenfrequency_errors;
   target_relative_error = prm.get_double("Target relative error");
   output_name = prm.get("Output name");
   prm.leave_subsection();
+  parse_penalty(prm);
 
   for (const double dt : time_steps)
     require(dt > 0., "Study/Time steps", dt, "every step must be > 0");

@@ -43,22 +43,32 @@ StudyPlan::StudyPlan(const StudyCase& p)
     d.n_intervals = n_intervals;
     d.check(p.catenary.length());
   };
+  // One empty entry: the case's own contact law.
+  std::vector<std::string> laws = s.contact_laws;
+  if (laws.empty())
+    laws.emplace_back();
   for (const SpaceMethod d : discretisations)
     for (const std::string& i : integrators)
-    {
-      ++n_methods_;
-      for (unsigned int k = 0; k < n_refinements_; ++k)
+      for (const std::string& law : laws)
       {
-        check_grid(d, n[k]);
-        runs_.push_back(StudyRun{d, i, n[k], dt[k], false});
+        ++n_methods_;
+        for (unsigned int k = 0; k < n_refinements_; ++k)
+        {
+          check_grid(d, n[k]);
+          runs_.push_back(StudyRun{d, i, n[k], dt[k], false, law, s.penalty});
+        }
       }
-    }
   separate = s.reference == StudyReference::separate_run;
   if (separate)
   {
     check_grid(s.reference_discretisation, s.reference_n_intervals);
-    runs_.push_back(StudyRun{s.reference_discretisation, s.reference_integrator,
-                             s.reference_n_intervals, s.reference_time_step, true});
+    runs_.push_back(StudyRun{s.reference_discretisation,
+                             s.reference_integrator,
+                             s.reference_n_intervals,
+                             s.reference_time_step,
+                             true,
+                             {},
+                             {}});
   }
   else
     require(n_refinements_ >= 2, "Study/Number of intervals",

@@ -17,7 +17,8 @@ namespace pantocat
 {
 std::string StudyRun::method() const
 {
-  return std::string(to_string(discretisation)) + " + " + integrator;
+  return std::string(to_string(discretisation)) + " + " + integrator +
+         (contact_law.empty() ? "" : ", " + contact_law + " contact");
 }
 
 std::string StudyRun::label() const
@@ -35,7 +36,19 @@ Case StudyRun::parameters(const Case& base) const
   p.time_integration.integrator = integrator;
   p.time_integration.time_step = time_step;
   p.time_integration.force_step_size = false;
+  if (!contact_law.empty())
+    for (PantographCase& pantograph : p.scene.pantographs)
+    {
+      pantograph.contact = contact_law == "bilateral" ? Constraint::Kind::bilateral
+                                                      : Constraint::Kind::unilateral;
+      pantograph.contact_compliance = contact_law == "penalty" ? penalty : Compliance{};
+    }
   return p;
+}
+
+std::string StudyRun::contact_law_in(const Case& base) const
+{
+  return contact_law.empty() ? base.scene.pantographs[0].contact_law() : contact_law;
 }
 
 const char* to_string(const RunOutcome::Status status)
@@ -48,22 +61,11 @@ const char* to_string(const RunOutcome::Status status)
 namespace
 {
 using packed::get;
+using packed::get_string;
+using packed::get_vector;
 using packed::put;
-
-void put_vector(std::vector<char>& b, const std::vector<double>& v)
-{
-  put(b, static_cast<std::uint64_t>(v.size()));
-  for (const double x : v)
-    put(b, x);
-}
-
-std::vector<double> get_vector(const std::vector<char>& b, std::size_t& pos)
-{
-  std::vector<double> v(get<std::uint64_t>(b, pos));
-  for (double& x : v)
-    x = get<double>(b, pos);
-  return v;
-}
+using packed::put_string;
+using packed::put_vector;
 
 /// Records lambda_p (the contact constraint's multiplier) at every time point.
 class ContactForceRecorder : public SimulationObserver
@@ -94,8 +96,7 @@ double cpu_seconds_since(const std::clock_t start)
 void RunOutcome::pack(std::vector<char>& b) const
 {
   put(b, static_cast<int>(status));
-  put(b, static_cast<std::uint64_t>(message.size()));
-  b.insert(b.end(), message.begin(), message.end());
+  put_string(b, message);
   put(b, cpu_seconds);
   put(b, static_cast<std::uint64_t>(steps));
   put_vector(b, t);
@@ -103,22 +104,22 @@ void RunOutcome::pack(std::vector<char>& b) const
   put_vector(b, wire);
   put(b, f_min_carrier);
   put(b, f_min_contact_wire);
+  contact.pack(b);
 }
 
 RunOutcome RunOutcome::unpack(const std::vector<char>& b, std::size_t& pos)
 {
   RunOutcome o;
   o.status = static_cast<Status>(get<int>(b, pos));
-  const auto length = get<std::uint64_t>(b, pos);
-  o.message.assign(b.data() + pos, length);
-  pos += length;
+  o.message = get_string(b, pos);
   o.cpu_seconds = get<double>(b, pos);
   o.steps = get<std::uint64_t>(b, pos);
-  o.t = get_vector(b, pos);
-  o.lambda_p = get_vector(b, pos);
-  o.wire = get_vector(b, pos);
+  o.t = get_vector<double>(b, pos);
+  o.lambda_p = get_vector<double>(b, pos);
+  o.wire = get_vector<double>(b, pos);
   o.f_min_carrier = get<double>(b, pos);
   o.f_min_contact_wire = get<double>(b, pos);
+  o.contact = ContactFigures::unpack(b, pos);
   return o;
 }
 
@@ -160,10 +161,18 @@ RunOutcome execute_study_run(const StudyRun& run, const Case& base,
     return outcome;
   }
   ContactForceRecorder recorder(outcome);
+  std::vector<SimulationObserver*> observers{&recorder};
+  std::optional<ContactFiguresRecorder> contact;
+  if (request.contact_statistics)
+  {
+    contact.emplace(runner, *request.contact_statistics);
+    for (SimulationObserver* o : contact->observers())
+      observers.push_back(o);
+  }
   CaseRunner::Result result;
   try
   {
-    result = runner.run({&recorder});
+    result = runner.run(observers);
   }
   catch (const SimulationError& e)
   {
@@ -174,6 +183,8 @@ RunOutcome execute_study_run(const StudyRun& run, const Case& base,
   }
   outcome.cpu_seconds = cpu_seconds_since(start);
   outcome.steps = result.integrator.steps;
+  if (contact)
+    outcome.contact = contact->figures(result.integrator);
 
   const double length = p.catenary.length();
   for (unsigned int j = 0; request.wire_samples > 0 && j <= request.wire_samples; ++j)

@@ -117,8 +117,7 @@ std::vector<char> SweepOutcome::pack() const
 {
   std::vector<char> b;
   put(b, static_cast<int>(status));
-  put(b, static_cast<std::uint64_t>(reason.size()));
-  b.insert(b.end(), reason.begin(), reason.end());
+  packed::put_string(b, reason);
   put(b, wall_seconds);
   put(b, cpu_seconds);
   put(b, static_cast<std::uint64_t>(steps));
@@ -141,9 +140,7 @@ SweepOutcome SweepOutcome::unpack(const std::vector<char>& b)
   std::size_t pos = 0;
   SweepOutcome o;
   o.status = static_cast<Status>(get<int>(b, pos));
-  const auto length = get<std::uint64_t>(b, pos);
-  o.reason.assign(b.data() + pos, length);
-  pos += length;
+  o.reason = packed::get_string(b, pos);
   o.wall_seconds = get<double>(b, pos);
   o.cpu_seconds = get<double>(b, pos);
   o.steps = get<std::uint64_t>(b, pos);

@@ -81,7 +81,7 @@ void WorkPrecisionStudy::write(std::ostream& out) const
   const std::string dir = parameters.output.directory;
   const double target = parameters.study.target_relative_error;
   std::ofstream csv(dir + "/" + name + ".csv");
-  csv << "discretisation,integrator,n_intervals,parameter,error_l2,error_max,"
+  csv << "discretisation,integrator,contact_law,n_intervals,parameter,error_l2,error_max,"
          "relative_error_max,relative_error_peak,cpu_seconds,steps,status\n";
   out << "Errors in lambda_p against " << plan_.runs().back().label()
       << " (max lambda_p = " << std::setprecision(6) << reference_peak << " N, "
@@ -101,7 +101,8 @@ void WorkPrecisionStudy::write(std::ostream& out) const
     {
       const Row& r = rows_[plan_.index(m, k)];
       csv << to_string(r.run.discretisation) << ',' << r.run.integrator << ','
-          << r.run.n_intervals << ',' << std::setprecision(6) << r.run.time_step;
+          << r.run.contact_law_in(parameters) << ',' << r.run.n_intervals << ','
+          << std::setprecision(6) << r.run.time_step;
       out << std::left << std::setw(22) << method << std::right << std::setw(7)
           << r.run.n_intervals << std::setw(11) << std::setprecision(3)
           << r.run.time_step;

@@ -2,7 +2,7 @@
 # same rows, same numbers (each run is computed by one rank with the same
 # arithmetic and sent bitwise), except the CPU-time column.
 #   -DEXE=... -DMPIEXEC=... -DPRM=... -DOUTDIR=dir -DTABLE=work_precision.csv
-#   -DCPU_COLUMN=n (1-based index of cpu_seconds)
+#   -DCPU_COLUMN=n (1-based index of cpu_seconds; 0: the table has none)
 cmake_minimum_required(VERSION 3.13) # list() keeps the empty CSV fields (CMP0007)
 file(REMOVE_RECURSE ${OUTDIR}-serial ${OUTDIR}-mpi)
 execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR}-serial
@@ -24,6 +24,11 @@ endif()
 
 function(read_without_cpu file result)
   file(STRINGS ${file} lines)
+  if(CPU_COLUMN EQUAL 0)
+    string(REPLACE ";" "\n" all "${lines}")
+    set(${result} "${all}\n" PARENT_SCOPE)
+    return()
+  endif()
   math(EXPR index "${CPU_COLUMN} - 1")
   set(stripped "")
   foreach(line IN LISTS lines)

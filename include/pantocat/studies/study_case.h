@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/simulation/case.h>
+#include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/studies/study_parameters.h>
 
 #include <string>
@@ -16,6 +17,8 @@ namespace pantocat
 struct StudyCase : Case
 {
   StudyParameters study;
+  /// The window and low pass of Study/Quantities = contact statistics.
+  StatisticsParameters statistics;
   struct Output
   {
     std::string directory = "output";

@@ -9,7 +9,7 @@ namespace pantocat
 {
 /**
  * The runs of a study (the Study subsection applied to the case): every
- * method (discretisation x integrator) runs every refinement (N+1_k, dt_k),
+ * method (discretisation x integrator x contact law) runs every refinement (N+1_k, dt_k),
  * coarse to fine; a separate reference run, if asked for, comes last.
  */
 class StudyPlan

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <pantocat/studies/contact_figures.h>
 #include <pantocat/studies/study_case.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,12 +17,17 @@ struct StudyRun
   unsigned int n_intervals = 500;           ///< N+1
   double time_step = 5e-5;                  ///< dt [s]
   bool reference = false;                   ///< the separate reference run
+  /// unilateral | bilateral | penalty for every pantograph; empty: the case's law.
+  std::string contact_law;
+  Compliance penalty; ///< k_c, c_c of contact_law = penalty
 
-  /// "fdm + half-explicit".
+  /// "fdm + half-explicit", "fdm + half-explicit, penalty contact" with a contact law.
   std::string method() const;
   /// "fdm + half-explicit, N+1 = 500, dt = 5e-05 s".
   std::string label() const;
-  /// The case @p base with this run's discretisation and time integration.
+  /// The contact law of pantograph 1 in @p base with this run's law applied.
+  std::string contact_law_in(const Case& base) const;
+  /// The case @p base with this run's discretisation, time integration and contact law.
   Case parameters(const Case& base) const;
 };
 
@@ -31,6 +38,8 @@ struct RunRequest
   /// (0: not at all).
   unsigned int wire_samples = 0;
   bool eigenfrequencies = false;
+  /// Measure the ContactFigures in the window and with the low pass of these statistics.
+  std::optional<StatisticsParameters> contact_statistics;
 };
 
 /// What a run of a study gives back (packable, to be gathered from MPI ranks).
@@ -49,6 +58,7 @@ struct RunOutcome
   std::vector<double> t, lambda_p; ///< every time point of the run
   std::vector<double> wire;        ///< w_w(x_j, t_e) at the requested samples [m]
   double f_min_carrier = 0., f_min_contact_wire = 0.; ///< [Hz]
+  ContactFigures contact; ///< if RunRequest::contact_statistics
 
   /// Bytes for MPI transfer; unpack() restores the same outcome exactly.
   void pack(std::vector<char>& buffer) const;
@@ -67,7 +77,8 @@ void check_study_grids(const std::vector<StudyRun>& runs, const Case& base);
 /**
  * Runs @p run of the case @p base through the CaseRunner, skips a step above
  * the stability limit of an explicit integrator (the runner would refuse
- * it), integrates and records pantograph 1's lambda_p at every time point.
+ * it), integrates and records pantograph 1's lambda_p at every time point
+ * and what @p request asks for.
  */
 RunOutcome execute_study_run(const StudyRun& run, const Case& base,
                              const RunRequest& request);
