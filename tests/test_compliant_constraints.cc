@@ -645,3 +645,92 @@ TEST(CompliantConstraint, CheckpointWithEngagedSpringResumesBitForBit)
   for (const std::string name : {"half-explicit", "bdf2", "generalized-alpha"})
     expect_resume_bit_for_bit(name, s, h.state(h.x_eq(), 0.1), 5e-5, 10, 800);
 }
+
+namespace
+{
+/**
+ * A mass m dropped from height h with downward speed u onto a rigid floor
+ * (g = x >= 0, unilateral), under gravity: it hits at t* with speed
+ * sqrt(u^2 + 2 g h), stops (restitution 0, Sec. 5.3) and rests, the floor
+ * carrying m g.
+ */
+struct FallingMass
+{
+  double m = 2., h = 0.01, u = 1.;
+  SemiDiscreteSystem system() const
+  {
+    SemiDiscreteSystem s = point_masses({m}, {0.}, {-m * gravity});
+    s.add_constraint(std::make_unique<FixedConstraint>(
+        "floor", Constraint::Kind::unilateral, row({{0, 1.}}), 0.));
+    return s;
+  }
+  DynamicState state() const
+  {
+    DynamicState s;
+    s.q.reinit(1);
+    s.v.reinit(1);
+    s.a.reinit(1);
+    s.q(0) = h;
+    s.v(0) = -u;
+    s.a(0) = -gravity;
+    s.lambda = {0.};
+    s.active = {false};
+    return s;
+  }
+  double impact_speed() const { return std::sqrt(u * u + 2. * gravity * h); }
+  double impact_time() const { return (impact_speed() - u) / gravity; }
+};
+} // namespace
+
+TEST(Impacts, AFallingMassStopsWithTheImpulseOfItsMomentum)
+{
+  // The impact law of all four integrators on the one case with a closed
+  // form. The fixed-step methods find the floor penetrated at the end of the
+  // step t_{n+1} that contains t*, and project there (ImpactProjection): the
+  // impulse is then the momentum m (v* + g (t_{n+1} - t*)) of the free fall
+  // at t_{n+1}, which all three integrate exactly (a quadratic), i.e. the
+  // exact impulse m v* plus at most m g dt: first order in dt, to round-off.
+  // IDA locates t* by root finding: m v* to its tolerance. After the impact
+  // the mass rests (x = v = 0 to round-off), the floor carries m g, and no
+  // force of the floor is ever negative or larger than m g: the impact is an
+  // impulse, not a force of order 1/dt.
+  const FallingMass drop;
+  const SemiDiscreteSystem system = drop.system();
+  const double exact = drop.m * drop.impact_speed(), t_star = drop.impact_time();
+  for (const double dt : {1e-4, 3e-5})
+    for (const std::string& name : integrators)
+    {
+      const std::string who = name + ", dt = " + std::to_string(dt);
+      auto integrator = make(name, system, dt);
+      const auto points =
+          run(*integrator, drop.state(), static_cast<unsigned int>(0.03 / dt));
+      unsigned int impacts = 0;
+      for (const DynamicState& p : points)
+      {
+        ASSERT_GE(p.lambda[0], 0.) << who << " at t = " << p.t;
+        EXPECT_LE(p.lambda[0], drop.m * gravity * (1. + 1e-9))
+            << who << " at t = " << p.t;
+        if (p.impulse.empty())
+          continue;
+        ++impacts;
+        if (name == "ida")
+        {
+          EXPECT_NEAR(p.impulse[0], exact, 1e-5 * exact) << who;
+          continue;
+        }
+        // The impact's step ends at p.t.
+        EXPECT_GE(p.t, t_star) << who;
+        EXPECT_LT(p.t - dt, t_star) << who;
+        EXPECT_NEAR(p.impulse[0],
+                    drop.m * (drop.impact_speed() + gravity * (p.t - t_star)),
+                    1e-9 * exact)
+            << who;
+      }
+      EXPECT_EQ(impacts, 1u) << who;
+      const DynamicState& end = points.back();
+      EXPECT_TRUE(end.active[0]) << who;
+      EXPECT_NEAR(end.q(0), 0., 1e-12) << who;
+      EXPECT_NEAR(end.v(0), 0., 1e-10) << who;
+      EXPECT_NEAR(end.lambda[0], drop.m * gravity, 1e-9 * drop.m * gravity) << who;
+    }
+}

@@ -192,8 +192,16 @@ void GeneralizedAlphaIntegrator::advance()
         impacts.project(rows, active_set.holding_indices(), t1, x.lambda, h, x.q, x.v);
     x.impulse.swap(r.impulse);
     for (const unsigned int i : r.separated)
-      x.active[i] = false, x.lambda[i] = 0.;
-    x.a = true_acceleration(x, rows);
+      x.active[i] = false;
+    // The forces after the impact on acceleration level (the closing
+    // constraints' too): the state is consistent, and a_{n+1} = a_c,{n+1}.
+    std::vector<unsigned int> holding;
+    for (const unsigned int i : active_set.holding_indices())
+      if (x.active[i])
+        holding.push_back(i);
+    for (const unsigned int i : impacts.consistent_acceleration(
+             at_next.at(t1), holding, t1, x.q, x.v, x.lambda, x.a))
+      x.active[i] = false;
     a_next = x.a;
   }
   else
@@ -342,22 +350,6 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
     multipliers[moving_in[c]] = y(c);
     S.M_columns[S.position[moving_in[c]]].add_combination({{y(c), 0., 0., 0.}}, target);
   }
-}
-
-dealii::Vector<double> GeneralizedAlphaIntegrator::true_acceleration(
-    const DynamicState& x, const std::vector<ConstraintState>& rows) const
-{
-  dealii::Vector<double> a(system.n_dofs()), Kq(system.n_dofs());
-  system.load_at(x.t, a);
-  system.stiffness.vmult(Kq, x.q);
-  a -= Kq;
-  system.damping.vmult(Kq, x.v);
-  a -= Kq;
-  for (unsigned int i = 0; i < rows.size(); ++i)
-    if (x.lambda[i] != 0.)
-      rows[i].G.add_transpose_to(a, x.lambda[i]);
-  mass_inverse.apply(a);
-  return a;
 }
 
 void GeneralizedAlphaIntegrator::save(CheckpointOut& archive) const

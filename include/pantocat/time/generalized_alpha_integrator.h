@@ -50,8 +50,10 @@ namespace pantocat
  * (q <- q + M^-1 G^T mu, after the Newmark relations have given v and a from
  * q before the projection), and the velocities onto dg/dt = 0 with
  * complementary impulses [N s] (ImpactProjection, DynamicState::impulse). The
- * pseudo-acceleration restarts from the true acceleration after the impact,
- * a = a_c (as at t_0).
+ * forces after the impact are those of the acceleration level
+ * (ImpactProjection::consistent_acceleration(): one that would pull is
+ * released), and the pseudo-acceleration restarts from the true
+ * acceleration, a = a_c (as at t_0).
  *
  * Compliant constraints (Constraint::is_compliant) are implicit forces at
  * t_{n+1}: with q = q0 + sum_l lambda_l S^-1 G_l^T and
@@ -124,10 +126,6 @@ private:
   void project(const std::vector<ConstraintState>& rows, double t1, Residual residual,
                dealii::Vector<double>& x, std::vector<double>& multipliers,
                const char* what);
-  /// a_c = M^-1 (f - K q - D v + G^T lambda) at t of @p x (the restart after an impact).
-  dealii::Vector<double>
-  true_acceleration(const DynamicState& x,
-                    const std::vector<ConstraintState>& rows) const;
 
   double h;
   Coefficients k;

@@ -73,6 +73,20 @@ public:
                  const std::vector<double>& lambda, double dt, dealii::Vector<double>& q,
                  dealii::Vector<double>& v);
 
+  /**
+   * The forces on acceleration level after an impact (as IDA restarts):
+   * a = M^-1 (f - K q - D v + G^T lambda) with G_i a + 2 G_t,i v + G_tt,i q +
+   * z_tt,i = 0 on @p holding (rows @p rows with G_tt at t), the compliant
+   * constraints' forces taken from @p lambda; a unilateral constraint whose
+   * force would pull is released (it separates: g = dg/dt = 0, d2g/dt2 > 0
+   * without it) and the solve repeated. Writes lambda (0 for the released)
+   * and a; returns the released ones.
+   */
+  std::vector<unsigned int> consistent_acceleration(
+      const std::vector<ConstraintState>& rows, std::vector<unsigned int> holding,
+      double t, const dealii::Vector<double>& q, const dealii::Vector<double>& v,
+      std::vector<double>& lambda, dealii::Vector<double>& a);
+
 private:
   /// x <- x + M^-1 G^T y with residual_i + G_i M^-1 G^T y = 0 on @p holding; y.
   template <typename Residual>
