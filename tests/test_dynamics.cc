@@ -785,7 +785,9 @@ TEST(Impacts, FourIntegratorsAgreeOnTheContactLossAt56MetresPerSecond)
       {
         ASSERT_GE(t.lambda[i], 0.) << integrator << " at t = " << t.t;
         if (i == 2)
+        {
           ASSERT_LT(t.lambda[i], 140.) << integrator << " at t = " << t.t;
+        }
       }
   }
   EXPECT_NEAR(impulses.front(), 0.0782, 0.0005); // IDA, located

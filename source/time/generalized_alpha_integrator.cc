@@ -193,15 +193,14 @@ void GeneralizedAlphaIntegrator::advance()
     x.impulse.swap(r.impulse);
     for (const unsigned int i : r.separated)
       x.active[i] = false;
-    // The forces after the impact on acceleration level (the closing
-    // constraints' too): the state is consistent, and a_{n+1} = a_c,{n+1}.
+    // Restart from the acceleration of the impact's end state with every
+    // holding constraint held; its forces are not reported (x.lambda stays
+    // the step's), the next step's active set decides on releases.
     std::vector<unsigned int> holding;
     for (const unsigned int i : active_set.holding_indices())
       if (x.active[i])
         holding.push_back(i);
-    for (const unsigned int i : impacts.consistent_acceleration(
-             at_next.at(t1), holding, t1, x.q, x.v, x.lambda, x.a))
-      x.active[i] = false;
+    impacts.restart_acceleration(at_next.at(t1), holding, t1, x.q, x.v, x.lambda, x.a);
     a_next = x.a;
   }
   else

@@ -130,47 +130,31 @@ ImpactProjection::project(const std::vector<ConstraintState>& rows,
   return r;
 }
 
-std::vector<unsigned int> ImpactProjection::consistent_acceleration(
-    const std::vector<ConstraintState>& rows, std::vector<unsigned int> holding,
+void ImpactProjection::restart_acceleration(
+    const std::vector<ConstraintState>& rows, const std::vector<unsigned int>& holding,
     const double t, const dealii::Vector<double>& q, const dealii::Vector<double>& v,
-    std::vector<double>& lambda, dealii::Vector<double>& a)
+    const std::vector<double>& lambda, dealii::Vector<double>& a)
 {
   // a_free = M^-1 (f - K q - D v + G_c^T lambda_c), the compliant forces included.
   const unsigned int n = system.n_dofs();
-  dealii::Vector<double> a_free(n), work(n);
-  system.load_at(t, a_free);
+  dealii::Vector<double> work(n);
+  a.reinit(n, true);
+  system.load_at(t, a);
   system.stiffness.vmult(work, q);
-  a_free -= work;
+  a -= work;
   system.damping.vmult(work, v);
-  a_free -= work;
+  a -= work;
   for (unsigned int i = 0; i < rows.size(); ++i)
     if (system.constraints[i]->is_compliant() && lambda[i] != 0.)
-      rows[i].G.add_transpose_to(a_free, lambda[i]);
-  mass_inverse.apply(a_free);
-  std::vector<unsigned int> released;
-  for (;;)
-  {
-    a = a_free;
-    const std::vector<double> y = project_level(
-        rows, holding, t,
-        [&](const unsigned int i)
-        {
-          const ConstraintState& r = rows[i];
-          return r.G.dot(a) + 2. * r.G_t.dot(v) + r.G_tt.dot(q) + r.z_tt;
-        },
-        a);
-    std::vector<unsigned int> kept;
-    for (const unsigned int i : holding)
-      if (system.constraints[i]->is_unilateral() && y[i] < 0.)
-        released.push_back(i);
-      else
-        kept.push_back(i);
-    for (unsigned int i = 0; i < rows.size(); ++i)
-      if (!system.constraints[i]->is_compliant())
-        lambda[i] = y[i];
-    if (kept.size() == holding.size())
-      return released;
-    holding.swap(kept);
-  }
+      rows[i].G.add_transpose_to(a, lambda[i]);
+  mass_inverse.apply(a);
+  project_level(
+      rows, holding, t,
+      [&](const unsigned int i)
+      {
+        const ConstraintState& r = rows[i];
+        return r.G.dot(a) + 2. * r.G_t.dot(v) + r.G_tt.dot(q) + r.z_tt;
+      },
+      a);
 }
 } // namespace pantocat

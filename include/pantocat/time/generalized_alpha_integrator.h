@@ -50,10 +50,10 @@ namespace pantocat
  * (q <- q + M^-1 G^T mu, after the Newmark relations have given v and a from
  * q before the projection), and the velocities onto dg/dt = 0 with
  * complementary impulses [N s] (ImpactProjection, DynamicState::impulse). The
- * forces after the impact are those of the acceleration level
- * (ImpactProjection::consistent_acceleration(): one that would pull is
- * released), and the pseudo-acceleration restarts from the true
- * acceleration, a = a_c (as at t_0).
+ * pseudo-acceleration restarts from the acceleration of the end state with
+ * the holding constraints held, a = a_c (as at t_0;
+ * ImpactProjection::restart_acceleration()); the forces reported at the
+ * impact's time point are the step's.
  *
  * Compliant constraints (Constraint::is_compliant) are implicit forces at
  * t_{n+1}: with q = q0 + sum_l lambda_l S^-1 G_l^T and
