@@ -4,6 +4,7 @@
 // and the transfer of run outcomes between MPI ranks.
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/simulation/switch_episodes.h>
 #include <pantocat/studies/contact_convergence.h>
 #include <pantocat/studies/convergence_study.h>
 #include <pantocat/studies/series_comparison.h>
@@ -186,6 +187,8 @@ TEST(StudyRun, ContactFiguresSurviveThePackingForMpiExactly)
   o.contact.min_unilateral_time = 0.2604;
   o.contact.contact = 7;
   o.contact.events = {{0.1, 7, false}, {0.125, 7, true}, {0.25, 1, false}};
+  o.contact.short_episodes = 3;
+  o.contact.short_episode_time = 3.7e-4;
   o.lambda_p = {1.};
   std::vector<char> buffer;
   o.pack(buffer);
@@ -197,6 +200,8 @@ TEST(StudyRun, ContactFiguresSurviveThePackingForMpiExactly)
   EXPECT_EQ(again, buffer); // bitwise, NaN included
   EXPECT_EQ(u.contact.min_unilateral_constraint, "dropper 2");
   EXPECT_EQ(u.contact.min_unilateral_force, -1211.25);
+  EXPECT_EQ(u.contact.short_episodes, 3u);
+  EXPECT_EQ(u.contact.short_episode_time, 3.7e-4);
   ASSERT_EQ(u.contact.events.size(), 3u);
   EXPECT_EQ(u.contact.events[1].t, 0.125);
   EXPECT_TRUE(u.contact.events[1].closes);
@@ -338,6 +343,103 @@ TEST(ContactConvergence, EventsThatDoNotMatchAndFailedRunsGiveNoDifference)
   EXPECT_EQ(n, 3u);
   EXPECT_NE(csv.str().find(",failed,"), std::string::npos);
   EXPECT_EQ(csv.str().find("differ"), std::string::npos); // not compared: empty
+}
+
+namespace
+{
+/// The switches of constraint @p c that time points n dt see of the open
+/// intervals @p open: each at the first time point with the new state.
+std::vector<StudyEvent> sampled_switches(const std::vector<Interval>& open,
+                                         const double dt, const double end,
+                                         const unsigned int c)
+{
+  const auto is_open = [&](const double t)
+  {
+    return std::any_of(open.begin(), open.end(),
+                       [&](const Interval& i) { return t >= i.first && t < i.second; });
+  };
+  std::vector<StudyEvent> events;
+  bool was = false;
+  for (unsigned long n = 0; n * dt <= end; ++n)
+    if (const bool now = is_open(n * dt); now != was)
+    {
+      events.push_back({n * dt, c, !now});
+      was = now;
+    }
+  return events;
+}
+} // namespace
+
+TEST(SwitchEpisodes, ReclosuresShorterThanTheGapMerge)
+{
+  // Two intervals 0.5 ms apart merge at a gap of 1 ms (open 1.9995 s of the
+  // 2 s span), the third (1 s later) stays apart; gap 0 merges nothing.
+  const std::vector<Interval> open{{0., 1.}, {1.0005, 2.}, {3., 4.}};
+  const std::vector<SwitchEpisode> e = switch_episodes(open, 1e-3);
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_EQ(e[0].span, Interval(0., 2.));
+  EXPECT_EQ(e[0].intervals, 2u);
+  EXPECT_NEAR(e[0].open_time, 1.9995, 1e-12);
+  EXPECT_EQ(e[1].intervals, 1u);
+  EXPECT_EQ(switch_episodes(open, 0.).size(), 3u);
+  EXPECT_TRUE(switch_episodes({}, 1e-3).empty());
+}
+
+TEST(SwitchEpisodes, TheEventsOfACascadeConvergeAsEpisodes)
+{
+  // A Zeno cascade: the contact opens at 0.260013 s for 0.41 ms, then recloses and
+  // opens again for ever shorter times (ratio 1/2, 12 intervals, all within
+  // 1.64 ms). A step dt resolves the intervals longer than about dt, so the
+  // raw event counts grow under halving (10, 12, 14, 16 switches: the fig3
+  // lists at 65 m/s); merged at a gap of 1 ms every step size sees one
+  // episode, open at the first time point after the opening and closed at the
+  // first after the last resolved reclosure: the episode's events agree to
+  // one step of the coarser run (here exactly the finer step: order 1).
+  std::vector<Interval> cascade;
+  double t = 0.260013, d = 4.1e-4;
+  for (int k = 0; k < 12; ++k, d *= 0.5)
+  {
+    cascade.push_back({t, t + d});
+    t += 2. * d;
+  }
+  const double end = 0.27;
+  std::vector<std::vector<StudyEvent>> raw, merged;
+  for (const double dt : {5e-5, 2.5e-5, 1.25e-5, 6.25e-6})
+  {
+    raw.push_back(sampled_switches(cascade, dt, end, 7));
+    merged.push_back(episode_events(raw.back(), 1e-3).events);
+  }
+  EXPECT_LT(raw[0].size(), raw[3].size()); // more of the cascade resolved
+  for (std::size_t k = 0; k < merged.size(); ++k)
+  {
+    ASSERT_EQ(merged[k].size(), 2u) << k;
+    EXPECT_FALSE(merged[k][0].closes);
+    EXPECT_TRUE(merged[k][1].closes);
+  }
+  for (std::size_t k = 1; k < merged.size(); ++k)
+  {
+    EXPECT_FALSE(compare_event_times(raw[k - 1], raw[k]).match) << k;
+    const EventTimeDifference d = compare_event_times(merged[k - 1], merged[k]);
+    EXPECT_TRUE(d.match) << k;
+    EXPECT_LE(d.max_difference, 5e-5 / (1 << (k - 1)) + 1e-15) << k;
+  }
+  // A closing followed by an opening of another constraint is not merged.
+  const std::vector<StudyEvent> two{{0.1, 1, true}, {0.1001, 2, false}};
+  EXPECT_EQ(episode_events(two, 1e-3).events.size(), 2u);
+  // An isolated separation of 0.1 ms (a head leaving a wire just stopped
+  // under it) is a short episode: counted with its length, not matched; one
+  // of 2 ms and a constraint open from the start are kept.
+  const EpisodeEvents e = episode_events({{0.05, 3, true},
+                                          {0.1, 7, false},
+                                          {0.1001, 7, true},
+                                          {0.2, 7, false},
+                                          {0.202, 7, true}},
+                                         1e-3);
+  ASSERT_EQ(e.events.size(), 3u);
+  EXPECT_EQ(e.events[0].constraint, 3u);
+  EXPECT_EQ(e.events[1].t, 0.2);
+  EXPECT_EQ(e.short_episodes, 1u);
+  EXPECT_NEAR(e.short_episode_time, 1e-4, 1e-15);
 }
 
 TEST(StudyPlan, WorkPrecisionNeedsASeparateReference)

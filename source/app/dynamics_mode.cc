@@ -216,7 +216,8 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
                    first,
                    {},
                    p.output.energy ? &energy : nullptr,
-                   reference ? &*reference : nullptr};
+                   reference ? &*reference : nullptr,
+                   p.statistics.episode_resolution};
   for (const auto& c : contacts)
     record.contacts.push_back(c.get());
   const ContactStatistics* first_contact = record.first_contact();

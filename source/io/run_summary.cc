@@ -4,6 +4,7 @@
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>
 #include <pantocat/simulation/run_events.h>
+#include <pantocat/simulation/switch_episodes.h>
 #include <pantocat/time/integrator_registry.h>
 
 #include <fstream>
@@ -57,6 +58,21 @@ void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
   json.end_array();
 }
 
+/// The episodes of one constraint (switch_episodes()), as objects.
+void write_episodes(JsonWriter& json, const std::string& key,
+                    const std::vector<Interval>& open, const double gap)
+{
+  json.begin_array(key);
+  for (const SwitchEpisode& e : switch_episodes(open, gap))
+    json.begin_object()
+        .value("from", e.span.first)
+        .value("to", e.span.second)
+        .value("intervals", static_cast<unsigned long>(e.intervals))
+        .value("open_time", e.open_time)
+        .end_object();
+  json.end_array();
+}
+
 /// Impacts (inelastic, Sec. 5.3): count, summed and largest impulse [N s].
 void write_impulses(JsonWriter& json, const std::string& name,
                     const RunStatistics::ImpulseStatistics& s)
@@ -90,6 +106,8 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
         write_statistics(json, r.contacts[k]->result(),
                          slack_in_window(r.statistics, r.contacts[k]->result()));
       json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
+      write_episodes(json, "contact_loss_episodes",
+                     r.statistics.contact_loss_intervals(k), r.episode_resolution);
       write_impulses(json, "impacts", r.statistics.impulses(p.contact));
       write_events(json, events, layout.constraint_names[p.contact]);
     }
@@ -153,8 +171,17 @@ void write_run_summary(const std::string& file, const RunRecord& r)
     json.intervals("", list);
   json.end_array();
   write_slack_events(json, "dropper_slack_events", stats.dropper_slack_events());
+  json.value("episode_resolution", r.episode_resolution);
+  json.begin_array("dropper_slack_episodes");
+  for (const auto& list : stats.dropper_slack_intervals())
+    write_episodes(json, "", list, r.episode_resolution);
+  json.end_array();
   if (r.runner.layout().has_contact())
+  {
     json.intervals("contact_loss_intervals", stats.contact_loss_intervals());
+    write_episodes(json, "contact_loss_episodes", stats.contact_loss_intervals(),
+                   r.episode_resolution);
+  }
   write_impulses(json, "dropper_impacts", stats.dropper_impulses());
   json.value("max_droppers_slack_at_once",
              static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
@@ -207,14 +234,30 @@ void write_failed_summary(const std::string& file, const std::string& phase,
 
 namespace
 {
-std::string format_intervals(const std::vector<Interval>& list)
+/**
+ * "[t0, t1], ...": the intervals, or, where a cascade's intervals merge into
+ * an episode (reclosures shorter than @p gap), the episodes with the number
+ * of their intervals and the time open within them.
+ */
+std::string format_intervals(const std::vector<Interval>& list, const double gap)
 {
   if (list.empty())
     return "none";
+  const std::vector<SwitchEpisode> episodes = switch_episodes(list, gap);
   std::ostringstream s;
   s << std::setprecision(4);
-  for (std::size_t i = 0; i < list.size(); ++i)
-    s << (i ? ", " : "") << '[' << list[i].first << ", " << list[i].second << ']';
+  for (std::size_t i = 0; i < episodes.size(); ++i)
+  {
+    const SwitchEpisode& e = episodes[i];
+    s << (i ? ", " : "") << '[' << e.span.first << ", " << e.span.second << ']';
+    if (e.intervals > 1)
+      s << " (" << e.intervals << " intervals, open " << std::setprecision(3)
+        << 1e3 * e.open_time << " ms)" << std::setprecision(4);
+  }
+  if (episodes.size() < list.size())
+    s << "; " << list.size() << " intervals in " << episodes.size()
+      << (episodes.size() == 1 ? " episode" : " episodes") << " (reclosures < "
+      << 1e3 * gap << " ms merged)";
   return s.str();
 }
 } // namespace
@@ -288,14 +331,16 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
   // Only the droppers that went slack: a section has dozens of droppers.
   for (unsigned int j = 0; j < slack.size(); ++j)
     if (!slack[j].empty())
-      out << "  dropper " << j + 1 << " slack: " << format_intervals(slack[j]) << '\n';
+      out << "  dropper " << j + 1
+          << " slack: " << format_intervals(slack[j], r.episode_resolution) << '\n';
   if (!slack.empty())
     out << "  dropper slack events in the run: "
         << describe_slack_events(stats.dropper_slack_events()) << '\n';
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
       out << "  " << (several ? layout.pantographs[k].name + ": " : "")
-          << "contact lost: " << format_intervals(stats.contact_loss_intervals(k))
+          << "contact lost: "
+          << format_intervals(stats.contact_loss_intervals(k), r.episode_resolution)
           << '\n';
   out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()

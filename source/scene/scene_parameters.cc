@@ -131,8 +131,11 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "tension-only springs of stiffness Catenary/Droppers/Stiffness and "
                     "unstretched length l_j, no force when slack (a compliant unilateral "
                     "constraint); absent: no droppers.");
-  prm.declare_entry("Number of pantographs", "1", dealii::Patterns::Integer(1, 1000),
-                    "Pantographs running on the catenary: pantograph 1 is Pantograph, "
+  prm.declare_entry("Number of pantographs", "1", dealii::Patterns::Integer(1, 16),
+                    "Pantographs running on the catenary, 1 to 16 (a train raises a "
+                    "few on one tension section; the moving contacts border the "
+                    "constraint system densely, so a step costs O(n p + p^3) for p "
+                    "pantographs): pantograph 1 is Pantograph, "
                     "Contact and Moving force here with subsection Pantograph; "
                     "pantograph k >= 2 is subsection Pantograph k (entries Model, "
                     "Contact, Moving force and those of subsection Pantograph), "

@@ -199,7 +199,8 @@ void ContactConvergence::write_text(std::ostream& out, const bool refines_space)
       << "max filt. [N]" << std::setw(15) << "min filt. [N]" << std::setw(15)
       << "std filt. [N]" << std::setw(17) << "min unilat. [N]"
       << "  " << std::left << std::setw(24) << "(constraint, t [s])" << std::right
-      << std::setw(8) << "events" << std::setw(16) << "contact events" << '\n';
+      << std::setw(8) << "events" << std::setw(16) << "contact events"
+      << "  short episodes [ms]" << '\n';
   for (const Run& r : runs_)
   {
     out << "  " << std::setw(10) << step_label(r.run, refines_space);
@@ -216,7 +217,8 @@ void ContactConvergence::write_text(std::ostream& out, const bool refines_space)
         << ("(" + f.min_unilateral_constraint + ", " + cell(f.min_unilateral_time, 5) +
             ")")
         << std::right << std::setw(8) << f.events.size() << std::setw(16)
-        << f.contact_events() << '\n';
+        << f.contact_events() << "  " << f.short_episodes << " ("
+        << cell(1e3 * f.short_episode_time, 3) << ")\n";
   }
   out << "  successive differences |x(" << (refines_space ? "N+1" : "dt") << ") - x("
       << (refines_space ? "2(N+1)" : "dt/2")
@@ -250,7 +252,7 @@ std::string ContactConvergence::csv_header()
   std::string h = "discretisation,integrator,contact_law,n_intervals,time_step,status,"
                   "loss_percent,filtered_max,filtered_min,filtered_std,"
                   "min_unilateral_force,min_unilateral_constraint,min_unilateral_time,"
-                  "events,contact_events";
+                  "events,contact_events,short_episodes,short_episode_time";
   for (const char* q : {"loss_percent", "filtered_max", "filtered_min", "filtered_std"})
     h += std::string(",") + q + "_difference," + q + "_order";
   return h +
@@ -280,7 +282,9 @@ void ContactConvergence::write_csv(std::ostream& out) const
         << (ok ? f.min_unilateral_constraint : "") << ','
         << field(ok ? f.min_unilateral_time : nan) << ','
         << (ok ? std::to_string(f.events.size()) : "") << ','
-        << (ok ? std::to_string(f.contact_events()) : "");
+        << (ok ? std::to_string(f.contact_events()) : "") << ','
+        << (ok ? std::to_string(f.short_episodes) : "") << ','
+        << field(ok ? f.short_episode_time : nan);
     for (const Quantity& q : quantities_)
       out << ',' << field(q.differences[k]) << ',' << field(q.orders[k]);
     out << ',' << match(k, contact_events[k]) << ','

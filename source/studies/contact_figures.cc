@@ -23,6 +23,8 @@ void ContactFigures::pack(std::vector<char>& b) const
     put(b, x);
   packed::put_string(b, min_unilateral_constraint);
   put(b, contact);
+  put(b, static_cast<std::uint64_t>(short_episodes));
+  put(b, short_episode_time);
   put(b, static_cast<std::uint64_t>(events.size()));
   for (const StudyEvent& e : events)
   {
@@ -40,6 +42,8 @@ ContactFigures ContactFigures::unpack(const std::vector<char>& b, std::size_t& p
     *x = get<double>(b, pos);
   f.min_unilateral_constraint = packed::get_string(b, pos);
   f.contact = get<unsigned int>(b, pos);
+  f.short_episodes = get<std::uint64_t>(b, pos);
+  f.short_episode_time = get<double>(b, pos);
   f.events.resize(get<std::uint64_t>(b, pos));
   for (StudyEvent& e : f.events)
   {
@@ -76,7 +80,7 @@ void ContactFiguresRecorder::UnilateralMinimum::observe(const TimePoint& p)
 
 ContactFiguresRecorder::ContactFiguresRecorder(const CaseRunner& runner,
                                                const StatisticsParameters& statistics)
-    : layout(runner.layout()),
+    : layout(runner.layout()), episode_resolution(statistics.episode_resolution),
       contact(
           statistics, runner.discretisation(), runner.system(),
           SteadyArms::positions(runner.case_data().scene, runner.case_data().catenary),
@@ -107,12 +111,58 @@ ContactFiguresRecorder::figures(const IntegratorStatistics& integrator) const
   f.min_unilateral_time = minimum.time;
   f.contact = layout.pantographs.at(0).contact;
   const std::vector<std::string>& names = layout.constraint_names;
+  std::vector<StudyEvent> all;
   for (const ConstraintEvent& e : run_events(layout, integrator, log))
-    f.events.push_back(
+    all.push_back(
         {e.t,
          static_cast<unsigned int>(std::find(names.begin(), names.end(), e.constraint) -
                                    names.begin()),
          closes(e)});
+  EpisodeEvents e = episode_events(all, episode_resolution);
+  f.events.swap(e.events);
+  f.short_episodes = e.short_episodes;
+  f.short_episode_time = e.short_episode_time;
   return f;
+}
+
+namespace
+{
+/// The next event of the constraint of @p events[i] after i, or events.size().
+std::size_t next_of_same(const std::vector<StudyEvent>& events, const std::size_t i,
+                         const std::vector<bool>& dropped)
+{
+  for (std::size_t j = i + 1; j < events.size(); ++j)
+    if (!dropped[j] && events[j].constraint == events[i].constraint)
+      return j;
+  return events.size();
+}
+} // namespace
+
+EpisodeEvents episode_events(const std::vector<StudyEvent>& events,
+                             const double resolution)
+{
+  std::vector<bool> dropped(events.size(), false);
+  // The inner reclosures of each episode: a closing and the next opening.
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (events[i].closes)
+      if (const std::size_t j = next_of_same(events, i, dropped);
+          j < events.size() && !events[j].closes &&
+          events[j].t - events[i].t < resolution)
+        dropped[i] = dropped[j] = true;
+  // Episodes shorter than the resolution: an opening and its closing.
+  EpisodeEvents result;
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (!dropped[i] && !events[i].closes)
+      if (const std::size_t j = next_of_same(events, i, dropped);
+          j < events.size() && events[j].closes && events[j].t - events[i].t < resolution)
+      {
+        dropped[i] = dropped[j] = true;
+        ++result.short_episodes;
+        result.short_episode_time += events[j].t - events[i].t;
+      }
+  for (std::size_t i = 0; i < events.size(); ++i)
+    if (!dropped[i])
+      result.events.push_back(events[i]);
+  return result;
 }
 } // namespace pantocat

@@ -317,7 +317,11 @@ void ConvergenceStudy::write_contact_statistics(std::ostream& out,
            << ")";
     else
       text << "no low pass (Statistics/Low-pass cut-off = 0: no filtered figures)";
-    text << "; min unilat.: the smallest force of any unilateral constraint at any "
+    text << "; events: those of the episodes at the resolution "
+         << 1e3 * st.episode_resolution
+         << " ms (Statistics/Episode resolution: shorter reclosures merged, shorter "
+            "episodes counted as short episodes)"
+         << "; min unilat.: the smallest force of any unilateral constraint at any "
             "time point\n";
     contact_[m].write_text(text, plan_.refines_space());
     const ContactConvergence::Run* r = contact_[m].smallest_unilateral_force();

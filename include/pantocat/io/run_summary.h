@@ -25,6 +25,8 @@ struct RunRecord
   std::vector<const ContactStatistics*> contacts;
   const EnergyRange* energy = nullptr;          ///< if Output/Energy
   const MovingLoadComparison* series = nullptr; ///< if a classical moving load
+  /// Statistics/Episode resolution [s]: open intervals merged into episodes.
+  double episode_resolution = 0.;
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
 };

@@ -44,6 +44,9 @@ struct StatisticsParameters
   std::vector<double> window;
   /// The window as spans: first (and last), 1-based; empty: not given so.
   std::vector<long> window_spans;
+  /// Open intervals of one constraint whose reclosure between them is
+  /// shorter than this [s] form one episode (SwitchEpisode); 0: none merged.
+  double episode_resolution = 1e-3;
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
