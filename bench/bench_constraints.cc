@@ -13,6 +13,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/base/mpi.h>
@@ -81,10 +82,8 @@ double banded_solve_time(const ProgramParameters& p)
   CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   const SemiDiscreteSystem& system = simulation.system();
   const double c = 1.5 / p.time_integration.time_step;
-  dealii::SparseMatrix<double> S(*system.sparsity);
-  S.copy_from(system.stiffness);
-  S.add(c, system.damping);
-  S.add(c * c, system.mass);
+  dealii::SparseMatrix<double> S;
+  assemble_iteration_matrix(system, c, c * c, S);
   SparseDirectSolver solver;
   solver.factorize(S, "S");
   dealii::Vector<double> x(system.n_dofs());

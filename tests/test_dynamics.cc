@@ -15,6 +15,7 @@
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/half_explicit_integrator.h>
+#include <pantocat/time/iteration_matrix.h>
 
 #include <gtest/gtest.h>
 
@@ -683,10 +684,8 @@ TEST(GglFixedBlock, SolvesTheFixedBlockOfTheGglMultiplierSystem)
   const SemiDiscreteSystem& sys = simulation.system();
   const unsigned int n = sys.n_dofs();
   const double c = 1.5 / 5e-5;
-  dealii::SparseMatrix<double> S_matrix(*sys.sparsity);
-  S_matrix.copy_from(sys.stiffness);
-  S_matrix.add(c, sys.damping);
-  S_matrix.add(c * c, sys.mass);
+  dealii::SparseMatrix<double> S_matrix;
+  assemble_iteration_matrix(sys, c, c * c, S_matrix);
   SparseDirectSolver S;
   S.factorize(S_matrix, "S");
   MassInverse M;

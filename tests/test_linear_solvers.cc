@@ -6,6 +6,7 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/iteration_matrix.h>
 
 #include <gtest/gtest.h>
 
@@ -45,10 +46,8 @@ TEST(LinearSolvers, AllBackendsSolveTheBdfIterationMatrix)
   CaseRunner simulation(fem_bdf2(100).make_case());
   const SemiDiscreteSystem& sys = simulation.system();
   const double c = 1.5 / 5e-5;
-  dealii::SparseMatrix<double> S(*sys.sparsity);
-  S.copy_from(sys.stiffness);
-  S.add(c, sys.damping);
-  S.add(c * c, sys.mass);
+  dealii::SparseMatrix<double> S;
+  assemble_iteration_matrix(sys, c, c * c, S);
   const unsigned int n = sys.n_dofs();
   dealii::Vector<double> b(n);
   for (unsigned int i = 0; i < n; ++i)

@@ -1,3 +1,4 @@
+#include <pantocat/base/number_format.h>
 #include <pantocat/studies/contact_convergence.h>
 #include <pantocat/studies/study_plan.h>
 
@@ -51,16 +52,6 @@ std::string cell(const double x, const int precision, const bool scientific = fa
     return "-";
   std::ostringstream s;
   s << (scientific ? std::scientific : std::fixed) << std::setprecision(precision) << x;
-  return s.str();
-}
-
-/// A CSV field: @p x at 7 significant digits, empty if not finite.
-std::string field(const double x)
-{
-  if (!std::isfinite(x))
-    return "";
-  std::ostringstream s;
-  s << std::setprecision(7) << x;
   return s.str();
 }
 
@@ -274,24 +265,24 @@ void ContactConvergence::write_csv(std::ostream& out) const
     const ContactFigures& f = r.figures;
     const bool ok = r.status == RunOutcome::Status::completed;
     out << to_string(r.run.discretisation) << ',' << r.run.integrator << ','
-        << r.contact_law << ',' << r.run.n_intervals << ',' << field(r.run.time_step)
+        << r.contact_law << ',' << r.run.n_intervals << ',' << csv_field(r.run.time_step)
         << ',' << to_string(r.status);
     for (const Quantity& q : quantities_)
-      out << ',' << field(q.values[k]);
-    out << ',' << field(ok ? f.min_unilateral_force : nan) << ','
+      out << ',' << csv_field(q.values[k]);
+    out << ',' << csv_field(ok ? f.min_unilateral_force : nan) << ','
         << (ok ? f.min_unilateral_constraint : "") << ','
-        << field(ok ? f.min_unilateral_time : nan) << ','
+        << csv_field(ok ? f.min_unilateral_time : nan) << ','
         << (ok ? std::to_string(f.events.size()) : "") << ','
         << (ok ? std::to_string(f.contact_events()) : "") << ','
         << (ok ? std::to_string(f.short_episodes) : "") << ','
-        << field(ok ? f.short_episode_time : nan);
+        << csv_field(ok ? f.short_episode_time : nan);
     for (const Quantity& q : quantities_)
-      out << ',' << field(q.differences[k]) << ',' << field(q.orders[k]);
+      out << ',' << csv_field(q.differences[k]) << ',' << csv_field(q.orders[k]);
     out << ',' << match(k, contact_events[k]) << ','
-        << field(k == 0 ? nan : contact_events[k].max_difference) << ','
-        << field(contact_orders[k]) << ',' << match(k, all_events[k]) << ','
-        << field(k == 0 ? nan : all_events[k].max_difference) << ','
-        << field(all_orders[k]) << '\n';
+        << csv_field(k == 0 ? nan : contact_events[k].max_difference) << ','
+        << csv_field(contact_orders[k]) << ',' << match(k, all_events[k]) << ','
+        << csv_field(k == 0 ? nan : all_events[k].max_difference) << ','
+        << csv_field(all_orders[k]) << '\n';
   }
 }
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/io/atomic_file.h>
 #include <pantocat/studies/run_distribution.h>
 #include <pantocat/studies/sweep_plots.h>
@@ -24,16 +25,6 @@ double wall_clock()
   return std::chrono::duration<double>(
              std::chrono::steady_clock::now().time_since_epoch())
       .count();
-}
-
-/// @p x with 7 significant digits; empty for NaN (no time point in the window).
-std::string field(const double x)
-{
-  if (!std::isfinite(x))
-    return "";
-  std::ostringstream s;
-  s << std::setprecision(7) << x;
-  return s.str();
 }
 
 /// The seven figures in the CSV's order.
@@ -139,10 +130,10 @@ std::string sweep_rows(const std::vector<std::string>& key, const SweepOutcome& 
   {
     text += keys + std::to_string(p.number);
     for (const double x : in_column_order(p.raw))
-      text += "," + field(x);
-    text += "," + (p.has_uplift ? field(p.max_steady_arm_uplift) : std::string());
+      text += "," + csv_field(x);
+    text += "," + (p.has_uplift ? csv_field(p.max_steady_arm_uplift) : std::string());
     for (const double x : in_column_order(p.filtered))
-      text += "," + (p.has_filtered ? field(x) : std::string());
+      text += "," + (p.has_filtered ? csv_field(x) : std::string());
     text += "," + end;
   }
   return text;

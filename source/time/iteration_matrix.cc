@@ -2,15 +2,23 @@
 
 namespace pantocat
 {
+void assemble_iteration_matrix(const SemiDiscreteSystem& system,
+                               const double damping_factor, const double mass_factor,
+                               dealii::SparseMatrix<double>& S)
+{
+  S.reinit(*system.sparsity);
+  S.copy_from(system.stiffness);
+  S.add(damping_factor, system.damping);
+  S.add(mass_factor, system.mass);
+}
+
 IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
                                  const double damping_factor, const double mass_factor,
                                  const std::string& what, const LinearSolverType solver)
     : position(system.n_constraints())
 {
-  dealii::SparseMatrix<double> S(*system.sparsity);
-  S.copy_from(system.stiffness);
-  S.add(damping_factor, system.damping);
-  S.add(mass_factor, system.mass);
+  dealii::SparseMatrix<double> S;
+  assemble_iteration_matrix(system, damping_factor, mass_factor, S);
   inverse.factorize(S, what, solver);
   for (unsigned int i = 0; i < system.n_constraints(); ++i)
   {

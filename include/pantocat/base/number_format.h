@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cmath>
 #include <sstream>
 #include <string>
 
@@ -13,5 +14,12 @@ inline std::string number_to_string(const double value, const int digits = 15)
   s.precision(digits);
   s << value;
   return s.str();
+}
+
+/// A CSV field of a study table: @p value to 7 significant digits, empty if
+/// it is not finite (no run, no difference).
+inline std::string csv_field(const double value)
+{
+  return std::isfinite(value) ? number_to_string(value, 7) : std::string();
 }
 } // namespace pantocat

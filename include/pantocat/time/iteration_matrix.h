@@ -10,6 +10,14 @@
 namespace pantocat
 {
 /**
+ * @p S = K + c_D D + c_M M (@p damping_factor c_D, @p mass_factor c_M) of
+ * @p system, on its sparsity pattern: the matrix of an implicit step, Sec. 5.2
+ * (BDF-2: c_D = c, c_M = c^2).
+ */
+void assemble_iteration_matrix(const SemiDiscreteSystem& system, double damping_factor,
+                               double mass_factor, dealii::SparseMatrix<double>& S);
+
+/**
  * The constant matrix S = K + c_D D + c_M M of an implicit step (BDF-2:
  * c_D = c, c_M = c^2; generalized-alpha: c_D = gamma/(beta h),
  * c_M = (1 - alpha_m)/((1 - alpha_f) beta h^2)), factorised once, with the
