@@ -81,7 +81,7 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
                                 const unsigned long step,
                                 const std::vector<double>& gap_rates)
 {
-  std::vector<Status> next = current;
+  next = current;
   bool changed = false;
   for (unsigned int i = 0; i < current.size(); ++i)
   {

@@ -131,6 +131,7 @@ private:
   bool allow_touching;
   std::vector<bool> at_start, holds, released;
   std::vector<Status> current;
+  std::vector<Status> next; ///< accept()'s candidate, kept: no allocation per step
   std::vector<unsigned int> indices, force, engaged;
   std::vector<std::vector<Status>> visited;
 };
