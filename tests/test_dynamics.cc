@@ -11,16 +11,20 @@
 #include <pantocat/simulation/event_log.h>
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/simulation/switch_episodes.h>
+#include <pantocat/system/energy_functional.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/iteration_matrix.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 
 using namespace pantocat;
 
@@ -831,4 +835,65 @@ TEST(Impacts, FourIntegratorsAgreeOnTheContactLossAt56MetresPerSecond)
       }
   }
   EXPECT_NEAR(impulses.front(), 0.0782, 0.0005); // IDA, located
+}
+
+// The energy guard's compact E(t) (EnergyFunctional) is the system's energy
+// (SemiDiscreteSystem::energy): the same sums in another order, so equal to
+// round-off, 1e-12 of the sum of the magnitudes of its three parts, for
+// random states of the paper's FDM and Hermite FEM grids (the FEM mass is
+// consistent, the FDM mass lumped on the stiffness's pattern).
+TEST(EnergyFunctional, EqualsTheSystemsEnergyToRoundOff)
+{
+  for (const SpaceMethod method : {SpaceMethod::fdm, SpaceMethod::fem})
+  {
+    ProgramParameters p;
+    p.discretisation.method = method;
+    CaseRunner simulation(p.make_case(), {});
+    const SemiDiscreteSystem& system = simulation.system();
+    const EnergyFunctional energy(system);
+    std::mt19937 random(16);
+    std::uniform_real_distribution<double> value(-1., 1.);
+    for (int trial = 0; trial < 5; ++trial)
+    {
+      dealii::Vector<double> q(system.n_dofs()), v(system.n_dofs());
+      for (unsigned int i = 0; i < q.size(); ++i)
+      {
+        q(i) = 0.1 * value(random);
+        v(i) = 2. * value(random);
+      }
+      const double scale = 0.5 * system.mass.matrix_norm_square(v) +
+                           0.5 * std::abs(system.stiffness.matrix_norm_square(q)) +
+                           std::abs(system.load * q);
+      EXPECT_NEAR(energy(q, v, 0.), system.energy(q, v), 1e-12 * scale);
+    }
+  }
+}
+
+// x^T A x of a matrix that is not symmetric and whose pattern is not either
+// (an entry (0, 2) without (2, 0)): the compact form keeps the symmetric
+// part, so it equals the dense double sum, here an exact small-integer sum.
+TEST(EnergyFunctional, QuadraticFormOfANonSymmetricPattern)
+{
+  dealii::DynamicSparsityPattern dsp(3, 3);
+  for (const auto& [i, j] : std::vector<std::pair<int, int>>{
+           {0, 0}, {0, 1}, {1, 0}, {1, 1}, {0, 2}, {2, 2}, {1, 2}, {2, 1}})
+    dsp.add(i, j);
+  dealii::SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  dealii::SparseMatrix<double> A(pattern);
+  A.set(0, 0, 2.);
+  A.set(0, 1, 3.);
+  A.set(1, 0, -1.);
+  A.set(1, 1, 4.);
+  A.set(0, 2, 5.);
+  A.set(2, 2, 1.);
+  A.set(1, 2, 0.); // stored zero: its pair (2, 1) holds the weight
+  A.set(2, 1, 7.);
+  dealii::Vector<double> x(3);
+  x(0) = 1.;
+  x(1) = -2.;
+  x(2) = 3.;
+  // 2 + 3(-2) + (-1)(-2) + 4(4) + 5(3) + 1(9) + 7(-6) = -4
+  EXPECT_EQ(QuadraticForm(A)(x), -4.);
+  EXPECT_EQ(A.matrix_norm_square(x), -4.);
 }

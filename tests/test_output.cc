@@ -7,6 +7,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/csv_number.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
 #include <pantocat/io/vtu_time_series_writer.h>
@@ -19,11 +20,14 @@
 #include <gtest/gtest.h>
 #include <zlib.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <random>
 #include <regex>
 #include <sstream>
 
@@ -462,3 +466,70 @@ TEST(ProgressMeter, PrintsPercentAndTimeAndClearsTheLine)
 }
 
 // ---------------------------------------------------------------- plots
+
+namespace
+{
+/// The count of values of @p xs whose write_csv_number() text differs from
+/// std::to_chars's "%.10g"; the first difference goes to the test's log.
+std::size_t csv_number_mismatches(const std::vector<double>& xs)
+{
+  std::size_t mismatches = 0;
+  for (const double x : xs)
+  {
+    char fast[32], exact[32];
+    const std::string a(fast, write_csv_number(fast, x));
+    const std::string b(
+        exact, std::to_chars(exact, exact + 32, x, std::chars_format::general, 10).ptr);
+    if (a != b && mismatches++ == 0)
+      ADD_FAILURE() << std::hexfloat << x << ": " << a << " instead of " << b;
+  }
+  return mismatches;
+}
+} // namespace
+
+// The time series' number text is printf's "%.10g" to the character (the
+// CSV of every shipped case stays the same file): random significands over
+// 10^-30 ... 10^30, every bit pattern (subnormals, infinities, NaN), and
+// the values next to the ties of the tenth digit, where an extended-precision
+// rounding could go the wrong way (they must take the exact path).
+TEST(CsvNumber, IsPrintfsTenDigitTextForEveryValue)
+{
+  std::mt19937_64 random(20261124);
+  std::uniform_real_distribution<double> significand(1., 10.);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  std::vector<double> xs;
+  for (int i = 0; i < 600000; ++i)
+    xs.push_back((i % 2 ? -1. : 1.) * significand(random) *
+                 std::pow(10., exponent(random)));
+  for (int i = 0; i < 200000; ++i)
+  {
+    const std::uint64_t bits = random();
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    xs.push_back(x);
+  }
+  std::uniform_int_distribution<std::uint64_t> ten_digits(1000000000ULL, 9999999999ULL);
+  for (int i = 0; i < 100000; ++i)
+  {
+    // (n + 1/2) 10^(e - 9): a tie of the tenth digit, and its neighbours.
+    double x = (static_cast<double>(ten_digits(random)) + 0.5) *
+               std::pow(10., exponent(random) / 2 - 9);
+    for (int k = 0; k < 3; ++k)
+      x = std::nextafter(x, 0.);
+    for (int k = 0; k < 7; ++k, x = std::nextafter(x, 1e300))
+      xs.push_back(x);
+  }
+  for (int e = -25; e <= 25; ++e) // powers of ten and their neighbours
+  {
+    const double p = std::pow(10., e);
+    xs.insert(xs.end(), {p, std::nextafter(p, 0.), std::nextafter(p, 1e300), -p,
+                         9.9999999995 * p, 9.999999999 * p, 1.0000000005 * p});
+  }
+  xs.insert(xs.end(),
+            {0., -0., 1e-5, 9.9999999995e-5, 1e-4, 9999999999.5, 1e10, 1e19, 1e-17,
+             123456789012., 0.5, 2.5, std::numeric_limits<double>::min(),
+             std::numeric_limits<double>::max(), std::numeric_limits<double>::infinity(),
+             -std::numeric_limits<double>::infinity(),
+             std::numeric_limits<double>::quiet_NaN()});
+  EXPECT_EQ(csv_number_mismatches(xs), 0u) << "of " << xs.size() << " values";
+}

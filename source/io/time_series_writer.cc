@@ -1,8 +1,8 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/serialization.h>
+#include <pantocat/io/csv_number.h>
 #include <pantocat/io/time_series_writer.h>
 
-#include <charconv>
 #include <filesystem>
 #include <sstream>
 
@@ -67,14 +67,15 @@ void TimeSeriesWriter::start(const SimulationLayout& l)
 namespace
 {
 /// Appends "," (unless @p first) and @p x as printf's %.10g writes it (the
-/// stream's precision 10), without the stream's locale and formatting machinery.
+/// stream's precision 10), without the stream's locale and formatting machinery:
+/// write_csv_number(), the same text as std::to_chars in under half its time.
 void append(std::string& line, const double x, const bool first = false)
 {
   char buffer[32];
   char* p = buffer;
   if (!first)
     *p++ = ',';
-  p = std::to_chars(p, buffer + sizeof buffer, x, std::chars_format::general, 10).ptr;
+  p = write_csv_number(p, x);
   line.append(buffer, p);
 }
 } // namespace

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <iomanip>
 #include <iostream>
 #include <limits>
@@ -102,16 +103,35 @@ double largest_magnitude(const dealii::Vector<double>& x)
 
 /**
  * The number of entries with !(|x_i| <= bound): not finite, or beyond
- * @p bound. A comparison and an integer sum per entry, which vectorises
- * (largest_magnitude()'s floating-point reductions do not without
- * -ffast-math): the every-step test of check_bounded().
+ * @p bound. The every-step test of check_bounded(), so written for the
+ * vector unit (GCC's vector extensions, two doubles a lane pair, two
+ * independent sums): |x| by clearing the sign bit, a comparison that is false
+ * for NaN, and the comparisons' all-ones masks summed (-1 per entry within
+ * the bound). No floating-point arithmetic: the count is exact. A third of
+ * the time of the scalar loop, which the compiler did not vectorise
+ * (issue 16: 0.28 instead of 0.85 us per step at N+1 = 500).
  */
 std::size_t count_outside(const dealii::Vector<double>& x, const double bound)
 {
+  using Pair = double __attribute__((vector_size(16)));
+  using Mask = long long __attribute__((vector_size(16)));
+  const Mask magnitude = {0x7fffffffffffffffLL, 0x7fffffffffffffffLL};
+  const Pair b = {bound, bound};
   const double* __restrict p = x.begin();
   const std::size_t n = x.size();
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  Mask inside0 = {0, 0}, inside1 = {0, 0};
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4)
+  {
+    Pair x0, x1;
+    std::memcpy(&x0, p + i, sizeof x0);
+    std::memcpy(&x1, p + i + 2, sizeof x1);
+    inside0 += (Mask)((Pair)((Mask)x0 & magnitude) <= b);
+    inside1 += (Mask)((Pair)((Mask)x1 & magnitude) <= b);
+  }
+  const Mask inside = inside0 + inside1;
+  std::size_t count = n - static_cast<std::size_t>(-(inside[0] + inside[1]));
+  for (; i < n; ++i)
     count += !(std::abs(p[i]) <= bound);
   return count;
 }

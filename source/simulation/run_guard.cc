@@ -11,8 +11,8 @@ namespace pantocat
 RunGuard::RunGuard(const GuardParameters& p, const SemiDiscreteSystem& system,
                    const double reference_force, const double reference_energy,
                    const DynamicState& initial)
-    : parameters(p), system(system),
-      initial_energy(system.energy(initial.q, initial.v, initial.t))
+    : parameters(p), system(system), energy(system),
+      initial_energy(energy(initial.q, initial.v, initial.t))
 {
   seen.reference_force = reference_force;
   seen.reference_energy = reference_energy;
@@ -62,7 +62,7 @@ void RunGuard::observe_state(const TimePoint& p, const DynamicState& s)
   }
   if ((points - 1) % 16 != 0)
     return;
-  const double increase = system.energy(s.q, s.v, s.t) - initial_energy;
+  const double increase = energy(s.q, s.v, s.t) - initial_energy;
   seen.max_energy_increase = std::max(seen.max_energy_increase, increase);
   seen.min_energy_increase = std::min(seen.min_energy_increase, increase);
   if (!std::isfinite(increase))

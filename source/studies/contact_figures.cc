@@ -1,9 +1,13 @@
 #include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/run_events.h>
+#include <pantocat/simulation/switch_episodes.h>
 #include <pantocat/studies/contact_figures.h>
 #include <pantocat/studies/packed_bytes.h>
 
 #include <algorithm>
+#include <limits>
+#include <map>
+#include <utility>
 
 namespace pantocat
 {
@@ -127,41 +131,77 @@ ContactFiguresRecorder::figures(const IntegratorStatistics& integrator) const
 
 namespace
 {
-/// The next event of the constraint of @p events[i] after i, or events.size().
-std::size_t next_of_same(const std::vector<StudyEvent>& events, const std::size_t i,
-                         const std::vector<bool>& dropped)
+/// A constraint's open intervals and the indices of the events that open and
+/// close them (no_event: open at the start or at the end of the run).
+struct OpenIntervals
 {
-  for (std::size_t j = i + 1; j < events.size(); ++j)
-    if (!dropped[j] && events[j].constraint == events[i].constraint)
-      return j;
-  return events.size();
+  static constexpr std::size_t no_event = std::numeric_limits<std::size_t>::max();
+  std::vector<Interval> intervals;
+  std::vector<std::pair<std::size_t, std::size_t>> events;
+};
+
+/// The open intervals of each constraint of @p events (in time order; the
+/// openings and closings of a constraint alternate).
+std::map<unsigned int, OpenIntervals>
+open_intervals(const std::vector<StudyEvent>& events)
+{
+  constexpr double infinity = std::numeric_limits<double>::infinity();
+  constexpr std::size_t none = OpenIntervals::no_event;
+  std::map<unsigned int, OpenIntervals> open;
+  for (std::size_t i = 0; i < events.size(); ++i)
+  {
+    OpenIntervals& o = open[events[i].constraint];
+    const double t = events[i].t;
+    if (!events[i].closes)
+    {
+      o.intervals.push_back({t, infinity});
+      o.events.push_back({i, none});
+    }
+    else if (!o.intervals.empty() && o.intervals.back().second == infinity)
+    {
+      o.intervals.back().second = t;
+      o.events.back().second = i;
+    }
+    else // a closing first: open since the start of the run
+    {
+      o.intervals.push_back({-infinity, t});
+      o.events.push_back({none, i});
+    }
+  }
+  return open;
 }
 } // namespace
 
 EpisodeEvents episode_events(const std::vector<StudyEvent>& events,
                              const double resolution)
 {
-  std::vector<bool> dropped(events.size(), false);
-  // The inner reclosures of each episode: a closing and the next opening.
-  for (std::size_t i = 0; i < events.size(); ++i)
-    if (events[i].closes)
-      if (const std::size_t j = next_of_same(events, i, dropped);
-          j < events.size() && !events[j].closes &&
-          events[j].t - events[i].t < resolution)
-        dropped[i] = dropped[j] = true;
-  // Episodes shorter than the resolution: an opening and its closing.
+  // The episodes of each constraint (switch_episodes(), as summary.json's);
+  // those at least one resolution long keep their first opening and last
+  // closing, the shorter ones are counted.
   EpisodeEvents result;
-  for (std::size_t i = 0; i < events.size(); ++i)
-    if (!dropped[i] && !events[i].closes)
-      if (const std::size_t j = next_of_same(events, i, dropped);
-          j < events.size() && events[j].closes && events[j].t - events[i].t < resolution)
+  std::vector<bool> kept(events.size(), false);
+  for (const auto& [constraint, o] : open_intervals(events))
+  {
+    std::size_t first = 0;
+    for (const SwitchEpisode& e : switch_episodes(o.intervals, resolution))
+    {
+      const std::size_t opening = o.events[first].first;
+      const std::size_t closing = o.events[first + e.intervals - 1].second;
+      first += e.intervals;
+      const double length = e.span.second - e.span.first;
+      if (length < resolution)
       {
-        dropped[i] = dropped[j] = true;
         ++result.short_episodes;
-        result.short_episode_time += events[j].t - events[i].t;
+        result.short_episode_time += length;
+        continue;
       }
+      for (const std::size_t i : {opening, closing})
+        if (i != OpenIntervals::no_event)
+          kept[i] = true;
+    }
+  }
   for (std::size_t i = 0; i < events.size(); ++i)
-    if (!dropped[i])
+    if (kept[i])
       result.events.push_back(events[i]);
   return result;
 }

@@ -75,8 +75,8 @@ const DofBlock& SemiDiscreteSystem::block(const std::string& name) const
   throw std::logic_error("no block named '" + name + "' in the semi-discrete system");
 }
 
-double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
-                                  const dealii::Vector<double>& v, const double t) const
+double SemiDiscreteSystem::potential_of_loads_and_springs(const dealii::Vector<double>& q,
+                                                          const double t) const
 {
   double work = load * q;
   if (has_time_dependent_load())
@@ -93,8 +93,14 @@ double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
       c->evaluate(t, state, 0);
       springs += c->strain_energy(state.position_residual(q));
     }
-  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) - work +
-         springs;
+  return springs - work;
+}
+
+double SemiDiscreteSystem::energy(const dealii::Vector<double>& q,
+                                  const dealii::Vector<double>& v, const double t) const
+{
+  return 0.5 * mass.matrix_norm_square(v) + 0.5 * stiffness.matrix_norm_square(q) +
+         potential_of_loads_and_springs(q, t);
 }
 
 bool SemiDiscreteSystem::has_compliant_constraints() const

@@ -112,6 +112,23 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
 namespace
 {
 /**
+ * The unconstrained step of (40) at unknown @p i: v*_i = v_prev,i + 2 dt a_i,
+ * q*_i = q_i + dt (v_i + v*_i)/2, with @p two_dt = 2 dt and @p half_dt =
+ * dt/2. Every place that predicts a row (the force sweeps, the rows predicted
+ * again, the step without a fused sweep) calls this: the same operations in
+ * the same order, so q*, v* are the same to the bit wherever they are made.
+ */
+inline void predict_unconstrained(const int i, const double a, const double two_dt,
+                                  const double half_dt, const double* __restrict q,
+                                  const double* __restrict v, const double* __restrict vp,
+                                  double* __restrict q_new, double* __restrict v_new)
+{
+  const double vn = vp[i] + two_dt * a;
+  v_new[i] = vn;
+  q_new[i] = q[i] + half_dt * (v[i] + vn);
+}
+
+/**
  * out = scale * (f - K q - D/2 (v_prev + v)) in one sweep for a symmetric K
  * of half bandwidth B and a diagonal D (the FDM and lumped-pantograph case):
  * K(i, i+o) = K(i+o, i) is read from the upper diagonals only (fewer streams
@@ -159,11 +176,7 @@ void uniform_run_forces(const UniformForceRun& run, const double* __restrict q,
     const double acceleration = s * scale;
     out[i] = acceleration;
     if constexpr (predict)
-    {
-      const double vn = vp[i] + two_dt * acceleration;
-      v_new[i] = vn;
-      q_new[i] = q[i] + half_dt * (v[i] + vn);
-    }
+      predict_unconstrained(i, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
   }
 }
 
@@ -183,12 +196,7 @@ void banded_forces(const int n, const double* __restrict f,
   {
     out[i] = acceleration;
     if constexpr (predict)
-    {
-      // As compute_update() writes them, to the bit.
-      const double vn = vp[i] + 2. * dt * acceleration;
-      v_new[i] = vn;
-      q_new[i] = q[i] + 0.5 * dt * (v[i] + vn);
-    }
+      predict_unconstrained(i, acceleration, 2. * dt, 0.5 * dt, q, v, vp, q_new, v_new);
   };
   auto row = [&](const int i, const bool interior)
   {
@@ -674,10 +682,7 @@ void HalfExplicitIntegrator::refresh_prediction()
   double* __restrict qn = q_new.begin();
   double* __restrict vn = v_new.begin();
   const auto refresh = [&](const unsigned int i)
-  {
-    vn[i] = vp[i] + 2. * dt * aa[i];
-    qn[i] = qq[i] + 0.5 * dt * (vv[i] + vn[i]);
-  };
+  { predict_unconstrained(i, aa[i], 2. * dt, 0.5 * dt, qq, vv, vp, qn, vn); };
   for (const unsigned int i : constant_refresh_rows)
     refresh(i);
   const auto& sn = at_n.states();
@@ -704,10 +709,7 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
     double* __restrict qn = q_new.begin();
     double* __restrict vn = v_new.begin();
     for (unsigned int i = 0; i < n; ++i)
-    {
-      vn[i] = vp[i] + 2. * dt * aa[i];
-      qn[i] = qq[i] + 0.5 * dt * (vv[i] + vn[i]);
-    }
+      predict_unconstrained(i, aa[i], 2. * dt, 0.5 * dt, qq, vv, vp, qn, vn);
   }
   split(A, keep, moving_active);
   const unsigned int mF = fixed.size(), p = moving_active.size();

@@ -63,15 +63,15 @@ struct EpisodeEvents
 
 /**
  * The switches of @p events (in time order) that open and close the
- * episodes (SwitchEpisode) of each constraint at the resolution @p
- * resolution [s]: a closing followed by the constraint's next opening less
- * than @p resolution later is left out with that opening (the inner
- * reclosures of a cascade); then an episode shorter than @p resolution (its
- * opening and closing less than that apart) is counted in short_episodes
- * instead. Where isolated sub-millisecond separations differ between runs
- * (a head that leaves a wire just stopped by a dropper under it, for 0.1 ms,
- * at one step and not at another), the episodes that a 20 Hz evaluation
- * sees still match one to one.
+ * episodes of each constraint at the resolution @p resolution [s], by the
+ * rule of summary.json's episodes (switch_episodes(): open intervals whose
+ * reclosures are shorter than @p resolution merge; a constraint open at the
+ * start or the end of the run has an interval without that end). An episode
+ * at least @p resolution long keeps its first opening and its last closing;
+ * a shorter one is counted in short_episodes instead. Where isolated
+ * sub-millisecond separations differ between runs (a head that leaves a wire
+ * just stopped by a dropper under it, for 0.1 ms, at one step and not at
+ * another), the episodes that a 20 Hz evaluation sees still match one to one.
  */
 EpisodeEvents episode_events(const std::vector<StudyEvent>& events, double resolution);
 

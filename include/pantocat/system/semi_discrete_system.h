@@ -71,6 +71,9 @@ public:
    */
   double energy(const dealii::Vector<double>& q, const dealii::Vector<double>& v,
                 double t = 0.) const;
+  /// The part of energy() that is not a quadratic form of M or K:
+  /// -f(t)^T q plus the compliant constraints' strain energy.
+  double potential_of_loads_and_springs(const dealii::Vector<double>& q, double t) const;
 
   std::vector<DofBlock> blocks;
   /// On the heap, so that the matrices that point to it survive moves of the system.

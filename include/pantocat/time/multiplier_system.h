@@ -9,7 +9,7 @@ namespace pantocat
 {
 /**
  * Solves the small dense system of the multipliers (lambda, eta, mu) of the
- * active constraints: x = A^{-1} b, A overwritten. Throws SimulationError
+ * active constraints: x = A^{-1} b (A may be overwritten). Throws SimulationError
  * naming time @p t and @p what if A is singular (linearly dependent active
  * constraints). Does nothing for an empty active set.
  */
