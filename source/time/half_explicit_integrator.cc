@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
 
 namespace pantocat
 {
@@ -144,9 +145,12 @@ inline void predict_unconstrained(const int i, const double a, const double two_
 /**
  * banded_forces() on the rows of one uniform run: its coefficients as local
  * scalars, every pointer restrict, so that the loop vectorises. The
- * operations and their order are those of banded_forces()'s rows.
+ * operations and their order are those of banded_forces()'s rows; with
+ * @p symmetric (K(i, i+o) = K(i, i-o) in the run: the wires' interiors) each
+ * pair of neighbours takes one product, k_o (q_{i-o} + q_{i+o}), as the
+ * single-sweep kernel of bench/ does.
  */
-template <int B, bool damped, bool predict>
+template <int B, bool damped, bool predict, bool symmetric>
 void uniform_run_forces(const UniformForceRun& run, const double* __restrict q,
                         const double* __restrict vp, const double* __restrict v,
                         double* __restrict out, const double dt, double* __restrict q_new,
@@ -161,17 +165,28 @@ void uniform_run_forces(const UniformForceRun& run, const double* __restrict q,
     double s = f - k0 * q[i];
     if constexpr (damped)
       s -= d0 * (vp[i] + v[i]);
-    s -= u1 * q[i + 1];
-    s -= l1 * q[i - 1];
-    if constexpr (B >= 2)
+    if constexpr (symmetric) // K(i, i+o) = K(i, i-o): one product per pair
     {
-      s -= u2 * q[i + 2];
-      s -= l2 * q[i - 2];
+      s -= u1 * (q[i - 1] + q[i + 1]);
+      if constexpr (B >= 2)
+        s -= u2 * (q[i - 2] + q[i + 2]);
+      if constexpr (B >= 3)
+        s -= u3 * (q[i - 3] + q[i + 3]);
     }
-    if constexpr (B >= 3)
+    else
     {
-      s -= u3 * q[i + 3];
-      s -= l3 * q[i - 3];
+      s -= u1 * q[i + 1];
+      s -= l1 * q[i - 1];
+      if constexpr (B >= 2)
+      {
+        s -= u2 * q[i + 2];
+        s -= l2 * q[i - 2];
+      }
+      if constexpr (B >= 3)
+      {
+        s -= u3 * q[i + 3];
+        s -= l3 * q[i - 3];
+      }
     }
     const double acceleration = s * scale;
     out[i] = acceleration;
@@ -226,12 +241,22 @@ void banded_forces(const int n, const double* __restrict f,
       }
       // A run's own reach: a string's rows skip the beam's zero diagonals
       // (subtracting 0 q_j changes nothing for finite q).
+      const auto sweep = [&](auto reach)
+      {
+        constexpr int R = decltype(reach)::value;
+        if (r.symmetric)
+          uniform_run_forces<R, damped, predict, true>(r, q, vp, v, out, dt, q_new,
+                                                       v_new);
+        else
+          uniform_run_forces<R, damped, predict, false>(r, q, vp, v, out, dt, q_new,
+                                                        v_new);
+      };
       if (B >= 3 && r.reach == 3)
-        uniform_run_forces<3, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+        sweep(std::integral_constant<int, 3>());
       else if (B >= 2 && r.reach == 2)
-        uniform_run_forces<2, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+        sweep(std::integral_constant<int, 2>());
       else
-        uniform_run_forces<1, damped, predict>(r, q, vp, v, out, dt, q_new, v_new);
+        sweep(std::integral_constant<int, 1>());
     }
     return;
   }
@@ -667,6 +692,7 @@ void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
     for (int o = 2; o <= b; ++o)
       if (r.upper[o - 1] != 0. || r.lower[o - 1] != 0.)
         r.reach = o;
+    r.symmetric = std::equal(r.upper, r.upper + 3, r.lower);
   }
   // Worth it only with long runs on average.
   if (uniform_runs.size() * 32 > static_cast<std::size_t>(n))

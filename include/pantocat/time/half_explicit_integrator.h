@@ -23,7 +23,8 @@ struct UniformForceRun
 {
   int first = 0, last = 0;
   bool uniform = false;
-  int reach = 1; ///< the largest o with K(i, i +- o) != 0 in the run
+  int reach = 1;          ///< the largest o with K(i, i +- o) != 0 in the run
+  bool symmetric = false; ///< K(i, i + o) = K(i, i - o) for every o
   double f = 0., d0 = 0., scale = 0., k0 = 0.;
   double upper[3] = {0., 0., 0.}, lower[3] = {0., 0., 0.};
 };
