@@ -446,13 +446,14 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
     if (!lags)
       notify(initial);
   }
+  const double span_length = data.catenary.length(); // the bound of check_bounded()
   for (unsigned long n = first_step; n <= n_steps; ++n)
   {
     integrator->advance();
     // After the outputs, like the guards: the time series ends with the
     // time point that failed.
     notify(integrator->latest());
-    check_bounded(integrator->latest(), n, data.catenary.length());
+    check_bounded(integrator->latest(), n, span_length);
     if (n == n_steps)
       break;
     if (checkpoints.writer && checkpoints.interval > 0 && n % checkpoints.interval == 0)

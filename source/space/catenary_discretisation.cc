@@ -12,7 +12,8 @@ const char* block_name(const Wire wire)
 CatenaryDiscretisation::CatenaryDiscretisation(
     const CatenaryParameters& catenary, const DiscretisationParameters& discretisation)
     : catenary(catenary), discretisation(discretisation),
-      delta(discretisation.load_half_width)
+      delta(discretisation.load_half_width),
+      dx(catenary.length() / discretisation.n_intervals)
 {
 }
 

@@ -118,7 +118,8 @@ public:
   std::vector<double> grid_points() const;
 
   unsigned int n_intervals() const { return discretisation.n_intervals; }
-  double cell_size() const { return catenary.length() / discretisation.n_intervals; }
+  /// L / N, kept: the contact's rows ask for it at every evaluation.
+  double cell_size() const { return dx; }
   const CatenaryParameters& catenary_parameters() const { return catenary; }
   const DiscretisationParameters& discretisation_parameters() const
   {
@@ -132,6 +133,7 @@ protected:
   CatenaryParameters catenary;
   DiscretisationParameters discretisation;
   SmoothedDelta delta;
+  double dx; ///< L / N
 };
 
 /**
