@@ -18,7 +18,7 @@ constexpr unsigned int small_size = 4;
  * half-explicit method are 1 x 1 and 2 x 2 for one contact away from the
  * droppers (the fixed constraints are eliminated by their Schur complement):
  * FullMatrix::gauss_jordan() allocated its pivot list at every call, twice a
- * step (issue 16). A zero pivot gives a non-finite x, reported as singular.
+ * step. A zero pivot gives a non-finite x, reported as singular.
  */
 void solve_small(const dealii::FullMatrix<double>& A, const dealii::Vector<double>& b,
                  dealii::Vector<double>& x)

@@ -10,7 +10,7 @@ namespace pantocat
  * text; needs at most 17 characters at @p first.
  *
  * The time series writes about 15 numbers per time point, every step of a
- * run; this is its per-row cost (issue 16). The usual case (1e-17 <= |x| <
+ * run; this is its per-row cost. The usual case (1e-17 <= |x| <
  * 1e10: times, forces, displacements) is exact integer arithmetic: the
  * significand times 5^k in 128 bits, shifted, gives the ten-digit integer and
  * the exact remainder, so the rounding is decided from the binary value as

@@ -33,7 +33,7 @@ private:
  * and again on one system (the energy guard, RunGuard): v^T M v / 2 and
  * q^T K q / 2 as compact quadratic forms. On the paper's FDM grid (N+1 = 500)
  * an evaluation costs a third of the two sparse-matrix passes of
- * SemiDiscreteSystem::energy (issue 16). The same value up to round-off (the
+ * SemiDiscreteSystem::energy. The same value up to round-off (the
  * sums run in another order).
  */
 class EnergyFunctional
