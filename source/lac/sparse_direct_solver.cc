@@ -20,6 +20,9 @@ namespace pantocat
 {
 namespace
 {
+/// Blocks at least this long are kept apart and substituted two at a time.
+constexpr int long_block = 256;
+
 /**
  * Forward (U^T y = b) and backward (U x = y) substitution on the rows
  * [first, last) of one uncoupled block with half bandwidth KD (a compile-time
@@ -58,6 +61,68 @@ void substitute(const double* __restrict u, const int kd, const double* __restri
     for (int r = 0; r < K; ++r)
       X[i * K + r] = s[r] * recip[i];
   }
+}
+
+/**
+ * substitute() on two uncoupled blocks of the same factor side by side: row
+ * t of the one and row t of the other in the same iteration. The recurrences
+ * are latency-bound (each row waits for the one before), so two independent
+ * chains in flight take about the time of one: a section's contact wire and
+ * messenger are two such blocks. Each row's operations are those of
+ * substitute(), in the same order.
+ */
+template <int KD, int K>
+void substitute_two(const double* __restrict u, const int kd,
+                    const double* __restrict recip, double* __restrict X,
+                    const SparseDirectSolver::Block& a,
+                    const SparseDirectSolver::Block& b)
+{
+  const int ld = kd + 1;
+  const auto forward = [&](const int j, const int first)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[j * K + r];
+    const double* column = u + static_cast<std::size_t>(j) * ld + kd;
+    for (int m = 1; m <= KD; ++m)
+      if (j - m >= first)
+        for (int r = 0; r < K; ++r)
+          s[r] -= column[-m] * X[(j - m) * K + r];
+    for (int r = 0; r < K; ++r)
+      X[j * K + r] = s[r] * recip[j];
+  };
+  const auto backward = [&](const int i, const int last)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[i * K + r];
+    for (int m = 1; m <= KD; ++m)
+      if (i + m < last)
+        for (int r = 0; r < K; ++r)
+          s[r] -= u[(kd - m) + static_cast<std::size_t>(i + m) * ld] * X[(i + m) * K + r];
+    for (int r = 0; r < K; ++r)
+      X[i * K + r] = s[r] * recip[i];
+  };
+  const int common = std::min(a.last - a.first, b.last - b.first);
+  for (int t = 0; t < common; ++t)
+  {
+    forward(a.first + t, a.first);
+    forward(b.first + t, b.first);
+  }
+  for (int j = a.first + common; j < a.last; ++j)
+    forward(j, a.first);
+  for (int j = b.first + common; j < b.last; ++j)
+    forward(j, b.first);
+  // Backward from each block's last row; the longer block's first rows alone.
+  for (int t = 0; t < common; ++t)
+  {
+    backward(a.last - 1 - t, a.last);
+    backward(b.last - 1 - t, b.last);
+  }
+  for (int i = a.last - 1 - common; i >= a.first; --i)
+    backward(i, a.last);
+  for (int i = b.last - 1 - common; i >= b.first; --i)
+    backward(i, b.last);
 }
 
 /// substitute() for two factors with the same blocks, side by side.
@@ -149,10 +214,14 @@ void SparseDirectSolver::find_blocks(const dealii::SparseMatrix<double>& A)
       current = Block{i + 1, i + 1, 0};
     }
   }
-  // Merge neighbouring blocks of the same bandwidth (e.g. a diagonal stretch).
+  // Merge neighbouring blocks of the same bandwidth (e.g. a diagonal stretch),
+  // but keep long ones apart: solve_interleaved() substitutes two of them
+  // side by side.
   std::vector<Block> merged;
   for (const Block& b : independent_blocks)
-    if (!merged.empty() && merged.back().bandwidth == b.bandwidth)
+    if (!merged.empty() && merged.back().bandwidth == b.bandwidth &&
+        (merged.back().last - merged.back().first < long_block ||
+         b.last - b.first < long_block))
       merged.back().last = b.last;
     else
       merged.push_back(b);
@@ -336,7 +405,29 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
     }
     return;
   }
-  for (const Block& b : independent_blocks)
+  for (std::size_t i = 0; i < independent_blocks.size(); ++i)
+  {
+    const Block& b = independent_blocks[i];
+    // Two long blocks side by side (one right-hand side), with the larger of
+    // their bandwidths: the other block's extra band entries are zeros.
+    const int pair_bandwidth =
+        i + 1 < independent_blocks.size()
+            ? std::max(b.bandwidth, independent_blocks[i + 1].bandwidth)
+            : 0;
+    if (k == 1 && pair_bandwidth >= 1 && pair_bandwidth <= 3 &&
+        std::min(b.last - b.first, independent_blocks[i + 1].last -
+                                       independent_blocks[i + 1].first) >= long_block)
+    {
+      const Block& c = independent_blocks[i + 1];
+      if (pair_bandwidth == 1)
+        substitute_two<1, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+      else if (pair_bandwidth == 2)
+        substitute_two<2, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+      else
+        substitute_two<3, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+      ++i;
+      continue;
+    }
     switch (k)
     {
     case 1:
@@ -355,5 +446,6 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
       AssertThrow(false,
                   dealii::ExcMessage("solve_interleaved: 1 to 4 right-hand sides"));
     }
+  }
 }
 } // namespace pantocat

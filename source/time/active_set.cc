@@ -13,6 +13,11 @@ ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
     : system(system), max_iterations(max_iterations), closing(closing),
       allow_touching(allow_touching)
 {
+  for (const auto& c : system.constraints)
+  {
+    unilateral.push_back(c->is_unilateral());
+    compliant.push_back(c->is_compliant());
+  }
 }
 
 void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
@@ -21,9 +26,8 @@ void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
   current.assign(at_start.size(), Status::inactive);
   for (unsigned int i = 0; i < current.size(); ++i)
     // Bilateral constraints are always active (engaged if compliant).
-    if (at_start[i] || !system.constraints[i]->is_unilateral())
-      current[i] =
-          system.constraints[i]->is_compliant() ? Status::engaged : Status::active;
+    if (at_start[i] || !unilateral[i])
+      current[i] = compliant[i] ? Status::engaged : Status::active;
   released.assign(current.size(), false);
   visited.resize(1); // keeps the capacity: no allocation per step
   visited[0] = current;
@@ -85,9 +89,9 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
   bool changed = false;
   for (unsigned int i = 0; i < current.size(); ++i)
   {
-    if (!system.constraints[i]->is_unilateral())
+    if (!unilateral[i])
       continue;
-    if (system.constraints[i]->is_compliant())
+    if (compliant[i])
     {
       if (gap_rates.empty())
         continue; // an explicit force: the integrator's own business
@@ -148,7 +152,7 @@ unsigned int ActiveSetIteration::changes_in_step() const
 bool ActiveSetIteration::impact_in_step() const
 {
   for (unsigned int i = 0; i < holds.size(); ++i)
-    if (holds[i] && !at_start[i] && system.constraints[i]->is_rigid_unilateral())
+    if (holds[i] && !at_start[i] && unilateral[i] && !compliant[i])
       return true;
   return false;
 }

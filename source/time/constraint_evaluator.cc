@@ -6,7 +6,11 @@ ConstraintEvaluator::ConstraintEvaluator(const SemiDiscreteSystem& system)
     : system(system), cache(system.n_constraints())
 {
   for (unsigned int i = 0; i < cache.size(); ++i)
+  {
     system.constraints[i]->evaluate(0., cache[i]);
+    if (system.constraints[i]->depends_on_time())
+      time_dependent.push_back(i);
+  }
 }
 
 const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t,
@@ -15,9 +19,8 @@ const std::vector<ConstraintState>& ConstraintEvaluator::at(const double t,
   // Asked again for the same time point: the rows are already there.
   if (evaluated && t == last_t && max_order <= last_order)
     return cache;
-  for (unsigned int i = 0; i < cache.size(); ++i)
-    if (system.constraints[i]->depends_on_time())
-      system.constraints[i]->evaluate(t, cache[i], max_order);
+  for (const unsigned int i : time_dependent)
+    system.constraints[i]->evaluate(t, cache[i], max_order);
   evaluated = true;
   last_t = t;
   last_order = max_order;

@@ -112,7 +112,6 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
   factorised = false;
   if (n == 0)
     return;
-  std::vector<double> diagonal;
   columns.clear();
   std::vector<Entry> lower = lower_entries(G, A, n_dofs, diagonal, columns);
   rows.clear();
@@ -126,6 +125,15 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     solve_with_A = A.solve;
     work.reinit(n_dofs);
   }
+  column_start.assign(1, 0);
+  column_index.clear();
+  column_value.clear();
+  for (const SparseRow& c : columns)
+  {
+    column_index.insert(column_index.end(), c.index.begin(), c.index.end());
+    column_value.insert(column_value.end(), c.value.begin(), c.value.end());
+    column_start.push_back(column_index.size());
+  }
   for (unsigned int k = 0; k < n; ++k)
     if (!(diagonal[k] > 0.))
       throw SimulationError("the " + what +
@@ -138,6 +146,7 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     if (std::abs(e.value) > 1e-15 * std::sqrt(diagonal[e.row] * diagonal[e.column]))
       kept.push_back(e);
 
+  diagonal_only = kept.empty();
   dealii::DynamicSparsityPattern graph(n, n);
   for (unsigned int k = 0; k < n; ++k)
     graph.add(k, k);
@@ -193,6 +202,14 @@ void FixedConstraintSchur::select(const std::vector<bool>& keep)
   if (n == 0 || (factorised && keep == selected))
     return;
   selected = keep;
+  factorised = true;
+  if (diagonal_only)
+  {
+    inverse_diagonal.resize(n);
+    for (unsigned int k = 0; k < n; ++k)
+      inverse_diagonal[k] = keep[k] ? 1. / (diagonal[k] + compliance[k]) : 0.;
+    return;
+  }
   std::vector<bool> kept_new(n);
   std::vector<double> compliance_new(n);
   for (unsigned int k = 0; k < n; ++k)
@@ -212,7 +229,6 @@ void FixedConstraintSchur::select(const std::vector<bool>& keep)
   // Cuthill-McKee keeps the band narrow; a consistent FEM mass makes it a few
   // dozen constraints wide (M^-1 decays slowly), still far cheaper banded.
   factor.factorize(selected_matrix, what, LinearSolverType::banded, 96);
-  factorised = true;
 }
 
 void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
@@ -234,9 +250,37 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
     work = 0.;
     return;
   }
+  const unsigned int* __restrict index = column_index.data();
+  const double* __restrict value = column_value.data();
+  double* __restrict out = y.begin();
   for (unsigned int k = 0; k < n; ++k)
-    if (factors[k] != 0.)
-      columns[k].add_transpose_to(y, factors[k]);
+    if (const double f = factors[k]; f != 0.)
+      for (unsigned int e = column_start[k]; e < column_start[k + 1]; ++e)
+        out[index[e]] += f * value[e];
+}
+
+void FixedConstraintSchur::add_columns(const std::vector<double>& f,
+                                       dealii::Vector<double>& y,
+                                       const std::vector<double>& g,
+                                       dealii::Vector<double>& z) const
+{
+  if (!rows.empty())
+  {
+    add_columns(f, y);
+    add_columns(g, z);
+    return;
+  }
+  const unsigned int* __restrict index = column_index.data();
+  const double* __restrict value = column_value.data();
+  double* __restrict out_y = y.begin();
+  double* __restrict out_z = z.begin();
+  for (unsigned int k = 0; k < n; ++k)
+    if (f[k] != 0. || g[k] != 0.)
+      for (unsigned int e = column_start[k]; e < column_start[k + 1]; ++e)
+      {
+        out_y[index[e]] += f[k] * value[e];
+        out_z[index[e]] += g[k] * value[e];
+      }
 }
 
 void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
@@ -263,6 +307,14 @@ void FixedConstraintSchur::solve(dealii::Vector<double>& x) const
 {
   if (n == 0)
     return;
+  if (diagonal_only)
+  {
+    double* __restrict y = x.begin();
+    const double* __restrict d = inverse_diagonal.data();
+    for (unsigned int k = 0; k < n; ++k)
+      y[k] *= d[k];
+    return;
+  }
   for (unsigned int k = 0; k < n; ++k)
     permuted[new_index[k]] = selected[k] ? x[k] : 0.;
   factor.solve(permuted);
@@ -274,6 +326,12 @@ void FixedConstraintSchur::solve(const std::vector<dealii::Vector<double>*>& xs)
 {
   if (n == 0)
     return;
+  if (diagonal_only)
+  {
+    for (dealii::Vector<double>* x : xs)
+      solve(*x);
+    return;
+  }
   constexpr std::size_t width = 4;
   for (std::size_t first = 0; first < xs.size(); first += width)
   {

@@ -104,6 +104,35 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   for (const unsigned int i : fixed)
     for (const unsigned int j : at_n.states()[i].G.index)
       constant_refresh_rows.push_back(j);
+  fixed_rows.start.assign(1, 0);
+  for (const unsigned int i : fixed)
+  {
+    const ConstraintState& state = at_n.states()[i];
+    fixed_rows.index.insert(fixed_rows.index.end(), state.G.index.begin(),
+                            state.G.index.end());
+    fixed_rows.value.insert(fixed_rows.value.end(), state.G.value.begin(),
+                            state.G.value.end());
+    fixed_rows.start.push_back(fixed_rows.index.size());
+    fixed_rows.offset.push_back(state.z);
+  }
+  is_moving.assign(m, false);
+  for (const unsigned int i : moving)
+    is_moving[i] = true;
+  // The fixed constraints by unknown (find_fixed_near()).
+  fixed_at_start.assign(n + 1, 0);
+  for (const unsigned int i : fixed)
+    for (const unsigned int j : at_n.states()[i].G.index)
+      ++fixed_at_start[j + 1];
+  for (unsigned int j = 0; j < n; ++j)
+    fixed_at_start[j + 1] += fixed_at_start[j];
+  fixed_at.resize(fixed_at_start[n]);
+  {
+    std::vector<unsigned int> next(fixed_at_start.begin(), fixed_at_start.end() - 1);
+    for (unsigned int k = 0; k < fixed.size(); ++k)
+      for (const unsigned int j : at_n.states()[fixed[k]].G.index)
+        fixed_at[next[j]++] = k;
+  }
+  near_mark.assign(fixed.size(), false);
   std::sort(constant_refresh_rows.begin(), constant_refresh_rows.end());
   constant_refresh_rows.erase(
       std::unique(constant_refresh_rows.begin(), constant_refresh_rows.end()),
@@ -150,48 +179,90 @@ inline void predict_unconstrained(const int i, const double a, const double two_
  * pair of neighbours takes one product, k_o (q_{i-o} + q_{i+o}), as the
  * single-sweep kernel of bench/ does.
  */
+/// A uniform run's coefficients as values (local scalars for the compiler).
+struct RunCoefficients
+{
+  double f, k0, d0, scale, u1, l1, u2, l2, u3, l3;
+};
+
+inline RunCoefficients coefficients_of(const UniformForceRun& run)
+{
+  return {run.f,        run.k0,       run.d0,       run.scale,    run.upper[0],
+          run.lower[0], run.upper[1], run.lower[1], run.upper[2], run.lower[2]};
+}
+
+/// The acceleration of row @p i of a uniform run with coefficients @p c.
+template <int B, bool damped, bool symmetric>
+inline double run_acceleration(const RunCoefficients& c, const int i,
+                               const double* __restrict q, const double* __restrict vp,
+                               const double* __restrict v)
+{
+  double s = c.f - c.k0 * q[i];
+  if constexpr (damped)
+    s -= c.d0 * (vp[i] + v[i]);
+  if constexpr (symmetric) // K(i, i+o) = K(i, i-o): one product per pair
+  {
+    s -= c.u1 * (q[i - 1] + q[i + 1]);
+    if constexpr (B >= 2)
+      s -= c.u2 * (q[i - 2] + q[i + 2]);
+    if constexpr (B >= 3)
+      s -= c.u3 * (q[i - 3] + q[i + 3]);
+  }
+  else
+  {
+    s -= c.u1 * q[i + 1];
+    s -= c.l1 * q[i - 1];
+    if constexpr (B >= 2)
+    {
+      s -= c.u2 * q[i + 2];
+      s -= c.l2 * q[i - 2];
+    }
+    if constexpr (B >= 3)
+    {
+      s -= c.u3 * q[i + 3];
+      s -= c.l3 * q[i - 3];
+    }
+  }
+  return s * c.scale;
+}
+
+/**
+ * banded_forces() on the rows of one uniform run: its coefficients as local
+ * scalars, every pointer restrict, so that the loop vectorises. The
+ * operations and their order are those of banded_forces()'s rows; with
+ * @p symmetric (K(i, i+o) = K(i, i-o) in the run: the wires' interiors) each
+ * pair of neighbours takes one product, k_o (q_{i-o} + q_{i+o}), as the
+ * single-sweep kernel of bench/ does. Then the run's exceptions (rows with
+ * their own f, D/2 and scaling) are done again with their values.
+ */
 template <int B, bool damped, bool predict, bool symmetric>
-void uniform_run_forces(const UniformForceRun& run, const double* __restrict q,
-                        const double* __restrict vp, const double* __restrict v,
-                        double* __restrict out, const double dt, double* __restrict q_new,
+void uniform_run_forces(const UniformForceRun& run, const ForceException* exceptions,
+                        const double* __restrict q, const double* __restrict vp,
+                        const double* __restrict v, double* __restrict out,
+                        const double dt, double* __restrict q_new,
                         double* __restrict v_new)
 {
-  const double f = run.f, k0 = run.k0, d0 = run.d0, scale = run.scale;
-  const double u1 = run.upper[0], l1 = run.lower[0], u2 = run.upper[1], l2 = run.lower[1],
-               u3 = run.upper[2], l3 = run.lower[2];
+  const RunCoefficients c = coefficients_of(run);
   const double two_dt = 2. * dt, half_dt = 0.5 * dt;
   for (int i = run.first; i < run.last; ++i)
   {
-    double s = f - k0 * q[i];
-    if constexpr (damped)
-      s -= d0 * (vp[i] + v[i]);
-    if constexpr (symmetric) // K(i, i+o) = K(i, i-o): one product per pair
-    {
-      s -= u1 * (q[i - 1] + q[i + 1]);
-      if constexpr (B >= 2)
-        s -= u2 * (q[i - 2] + q[i + 2]);
-      if constexpr (B >= 3)
-        s -= u3 * (q[i - 3] + q[i + 3]);
-    }
-    else
-    {
-      s -= u1 * q[i + 1];
-      s -= l1 * q[i - 1];
-      if constexpr (B >= 2)
-      {
-        s -= u2 * q[i + 2];
-        s -= l2 * q[i - 2];
-      }
-      if constexpr (B >= 3)
-      {
-        s -= u3 * q[i + 3];
-        s -= l3 * q[i - 3];
-      }
-    }
-    const double acceleration = s * scale;
+    const double acceleration = run_acceleration<B, damped, symmetric>(c, i, q, vp, v);
     out[i] = acceleration;
     if constexpr (predict)
       predict_unconstrained(i, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
+  }
+  for (int e = run.first_exception; e < run.last_exception; ++e)
+  {
+    const ForceException& x = exceptions[e];
+    RunCoefficients own = c;
+    own.f = x.f;
+    own.d0 = x.d0;
+    own.scale = x.scale;
+    const double acceleration =
+        run_acceleration<B, damped, symmetric>(own, x.row, q, vp, v);
+    out[x.row] = acceleration;
+    if constexpr (predict)
+      predict_unconstrained(x.row, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
   }
 }
 
@@ -202,7 +273,8 @@ void banded_forces(const int n, const double* __restrict f,
                    const double* __restrict vp, const double* __restrict v,
                    double* __restrict out, const double dt, double* __restrict q_new,
                    double* __restrict v_new,
-                   const std::vector<UniformForceRun>* runs = nullptr)
+                   const std::vector<UniformForceRun>* runs = nullptr,
+                   const ForceException* exceptions = nullptr)
 {
   const double* k[B + 1]; // k[o][i] = K(i, i + o)
   for (int o = 0; o <= B; ++o)
@@ -245,11 +317,11 @@ void banded_forces(const int n, const double* __restrict f,
       {
         constexpr int R = decltype(reach)::value;
         if (r.symmetric)
-          uniform_run_forces<R, damped, predict, true>(r, q, vp, v, out, dt, q_new,
-                                                       v_new);
+          uniform_run_forces<R, damped, predict, true>(r, exceptions, q, vp, v, out, dt,
+                                                       q_new, v_new);
         else
-          uniform_run_forces<R, damped, predict, false>(r, q, vp, v, out, dt, q_new,
-                                                        v_new);
+          uniform_run_forces<R, damped, predict, false>(r, exceptions, q, vp, v, out, dt,
+                                                        q_new, v_new);
       };
       if (B >= 3 && r.reach == 3)
         sweep(std::integral_constant<int, 3>());
@@ -305,13 +377,13 @@ void HalfExplicitIntegrator::compute_forces()
       constexpr bool D = decltype(damped)::value;
       if (b == 1)
         banded_forces<1, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
-                                  qn, vn, runs);
+                                  qn, vn, runs, force_exceptions.data());
       else if (b == 2)
         banded_forces<2, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
-                                  qn, vn, runs);
+                                  qn, vn, runs, force_exceptions.data());
       else
         banded_forces<3, D, true>(n, f, forces.stiffness, d0, scale, qq, vp, vv, out, dt,
-                                  qn, vn, runs);
+                                  qn, vn, runs, force_exceptions.data());
     };
     predicted = true;
     if (forces.damped_rows_coupled)
@@ -326,6 +398,21 @@ void HalfExplicitIntegrator::compute_forces()
     return;
   }
   predicted = false;
+  if (free_acceleration_ready)
+  {
+    std::copy(free_acceleration.begin(), free_acceleration.end(), out);
+    return;
+  }
+  unscaled_forces(out);
+  smoothed_mass_inverse.apply(a);
+}
+
+void HalfExplicitIntegrator::unscaled_forces(double* out)
+{
+  const int n = q.size(), b = forces.bandwidth;
+  const double* __restrict qq = q.begin();
+  const double* __restrict vv = v.begin();
+  const double* __restrict vp = previous->begin();
   const double* f = load_at_time_n();
   std::copy(f, f + n, out);
   // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
@@ -344,7 +431,6 @@ void HalfExplicitIntegrator::compute_forces()
       out[i] -= d[i] * (vp[i + o] + vv[i + o]);
   }
   add_compliant_loads(out, nullptr);
-  smoothed_mass_inverse.apply(a);
 }
 
 void HalfExplicitIntegrator::factorize()
@@ -398,6 +484,35 @@ void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>&
   previous = &v_prev;
 }
 
+void HalfExplicitIntegrator::find_fixed_near(const std::vector<const SparseRow*>& rows,
+                                             const MassInverse& A,
+                                             std::vector<unsigned int>& near)
+{
+  near.clear();
+  if (A.factorised())
+  {
+    for (unsigned int k = 0; k < fixed.size(); ++k)
+      near.push_back(k);
+    return;
+  }
+  const auto visit = [&](const unsigned int j)
+  {
+    for (unsigned int e = fixed_at_start[j]; e < fixed_at_start[j + 1]; ++e)
+      if (!near_mark[fixed_at[e]])
+      {
+        near_mark[fixed_at[e]] = true;
+        near.push_back(fixed_at[e]);
+      }
+  };
+  for (const SparseRow* row : rows)
+    for (const unsigned int j : row->index)
+      visit(j);
+  for (const unsigned int j : A.coupled())
+    visit(j);
+  for (const unsigned int k : near)
+    near_mark[k] = false;
+}
+
 void HalfExplicitIntegrator::compute_moving_columns()
 {
   const auto& sn = at_n.states();
@@ -409,14 +524,39 @@ void HalfExplicitIntegrator::compute_moving_columns()
   {
     const unsigned int i = moving[c];
     MovingColumns& x = columns[c];
+    if (!fixed.empty())
+    {
+      find_fixed_near({&sn[i].G}, smoothed_mass_inverse, x.near_Y);
+      find_fixed_near({&sn[i].G, &sh[i].G_t, &sh[i].G, &s1[i].G, &s1[i].G_t},
+                      mass_inverse, x.near_M);
+    }
+    // The first column Y takes a* along (see free_acceleration).
+    dealii::Vector<double>* free_rhs = c == 0 && W ? &free_acceleration : nullptr;
     if (W && M)
     {
       // Factorised (FEM): the six columns in two sweeps over the band, Y with
       // (M + dt/2 D) side by side with P, Q, R, U with M, then V.
-      compute_factorised_columns(*W, *M, sn[i], sh[i], s1[i], x);
+      compute_factorised_columns(*W, *M, sn[i], sh[i], s1[i], x, free_rhs);
       continue;
     }
-    smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
+    if (free_rhs)
+    {
+      // Y = W^-1 G^T and a* in one sweep (M diagonal: the FDM with Rayleigh damping).
+      const unsigned int n = system.n_dofs();
+      pair_columns.assign(2 * n, 0.);
+      for (std::size_t k = 0; k < sn[i].G.size(); ++k)
+        pair_columns[2 * sn[i].G.index[k]] += sn[i].G.value[k];
+      for (unsigned int k = 0; k < n; ++k)
+        pair_columns[2 * k + 1] = (*free_rhs)[k];
+      W->solve_interleaved(pair_columns.data(), 2);
+      for (unsigned int k = 0; k < n; ++k)
+      {
+        x.Y[k] = pair_columns[2 * k];
+        (*free_rhs)[k] = pair_columns[2 * k + 1];
+      }
+    }
+    else
+      smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
     mass_inverse.apply_to_row(sn[i].G, x.P);
     mass_inverse.apply_to_row(sh[i].G_t, x.Q);
     mass_inverse.apply_to_row(sh[i].G, x.R);
@@ -429,7 +569,8 @@ void HalfExplicitIntegrator::compute_moving_columns()
 
 void HalfExplicitIntegrator::compute_factorised_columns(
     const SparseDirectSolver& W, const SparseDirectSolver& M, const ConstraintState& sn,
-    const ConstraintState& sh, const ConstraintState& s1, MovingColumns& x)
+    const ConstraintState& sh, const ConstraintState& s1, MovingColumns& x,
+    dealii::Vector<double>* free_rhs)
 {
   const unsigned int n = system.n_dofs();
   if (batch_W.size() != n)
@@ -443,12 +584,18 @@ void HalfExplicitIntegrator::compute_factorised_columns(
     batch_M.clear();
   }
   batch_W.add_row(0, sn.G, 1.);
+  if (free_rhs)
+    for (unsigned int k = 0; k < n; ++k)
+      batch_W(k, 1) = (*free_rhs)[k];
   batch_M.add_row(0, sn.G, 1.);
   batch_M.add_row(1, sh.G_t, 1.);
   batch_M.add_row(2, sh.G, 1.);
   if (!fixed.empty())
     batch_M.add_row(3, s1.G, 1.);
   W.solve_interleaved_with(batch_W.data(), M, batch_M.data());
+  if (free_rhs)
+    for (unsigned int k = 0; k < n; ++k)
+      (*free_rhs)[k] = batch_W(k, 1);
   for (unsigned int k = 0; k < n; ++k)
   {
     x.Y[k] = batch_W(k, 0);
@@ -494,7 +641,7 @@ void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
   moving_in_A.clear();
   for (const unsigned int i : A)
   {
-    if (system.constraints[i]->depends_on_time())
+    if (is_moving[i])
       moving_in_A.push_back(i);
     else
       keep_fixed[position[i]] = true;
@@ -580,9 +727,10 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   acceleration_workspace.prepare(mF, p);
   dealii::Vector<double>& x = acceleration_workspace.x;
   dealii::Vector<double>& y = acceleration_workspace.y;
+  // The fixed ones: G_t, G_tt, z_tt are 0.
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
-      x(k) = level2(fixed[k]);
+      x(k) = -fixed_rows.dot(k, a.begin());
   // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
   // ((M + dt/2 D) is symmetric), D = G_c Y_c'.
   std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
@@ -590,10 +738,11 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   for (unsigned int c = 0; c < p; ++c)
   {
     y(c) = level2(moving_active[c]);
-    const dealii::Vector<double>& Y = columns[position[moving_active[c]]].Y;
-    for (unsigned int k = 0; k < mF; ++k)
+    const MovingColumns& X = columns[position[moving_active[c]]];
+    const dealii::Vector<double>& Y = X.Y;
+    for (const unsigned int k : X.near_Y) // the others meet Y in zeros
       if (keep[k])
-        B[c](k) = sn[fixed[k]].G.dot(Y);
+        B[c](k) = fixed_rows.dot(k, Y.begin());
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = sn[moving_active[r]].G.dot(Y);
   }
@@ -639,6 +788,7 @@ void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int
 void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
 {
   uniform_runs.clear();
+  force_exceptions.clear();
   uniform_runs_built = true;
   if (system.has_time_dependent_load())
     return;
@@ -661,25 +811,63 @@ void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
     }
     return r;
   };
-  const auto same = [](const UniformForceRun& x, const UniformForceRun& y)
+  const auto same_stiffness = [](const UniformForceRun& x, const UniformForceRun& y)
   {
-    return x.uniform && y.uniform && x.f == y.f && x.d0 == y.d0 && x.scale == y.scale &&
-           x.k0 == y.k0 && std::equal(x.upper, x.upper + 3, y.upper) &&
+    return x.uniform && y.uniform && x.k0 == y.k0 &&
+           std::equal(x.upper, x.upper + 3, y.upper) &&
            std::equal(x.lower, x.lower + 3, y.lower);
   };
+  // Runs of equal stiffness; the rows' own f, D/2 and scaling are kept aside.
+  std::vector<ForceException> own(n);
   for (int i = 0; i < n; ++i)
   {
-    UniformForceRun r = coefficients(i);
-    if (!uniform_runs.empty() && same(uniform_runs.back(), r))
+    const UniformForceRun r = coefficients(i);
+    own[i] = {i, r.f, r.d0, r.scale};
+    if (!uniform_runs.empty() && same_stiffness(uniform_runs.back(), r))
       uniform_runs.back().last = i + 1;
     else
       uniform_runs.push_back(r);
   }
-  // Short runs are cheaper row by row: merge them into runs that are not uniform.
-  std::vector<UniformForceRun> merged;
-  for (UniformForceRun r : uniform_runs)
+  const auto same_values = [](const ForceException& x, const ForceException& y)
+  { return x.f == y.f && x.d0 == y.d0 && x.scale == y.scale; };
+  // A run takes the values most of its rows have (the wire's); the rows with
+  // others become its exceptions, unless they are more than one in eight.
+  for (UniformForceRun& r : uniform_runs)
   {
-    r.uniform = r.uniform && r.last - r.first >= 8;
+    if (!r.uniform || r.last - r.first < 8)
+    {
+      r.uniform = false;
+      continue;
+    }
+    // The majority value by Boyer-Moore voting, then a count to confirm it.
+    int candidate = r.first, votes = 0;
+    for (int i = r.first; i < r.last; ++i)
+    {
+      if (votes == 0)
+        candidate = i;
+      votes += same_values(own[i], own[candidate]) ? 1 : -1;
+    }
+    const std::size_t first_exception = force_exceptions.size();
+    for (int i = r.first; i < r.last; ++i)
+      if (!same_values(own[i], own[candidate]))
+        force_exceptions.push_back(own[i]);
+    const int exceptions = force_exceptions.size() - first_exception;
+    if (8 * exceptions > r.last - r.first)
+    {
+      force_exceptions.resize(first_exception);
+      r.uniform = false;
+      continue;
+    }
+    r.f = own[candidate].f;
+    r.d0 = own[candidate].d0;
+    r.scale = own[candidate].scale;
+    r.first_exception = first_exception;
+    r.last_exception = force_exceptions.size();
+  }
+  // Rows that are not in a uniform run are done one by one: merge them.
+  std::vector<UniformForceRun> merged;
+  for (const UniformForceRun& r : uniform_runs)
+  {
     if (!r.uniform && !merged.empty() && !merged.back().uniform)
       merged.back().last = r.last;
     else
@@ -696,7 +884,10 @@ void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
   }
   // Worth it only with long runs on average.
   if (uniform_runs.size() * 32 > static_cast<std::size_t>(n))
+  {
     uniform_runs.clear();
+    force_exceptions.clear();
+  }
 }
 
 void HalfExplicitIntegrator::refresh_prediction()
@@ -741,8 +932,11 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   const unsigned int mF = fixed.size(), p = moving_active.size();
   if (mF + p > 0)
     solve_position_and_velocity_level(sn, sh, s1);
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    gaps[i] = s1[i].position_residual(q_new);
+  for (unsigned int k = 0; k < fixed.size(); ++k)
+    gaps[fixed[k]] = fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k];
+  for (const auto* list : {&moving, &compliant})
+    for (const unsigned int i : *list)
+      gaps[i] = s1[i].position_residual(q_new);
 }
 void HalfExplicitIntegrator::solve_position_and_velocity_level(
     const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
@@ -755,12 +949,12 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   position_workspace.prepare(2 * mF, 2 * p);
   dealii::Vector<double>& x = position_workspace.x;
   dealii::Vector<double>& y = position_workspace.y;
+  // The fixed rows (G_t, z_t are 0).
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
     {
-      const ConstraintState& s = s1[fixed[k]];
-      x(k) = -(s.G.dot(q_new) + s.z);
-      x(mF + k) = -(s.G_t.dot(q_new) + s.G.dot(v_new) + s.z_t);
+      x(k) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
+      x(mF + k) = -fixed_rows.dot(k, v_new.begin());
     }
   std::vector<dealii::Vector<double>>& B = position_workspace.B;
   std::vector<dealii::Vector<double>>& C = position_workspace.C;
@@ -773,16 +967,17 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
     const MovingColumns& X = columns[position[moving_active[c]]];
     // Fixed rows against the moving unknowns (their G_t = 0), and the moving
     // rows against the fixed unknowns through U, V (M symmetric: G_c M^-1 G_l^T = G_l
-    // U_c).
-    for (unsigned int k = 0; k < mF; ++k)
+    // U_c). The fixed rows not near the columns meet them in zeros.
+    for (const unsigned int k : X.near_M)
       if (keep[k])
       {
-        const SparseRow& G = s1[fixed[k]].G;
-        const double GP = G.dot(X.P), GQ = G.dot(X.Q), GR = G.dot(X.R);
+        const auto G = [&](const dealii::Vector<double>& column)
+        { return fixed_rows.dot(k, column.begin()); };
+        const double GP = G(X.P), GQ = G(X.Q), GR = G(X.R);
         B[c](k) = h * h * GP + h * GQ;
         B[c](mF + k) = 2. * h * GP;
         B[p + c](k) = h * GR;
-        const double GU = G.dot(X.U), GV = G.dot(X.V);
+        const double GU = G(X.U), GV = G(X.V);
         C[c](k) = h * h * GU;
         C[c](mF + k) = h * GU;
         C[p + c](k) = h * h * GV + 2. * h * GU;
@@ -811,18 +1006,19 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   }
   const auto solve_one = [&](dealii::Vector<double>& r)
   {
-    for (unsigned int k = 0; k < mF; ++k)
-    {
-      r_g(k) = r(k);
-      r_v(k) = r(mF + k);
-    }
+    // Raw restrict pointers: the loops vectorise (the divisions too).
+    double* __restrict rr = r.begin();
+    double* __restrict g = r_g.begin();
+    double* __restrict w = r_v.begin();
+    std::copy(rr, rr + mF, g);
+    std::copy(rr + mF, rr + 2 * mF, w);
     fixed_mass.solve(r_g);
     fixed_mass.solve(r_v);
     for (unsigned int k = 0; k < mF; ++k)
     {
-      const double eta = r_v(k) / (2. * h);
-      r(k) = eta;
-      r(mF + k) = r_g(k) / h - h * eta;
+      const double eta = w[k] / (2. * h);
+      rr[k] = eta;
+      rr[mF + k] = g[k] / h - h * eta;
     }
   };
   solve_bordered(
@@ -845,8 +1041,7 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       factors[k] = h * h * eta + h * mu;
       factors_v[k] = 2. * h * eta;
     }
-  fixed_mass.add_columns(factors, q_new);
-  fixed_mass.add_columns(factors_v, v_new);
+  fixed_mass.add_columns(factors, q_new, factors_v, v_new);
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int j = moving_active[c];
@@ -859,12 +1054,27 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   }
 }
 
+void HalfExplicitIntegrator::prepare_step()
+{
+  const bool fuse = smoothed_mass_inverse.factorised() && !moving.empty();
+  if (fuse)
+  {
+    // a*'s right-hand side: compute_moving_columns() solves it beside Y.
+    free_acceleration.reinit(system.n_dofs(), true);
+    std::fill(lambda.begin(), lambda.end(), 0.);
+    compute_compliant_forces();
+    unscaled_forces(free_acceleration.begin());
+  }
+  compute_moving_columns();
+  free_acceleration_ready = fuse;
+}
+
 void HalfExplicitIntegrator::advance()
 {
   at_n.at(t);
   at_half.at(t + 0.5 * dt, 1); // (40) needs G and G_t at t_{n+1/2} and t_{n+1}
   at_next.at(t + dt, 1);
-  compute_moving_columns();
+  prepare_step();
   active_set.start(active_now);
   for (;;)
   {
@@ -875,6 +1085,7 @@ void HalfExplicitIntegrator::advance()
       break;
     ++stats.active_set_iterations;
   }
+  free_acceleration_ready = false;
   reset_moving_columns();
   stats.active_set_changes += active_set.changes_in_step();
   // A constraint that closed in this step (taken without it: it had no
@@ -938,12 +1149,13 @@ void HalfExplicitIntegrator::finish()
   at_n.at(t);
   at_half.at(t + 0.5 * dt, 1);
   at_next.at(t + dt, 1);
-  compute_moving_columns();
+  prepare_step();
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)
     if (active_now[i] && !system.constraints[i]->is_compliant())
       A.push_back(i);
   compute_acceleration(A);
+  free_acceleration_ready = false;
   reset_moving_columns();
   if (previous == &reported.v) // v_{n-1} stays the integrator's own
   {

@@ -130,6 +130,8 @@ private:
   ClosingConstraint closing;
   bool allow_touching;
   std::vector<bool> at_start, holds, released;
+  /// Each constraint's kind, read once (the loops per step touch no constraint object).
+  std::vector<char> unilateral, compliant;
   std::vector<Status> current;
   std::vector<Status> next; ///< accept()'s candidate, kept: no allocation per step
   std::vector<unsigned int> indices, force, engaged;

@@ -24,6 +24,7 @@ public:
 private:
   const SemiDiscreteSystem& system;
   std::vector<ConstraintState> cache;
+  std::vector<unsigned int> time_dependent; ///< the constraints evaluated at each call
   bool evaluated = false;
   double last_t = 0.;
   unsigned int last_order = 0;

@@ -33,9 +33,10 @@ namespace pantocat
  *
  * For each set of active constraints (select()) S restricted to them is
  * factorised by SparseDirectSolver (banded Cholesky): O(m b^2) when the active
- * set changes, O(m b) per solve. A change of the active set thus costs a
- * refactorisation of this small banded matrix, never of A, and a step costs
- * O(m), not O(m^3) as a dense multiplier system would.
+ * set changes, O(m b) per solve. A diagonal S (the FDM's droppers and
+ * supports with a diagonal A) is inverted entry by entry instead. A change of the active
+ * set thus costs a refactorisation of this small banded matrix, never of A, and a step
+ * costs O(m), not O(m^3) as a dense multiplier system would.
  *
  * The columns A^-1 G_k^T are kept too, truncated to their entries above
  * 1e-16 of the largest (a few dozen nodes each side of the constraint for a
@@ -94,6 +95,10 @@ public:
 
   /// y += sum_k factors[k] A^-1 G_k^T (the truncated columns, or one solve).
   void add_columns(const std::vector<double>& factors, dealii::Vector<double>& y) const;
+  /// y += sum_k f[k] A^-1 G_k^T and z += sum_k g[k] A^-1 G_k^T in one pass over the
+  /// columns.
+  void add_columns(const std::vector<double>& f, dealii::Vector<double>& y,
+                   const std::vector<double>& g, dealii::Vector<double>& z) const;
   /// The truncated columns A^-1 G_k^T (empty if add_columns() solves instead,
   /// unless ColumnSolver::keep_columns).
   const std::vector<SparseRow>& truncated_columns() const { return columns; }
@@ -111,7 +116,10 @@ private:
   unsigned int n = 0;
   std::string what;
   std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (or none)
-  std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
+  /// The same columns stored flat: column k is [column_start[k], column_start[k+1]).
+  std::vector<unsigned int> column_start, column_index;
+  std::vector<double> column_value;
+  std::vector<SparseRow> rows; ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
   mutable dealii::Vector<double> work; ///< G_F^T lambda, when the columns are dropped
   mutable std::vector<double> interleaved;
@@ -122,6 +130,10 @@ private:
   std::vector<bool> selected;
   bool factorised = false;
   SparseDirectSolver factor;
+  /// S is diagonal (no two constraints share an unknown of a diagonal A): the
+  /// solves are scalings by inverse_diagonal (0 off the selection), no factor.
+  bool diagonal_only = false;
+  std::vector<double> diagonal, inverse_diagonal; ///< original numbering
   mutable dealii::Vector<double> permuted;
   /// S in the original numbering, compressed rows (vmult()).
   std::vector<unsigned int> row_start, row_column;

@@ -16,12 +16,24 @@ namespace pantocat
  * Rows [first, last) of the force sweep of HalfExplicitIntegrator that share
  * their coefficients (uniform: f, D/2, the scaling of (M + dt/2 D)^-1, and
  * K(i, i), K(i, i + o), K(i, i - o) for o = 1..3), so that the sweep reads
- * them once instead of once per row; rows with their own coefficients (ends
- * of the bodies, point masses and loads) form runs that are not uniform.
+ * them once instead of once per row; rows with their own stiffness (ends of
+ * the bodies) form runs that are not uniform. A row inside a uniform run
+ * whose f, D/2 or scaling differ (a dropper's or clamp's point mass, a point
+ * load) is an exception of the run: swept with the run, then done again with
+ * its own values, so that point masses do not cut a wire into short runs.
  */
+/// A row of a uniform run with its own f, D/2 and scaling (see UniformForceRun).
+struct ForceException
+{
+  int row = 0;
+  double f = 0., d0 = 0., scale = 0.;
+};
+
 struct UniformForceRun
 {
   int first = 0, last = 0;
+  /// The run's exceptions: [first_exception, last_exception) of the integrator's list.
+  int first_exception = 0, last_exception = 0;
   bool uniform = false;
   int reach = 1;          ///< the largest o with K(i, i +- o) != 0 in the run
   bool symmetric = false; ///< K(i, i + o) = K(i, i - o) for every o
@@ -125,11 +137,13 @@ private:
   void compute_moving_columns();
   struct MovingColumns;
   /// The columns of one moving constraint when M and M + dt/2 D are factorised.
+  /// With @p free_rhs, also free_rhs <- W^-1 free_rhs in W's sweep (beside Y).
   void compute_factorised_columns(const SparseDirectSolver& W,
                                   const SparseDirectSolver& M,
                                   const ConstraintState& at_n,
                                   const ConstraintState& at_half,
-                                  const ConstraintState& at_next, MovingColumns& x);
+                                  const ConstraintState& at_next, MovingColumns& x,
+                                  dealii::Vector<double>* free_rhs);
   void reset_moving_columns();
   /// keep[k] for the fixed constraints among @p active, and the moving ones among them.
   void split(const std::vector<unsigned int>& active, std::vector<bool>& keep,
@@ -139,6 +153,22 @@ private:
   /// the compliant forces lambda_c, in one pass over the
   /// rows where (M + dt/2 D) is diagonal but for a few coupled rows.
   void compute_forces();
+  /// out <- f - K q - D (v_prev + v)/2 + G_c^T lambda_c (compute_forces() before its
+  /// solve).
+  void unscaled_forces(double* out);
+  /**
+   * When M + dt/2 D is factorised, the acceleration without the rigid
+   * constraints' forces, a* = (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2 +
+   * G_c^T lambda_c), does not depend on the active set: advance() solves it
+   * once per step, in the same sweep over the band as the first moving
+   * constraint's column Y (the substitutions are latency-bound, so two
+   * right-hand sides cost about one), and compute_forces() copies it.
+   */
+  dealii::Vector<double> free_acceleration;
+  bool free_acceleration_ready = false;
+  /// The moving constraints' columns at t_n, with a* beside the first (see above).
+  void prepare_step();
+  std::vector<double> pair_columns; ///< Y beside a*, interleaved (M diagonal)
   /**
    * After compute_forces() predicted q*, v* in its sweep: predicts them again
    * on the rows whose a changed after the sweep (coupled rows, the rows of the
@@ -203,7 +233,40 @@ private:
   struct MovingColumns
   {
     dealii::Vector<double> Y, P, Q, R, U, V;
+    /// The fixed constraints whose rows can meet Y, respectively P to V
+    /// (all of them when the columns are dense).
+    std::vector<unsigned int> near_Y, near_M;
   };
+  /**
+   * @p near <- the fixed constraints (their positions in fixed) whose rows meet
+   * the pattern of A^-1 rows^T: those on the rows' unknowns and A's coupled
+   * block when A is diagonal, all when A is factorised.
+   */
+  void find_fixed_near(const std::vector<const SparseRow*>& rows, const MassInverse& A,
+                       std::vector<unsigned int>& near);
+  /**
+   * The rows G_k and offsets z_k of the fixed constraints (constant; G_t,
+   * G_tt, z_t, z_tt are 0), stored flat for the per-step loops over them.
+   */
+  struct FixedRows
+  {
+    std::vector<unsigned int> start, index;
+    std::vector<double> value, offset;
+    /// G_k . x, summed in SparseRow::dot()'s order.
+    double dot(const unsigned int k, const double* __restrict x) const
+    {
+      double s = 0.;
+      for (unsigned int e = start[k]; e < start[k + 1]; ++e)
+        s += value[e] * x[index[e]];
+      return s;
+    }
+  };
+  FixedRows fixed_rows;
+  std::vector<bool> is_moving; ///< constraint i is a moving (time-dependent) one
+  /// The fixed constraints on each unknown (compressed: [fixed_at_start[j],
+  /// fixed_at_start[j+1])).
+  std::vector<unsigned int> fixed_at_start, fixed_at;
+  std::vector<bool> near_mark; ///< workspace of find_fixed_near()
   std::vector<MovingColumns> columns;
   InterleavedColumns batch_W, batch_M; ///< workspace of compute_factorised_columns()
   std::vector<double> lambda, gaps;
@@ -237,6 +300,7 @@ private:
    */
   void build_uniform_runs(const double* scale);
   std::vector<UniformForceRun> uniform_runs;
+  std::vector<ForceException> force_exceptions;
   bool uniform_runs_built = false;
   /// compute_forces() wrote q* and v* into q_new and v_new (the diagonal case).
   bool predicted = false;

@@ -44,6 +44,8 @@ public:
   }
   /// x[C] <- block^{-1} x[C] on the coupled rows C (diagonal forms only).
   void apply_coupled_rows(dealii::Vector<double>& x) const;
+  /// The rows of the small coupled block of the diagonal forms (else empty).
+  const std::vector<unsigned int>& coupled() const { return coupled_rows; }
   /// The sparse factorisation, or null when A is (block-)diagonal.
   const SparseDirectSolver* factorised() const
   {
