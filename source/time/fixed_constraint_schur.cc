@@ -58,6 +58,7 @@ FixedConstraintSchur::column_solver(const MassInverse& A, const bool keep_column
   s.reset = [&A](const SparseRow& row, dealii::Vector<double>& column)
   { A.reset_column(row, column); };
   s.solve = [&A](dealii::Vector<double>& x) { A.apply(x); };
+  s.solve_columns = [&A](InterleavedColumns& X) { A.apply(X); };
   const SparseDirectSolver* factor = A.factorised();
   // A (block-)diagonal A: columns on the rows' pattern, always cheaper.
   s.solve_cost = factor ? factor->solve_cost() : 1e300;
@@ -76,6 +77,8 @@ FixedConstraintSchur::column_solver(const SparseDirectSolver& A, const bool keep
   };
   s.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
   s.solve = [&A](dealii::Vector<double>& x) { A.solve(x); };
+  s.solve_columns = [&A](InterleavedColumns& X)
+  { A.solve_interleaved(X.data(), InterleavedColumns::width); };
   s.solve_cost = A.solve_cost();
   s.keep_columns = keep_columns;
   return s;
@@ -123,7 +126,9 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     for (const SparseRow* g : G)
       rows.push_back(*g);
     solve_with_A = A.solve;
+    solve_columns_with_A = A.solve_columns;
     work.reinit(n_dofs);
+    work_pair.reinit(n_dofs);
   }
   column_start.assign(1, 0);
   column_index.clear();
@@ -266,8 +271,28 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& f,
 {
   if (!rows.empty())
   {
-    add_columns(f, y);
-    add_columns(g, z);
+    if (!solve_columns_with_A)
+    {
+      add_columns(f, y);
+      add_columns(g, z);
+      return;
+    }
+    // G_F^T f and G_F^T g solved side by side: one sweep instead of two.
+    bool any = false;
+    for (unsigned int k = 0; k < n; ++k)
+    {
+      if (f[k] != 0.)
+        work_pair.add_row(0, rows[k], f[k]);
+      if (g[k] != 0.)
+        work_pair.add_row(1, rows[k], g[k]);
+      any = any || f[k] != 0. || g[k] != 0.;
+    }
+    if (!any)
+      return;
+    solve_columns_with_A(work_pair);
+    work_pair.add_combination({{1., 0., 0., 0.}}, y);
+    work_pair.add_combination({{0., 1., 0., 0.}}, z);
+    work_pair.clear();
     return;
   }
   const unsigned int* __restrict index = column_index.data();

@@ -996,39 +996,46 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
     }
   }
   // The fixed block [h^2 S, h S; 2h S, 0] (S = G_F M^-1 G_F^T) by two solves with S:
-  // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta.
-  dealii::Vector<double>& r_g = position_workspace.r_g;
-  dealii::Vector<double>& r_v = position_workspace.r_v;
-  if (r_g.size() != mF)
+  // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta. The halves r_g, r_v of
+  // all right-hand sides go through S side by side (four at a time).
+  std::vector<dealii::Vector<double>>& halves = position_workspace.halves;
+  std::vector<dealii::Vector<double>*>& half_pointers = position_workspace.half_pointers;
+  const auto solve_all = [&](const std::vector<dealii::Vector<double>*>& xs)
   {
-    r_g.reinit(mF);
-    r_v.reinit(mF);
-  }
-  const auto solve_one = [&](dealii::Vector<double>& r)
-  {
-    // Raw restrict pointers: the loops vectorise (the divisions too).
-    double* __restrict rr = r.begin();
-    double* __restrict g = r_g.begin();
-    double* __restrict w = r_v.begin();
-    std::copy(rr, rr + mF, g);
-    std::copy(rr + mF, rr + 2 * mF, w);
-    fixed_mass.solve(r_g);
-    fixed_mass.solve(r_v);
-    for (unsigned int k = 0; k < mF; ++k)
+    if (halves.size() < 2 * xs.size())
+      halves.resize(2 * xs.size());
+    half_pointers.clear();
+    for (std::size_t j = 0; j < xs.size(); ++j)
     {
-      const double eta = w[k] / (2. * h);
-      rr[k] = eta;
-      rr[mF + k] = g[k] / h - h * eta;
+      dealii::Vector<double>&g = halves[2 * j], &w = halves[2 * j + 1];
+      if (g.size() != mF)
+      {
+        g.reinit(mF, true);
+        w.reinit(mF, true);
+      }
+      const double* r = xs[j]->begin();
+      std::copy(r, r + mF, g.begin());
+      std::copy(r + mF, r + 2 * mF, w.begin());
+      half_pointers.push_back(&g);
+      half_pointers.push_back(&w);
+    }
+    fixed_mass.solve(half_pointers);
+    for (std::size_t j = 0; j < xs.size(); ++j)
+    {
+      // Raw restrict pointers: the loop vectorises (the divisions too).
+      double* __restrict r = xs[j]->begin();
+      const double* __restrict g = halves[2 * j].begin();
+      const double* __restrict w = halves[2 * j + 1].begin();
+      for (unsigned int k = 0; k < mF; ++k)
+      {
+        const double eta = w[k] / (2. * h);
+        r[k] = eta;
+        r[mF + k] = g[k] / h - h * eta;
+      }
     }
   };
-  solve_bordered(
-      [&](const std::vector<dealii::Vector<double>*>& xs)
-      {
-        for (dealii::Vector<double>* v : xs)
-          solve_one(*v);
-      },
-      B, C, D, x, y, position_workspace.rhs, position_workspace.batch, t + dt,
-      "position/velocity level");
+  solve_bordered(solve_all, B, C, D, x, y, position_workspace.rhs,
+                 position_workspace.batch, t + dt, "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
   // the fixed rows' truncated columns M^-1 G^T (their G_t = 0).

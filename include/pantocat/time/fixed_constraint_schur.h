@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
 #include <pantocat/time/mass_inverse.h>
@@ -57,6 +58,8 @@ public:
     std::function<void(const SparseRow&, dealii::Vector<double>&)> apply, reset;
     /// x <- A^-1 x, and the entries one such solve reads (its cost).
     std::function<void(dealii::Vector<double>&)> solve;
+    /// Every column of X <- A^-1 column, side by side (one sweep when factorised).
+    std::function<void(InterleavedColumns&)> solve_columns;
     double solve_cost = 0.;
     /// Keep the truncated columns whatever they cost (columns() is needed).
     bool keep_columns = false;
@@ -121,7 +124,9 @@ private:
   std::vector<double> column_value;
   std::vector<SparseRow> rows; ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
-  mutable dealii::Vector<double> work; ///< G_F^T lambda, when the columns are dropped
+  std::function<void(InterleavedColumns&)> solve_columns_with_A;
+  mutable dealii::Vector<double> work;  ///< G_F^T lambda, when the columns are dropped
+  mutable InterleavedColumns work_pair; ///< G_F^T f and G_F^T g, side by side
   mutable std::vector<double> interleaved;
   std::vector<unsigned int> new_index; ///< Cuthill-McKee position of constraint k
   dealii::SparsityPattern pattern;     ///< in the new numbering

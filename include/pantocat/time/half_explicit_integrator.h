@@ -284,7 +284,10 @@ private:
    */
   struct MultiplierWorkspace
   {
-    dealii::Vector<double> x, y, rhs, r_g, r_v;
+    dealii::Vector<double> x, y, rhs;
+    /// The halves (r_g, r_v) of the position level's right-hand sides.
+    std::vector<dealii::Vector<double>> halves;
+    std::vector<dealii::Vector<double>*> half_pointers;
     std::vector<dealii::Vector<double>> B, C;
     std::vector<dealii::Vector<double>*> batch;
     dealii::FullMatrix<double> D;
