@@ -343,7 +343,8 @@ TimePoint CaseRunner::time_point(const DynamicState& s) const
 }
 
 void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
-                                 TimePointWorkspace& workspace) const
+                                 TimePointWorkspace& workspace,
+                                 const std::vector<ConstraintState>* known_rows) const
 {
   const SemiDiscreteSystem& sys = system();
   p.t = s.t;
@@ -356,16 +357,29 @@ void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
   const unsigned int m = sys.n_constraints();
   p.gap.resize(m);
   p.position_residual = p.velocity_residual = 0.;
-  // Constant rows (droppers, supports) are evaluated at the first time point only.
+  // Constant rows (droppers, supports) are evaluated at the first time point
+  // only, the moving ones at each unless the integrator's rows at s.t are known.
   const bool first = workspace.rows.size() != m;
-  workspace.rows.resize(m);
+  if (first)
+  {
+    workspace.rows.resize(m);
+    workspace.time_dependent.resize(m);
+    workspace.compliant.resize(m);
+    for (unsigned int i = 0; i < m; ++i)
+    {
+      workspace.time_dependent[i] = sys.constraints[i]->depends_on_time();
+      workspace.compliant[i] = sys.constraints[i]->is_compliant();
+    }
+  }
   for (unsigned int i = 0; i < m; ++i)
   {
-    ConstraintState& rows = workspace.rows[i];
-    if (first || sys.constraints[i]->depends_on_time())
-      sys.constraints[i]->evaluate(s.t, rows, 1); // gap and dg/dt only
+    ConstraintState& own = workspace.rows[i];
+    const bool moving = workspace.time_dependent[i];
+    if (first || (moving && !known_rows))
+      sys.constraints[i]->evaluate(s.t, own, 1); // gap and dg/dt only
+    const ConstraintState& rows = moving && known_rows ? (*known_rows)[i] : own;
     p.gap[i] = rows.position_residual(s.q);
-    if (s.active[i] && !sys.constraints[i]->is_compliant()) // springs deflect
+    if (s.active[i] && !workspace.compliant[i]) // springs deflect
     {
       p.position_residual = std::max(p.position_residual, std::abs(p.gap[i]));
       p.velocity_residual =
@@ -420,9 +434,10 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
   // per step.
   TimePoint p;
   TimePointWorkspace rows;
-  const auto notify = [&](const DynamicState& s)
+  const auto notify =
+      [&](const DynamicState& s, const std::vector<ConstraintState>* known_rows)
   {
-    fill_time_point(s, p, rows);
+    fill_time_point(s, p, rows, known_rows);
     for (auto* o : all)
     {
       o->observe(p);
@@ -444,7 +459,7 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
     for (auto* o : all)
       o->start(layout_);
     if (!lags)
-      notify(initial);
+      notify(initial, nullptr);
   }
   const double span_length = data.catenary.length(); // the bound of check_bounded()
   for (unsigned long n = first_step; n <= n_steps; ++n)
@@ -452,7 +467,7 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
     integrator->advance();
     // After the outputs, like the guards: the time series ends with the
     // time point that failed.
-    notify(integrator->latest());
+    notify(integrator->latest(), integrator->constraint_states_at_latest());
     check_bounded(integrator->latest(), n, span_length);
     if (n == n_steps)
       break;
@@ -466,7 +481,7 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
   }
   integrator->finish();
   if (lags)
-    notify(integrator->latest());
+    notify(integrator->latest(), integrator->constraint_states_at_latest());
   result.time_loop_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.integrator = integrator->statistics();

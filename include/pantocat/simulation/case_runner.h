@@ -137,6 +137,8 @@ public:
   {
     /// Per constraint; the constant ones evaluated at the first time point only.
     std::vector<ConstraintState> rows;
+    /// Each constraint's kind, read at the first time point.
+    std::vector<char> time_dependent, compliant;
   };
   /**
    * time_point() into @p point, reusing its vectors and the constraint rows
@@ -144,7 +146,8 @@ public:
    * allocations, evaluating only the constraints that depend on t.
    */
   void fill_time_point(const DynamicState& state, TimePoint& point,
-                       TimePointWorkspace& workspace) const;
+                       TimePointWorkspace& workspace,
+                       const std::vector<ConstraintState>* known_rows = nullptr) const;
   /// One line per effect of the scene (what is assembled), and the effects left out.
   const std::vector<std::string>& active_effects() const;
   const std::vector<std::string>& inactive_effects() const;

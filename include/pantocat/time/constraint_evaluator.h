@@ -20,6 +20,8 @@ public:
   const std::vector<ConstraintState>& at(double t, unsigned int max_order = 2);
 
   const std::vector<ConstraintState>& states() const { return cache; }
+  /// True if states() are those at @p t (the last call of at() was for @p t).
+  bool holds(const double t) const { return evaluated && last_t == t; }
 
 private:
   const SemiDiscreteSystem& system;

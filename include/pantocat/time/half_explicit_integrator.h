@@ -101,6 +101,11 @@ public:
   void advance() override;
   void finish() override;
   const DynamicState& latest() const override { return reported; }
+  /// The rows of step 1 (at t_n = latest().t), evaluated by advance() and finish().
+  const std::vector<ConstraintState>* constraint_states_at_latest() const override
+  {
+    return at_n.holds(reported.t) ? &at_n.states() : nullptr;
+  }
   bool multipliers_lag_one_step() const override { return true; }
   double time() const override { return t; }
   /// t_n, q_n, v_n, v_{n-1}, J_n, the last reported point and the counters.

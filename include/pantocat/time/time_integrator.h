@@ -58,6 +58,15 @@ public:
   virtual const DynamicState& latest() const = 0;
   /// True if latest() is the time point before the newest positions (see above).
   virtual bool multipliers_lag_one_step() const { return false; }
+  /**
+   * The constraints' rows (G, z, G_t, z_t, ...) at latest().t when the
+   * integrator has evaluated them there anyway, else null: the time point
+   * then does not evaluate the moving contacts again.
+   */
+  virtual const std::vector<ConstraintState>* constraint_states_at_latest() const
+  {
+    return nullptr;
+  }
   /// Time of the newest positions.
   virtual double time() const = 0;
 
