@@ -10,6 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
+#include <algorithm>
 #include <cmath>
 
 using namespace pantocat;
@@ -110,4 +113,78 @@ TEST(LinearSolvers, BdfStepsDoNotDependOnTheSolver)
     }
   EXPECT_LT(worst, 1e-9);
   EXPECT_LT(relative_difference(runs[2]->latest().q, runs[0]->latest().q), 1e-10);
+}
+
+TEST(LinearSolvers, TwoLongBlocksSideBySideEqualEachBlockSolvedAlone)
+{
+  // A matrix of two uncoupled blocks (a tridiagonal of 400 rows, a
+  // pentadiagonal of 700: a messenger and a contact wire) is substituted with
+  // both blocks side by side, the narrower at the wider's bandwidth (its extra
+  // band entries are zeros). The solution equals each block solved as a
+  // matrix of its own to round-off (1e-14 relative: the factorisations of the
+  // blocks alone sum the same non-zero terms), and UMFPACK's to 1e-12.
+  const unsigned int n1 = 400, n2 = 700, n = n1 + n2;
+  const auto entry = [&](const unsigned int i, const unsigned int j) -> double
+  {
+    const int d = std::abs(static_cast<int>(i) - static_cast<int>(j));
+    if ((i < n1) != (j < n1))
+      return 0.;
+    if (i < n1) // the string: 2 + tridiagonal
+      return d == 0 ? 4. + 0.01 * (i % 7) : d == 1 ? -1. : 0.;
+    // the beam: a pentadiagonal, diagonally dominant
+    return d == 0 ? 9. + 0.02 * (i % 5) : d == 1 ? -3. : d == 2 ? 0.5 : 0.;
+  };
+  const auto assemble = [&](const unsigned int first, const unsigned int last,
+                            dealii::SparsityPattern& pattern,
+                            dealii::SparseMatrix<double>& A)
+  {
+    const unsigned int size = last - first;
+    dealii::DynamicSparsityPattern dsp(size, size);
+    for (unsigned int i = 0; i < size; ++i)
+      for (unsigned int j = (i >= 2 ? i - 2 : 0); j < std::min(size, i + 3); ++j)
+        if (entry(first + i, first + j) != 0.)
+          dsp.add(i, j);
+    pattern.copy_from(dsp);
+    A.reinit(pattern);
+    for (unsigned int i = 0; i < size; ++i)
+      for (auto it = pattern.begin(i); it != pattern.end(i); ++it)
+        A.set(i, it->column(), entry(first + i, first + it->column()));
+  };
+  dealii::SparsityPattern pattern, pattern1, pattern2;
+  dealii::SparseMatrix<double> A, A1, A2;
+  assemble(0, n, pattern, A);
+  assemble(0, n1, pattern1, A1);
+  assemble(n1, n, pattern2, A2);
+  SparseDirectSolver whole, first, second, umfpack;
+  whole.factorize(A, "A");
+  first.factorize(A1, "A1");
+  second.factorize(A2, "A2");
+  umfpack.factorize(A, "A", LinearSolverType::umfpack);
+  ASSERT_TRUE(whole.is_banded());
+  ASSERT_EQ(whole.blocks().size(), 2u); // kept apart: both are long
+  EXPECT_EQ(whole.blocks()[0].bandwidth, 1);
+  EXPECT_EQ(whole.blocks()[1].bandwidth, 2);
+
+  dealii::Vector<double> b(n), x1(n1), x2(n2);
+  for (unsigned int i = 0; i < n; ++i)
+    b(i) = std::sin(0.37 * i) + 0.1 * (i % 5);
+  for (unsigned int i = 0; i < n1; ++i)
+    x1(i) = b(i);
+  for (unsigned int i = 0; i < n2; ++i)
+    x2(i) = b(n1 + i);
+  dealii::Vector<double> x(b), y(b);
+  whole.solve(x);
+  first.solve(x1);
+  second.solve(x2);
+  umfpack.solve(y);
+  double worst = 0.;
+  for (unsigned int i = 0; i < n; ++i)
+    worst = std::max(worst, std::abs(x(i) - (i < n1 ? x1(i) : x2(i - n1))));
+  EXPECT_LT(worst, 1e-14 * x.linfty_norm());
+  EXPECT_LT(relative_difference(x, y), 1e-12);
+  // And the residual is at round-off.
+  dealii::Vector<double> r(n);
+  A.vmult(r, x);
+  r -= b;
+  EXPECT_LT(r.linfty_norm(), 1e-13 * b.linfty_norm());
 }
