@@ -24,43 +24,60 @@ namespace
 constexpr int long_block = 256;
 
 /**
+ * Row @p j of the forward substitution U^T y = b in the block that starts at
+ * row @p first, with half bandwidth @p width, for K interleaved right-hand
+ * sides. U(i, j), i <= j <= i + kd, sits at u[(kd + i - j) + j (kd + 1)].
+ */
+template <int K>
+inline void forward_row(const double* __restrict u, const int kd,
+                        const double* __restrict recip, double* __restrict X, const int j,
+                        const int first, const int width)
+{
+  double s[K];
+  for (int r = 0; r < K; ++r)
+    s[r] = X[j * K + r];
+  const double* column = u + static_cast<std::size_t>(j) * (kd + 1) + kd;
+  for (int m = 1; m <= width; ++m)
+    if (j - m >= first)
+      for (int r = 0; r < K; ++r)
+        s[r] -= column[-m] * X[(j - m) * K + r];
+  for (int r = 0; r < K; ++r)
+    X[j * K + r] = s[r] * recip[j];
+}
+
+/// Row @p i of the backward substitution U x = y in the block that ends before @p last.
+template <int K>
+inline void backward_row(const double* __restrict u, const int kd,
+                         const double* __restrict recip, double* __restrict X,
+                         const int i, const int last, const int width)
+{
+  double s[K];
+  for (int r = 0; r < K; ++r)
+    s[r] = X[i * K + r];
+  for (int m = 1; m <= width; ++m)
+    if (i + m < last)
+      for (int r = 0; r < K; ++r)
+        s[r] -=
+            u[(kd - m) + static_cast<std::size_t>(i + m) * (kd + 1)] * X[(i + m) * K + r];
+  for (int r = 0; r < K; ++r)
+    X[i * K + r] = s[r] * recip[i];
+}
+
+/**
  * Forward (U^T y = b) and backward (U x = y) substitution on the rows
  * [first, last) of one uncoupled block with half bandwidth KD (a compile-time
  * constant, so that the loops unroll; KD < 0: the block's bandwidth @p bw at
  * run time), for K interleaved right-hand sides.
- * U(i, j), i <= j <= i + kd, sits at u[(kd + i - j) + j (kd + 1)].
  */
 template <int KD, int K>
 void substitute(const double* __restrict u, const int kd, const double* __restrict recip,
                 double* __restrict X, const int first, const int last, const int bw = 0)
 {
-  const int ld = kd + 1;
   const int width = KD < 0 ? bw : KD;
   for (int j = first; j < last; ++j)
-  {
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[j * K + r];
-    const double* column = u + static_cast<std::size_t>(j) * ld + kd;
-    for (int m = 1; m <= width; ++m)
-      if (j - m >= first)
-        for (int r = 0; r < K; ++r)
-          s[r] -= column[-m] * X[(j - m) * K + r];
-    for (int r = 0; r < K; ++r)
-      X[j * K + r] = s[r] * recip[j];
-  }
+    forward_row<K>(u, kd, recip, X, j, first, width);
   for (int i = last - 1; i >= first; --i)
-  {
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[i * K + r];
-    for (int m = 1; m <= width; ++m)
-      if (i + m < last)
-        for (int r = 0; r < K; ++r)
-          s[r] -= u[(kd - m) + static_cast<std::size_t>(i + m) * ld] * X[(i + m) * K + r];
-    for (int r = 0; r < K; ++r)
-      X[i * K + r] = s[r] * recip[i];
-  }
+    backward_row<K>(u, kd, recip, X, i, last, width);
 }
 
 /**
@@ -77,52 +94,26 @@ void substitute_two(const double* __restrict u, const int kd,
                     const SparseDirectSolver::Block& a,
                     const SparseDirectSolver::Block& b)
 {
-  const int ld = kd + 1;
-  const auto forward = [&](const int j, const int first)
-  {
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[j * K + r];
-    const double* column = u + static_cast<std::size_t>(j) * ld + kd;
-    for (int m = 1; m <= KD; ++m)
-      if (j - m >= first)
-        for (int r = 0; r < K; ++r)
-          s[r] -= column[-m] * X[(j - m) * K + r];
-    for (int r = 0; r < K; ++r)
-      X[j * K + r] = s[r] * recip[j];
-  };
-  const auto backward = [&](const int i, const int last)
-  {
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[i * K + r];
-    for (int m = 1; m <= KD; ++m)
-      if (i + m < last)
-        for (int r = 0; r < K; ++r)
-          s[r] -= u[(kd - m) + static_cast<std::size_t>(i + m) * ld] * X[(i + m) * K + r];
-    for (int r = 0; r < K; ++r)
-      X[i * K + r] = s[r] * recip[i];
-  };
   const int common = std::min(a.last - a.first, b.last - b.first);
   for (int t = 0; t < common; ++t)
   {
-    forward(a.first + t, a.first);
-    forward(b.first + t, b.first);
+    forward_row<K>(u, kd, recip, X, a.first + t, a.first, KD);
+    forward_row<K>(u, kd, recip, X, b.first + t, b.first, KD);
   }
   for (int j = a.first + common; j < a.last; ++j)
-    forward(j, a.first);
+    forward_row<K>(u, kd, recip, X, j, a.first, KD);
   for (int j = b.first + common; j < b.last; ++j)
-    forward(j, b.first);
+    forward_row<K>(u, kd, recip, X, j, b.first, KD);
   // Backward from each block's last row; the longer block's first rows alone.
   for (int t = 0; t < common; ++t)
   {
-    backward(a.last - 1 - t, a.last);
-    backward(b.last - 1 - t, b.last);
+    backward_row<K>(u, kd, recip, X, a.last - 1 - t, a.last, KD);
+    backward_row<K>(u, kd, recip, X, b.last - 1 - t, b.last, KD);
   }
   for (int i = a.last - 1 - common; i >= a.first; --i)
-    backward(i, a.last);
+    backward_row<K>(u, kd, recip, X, i, a.last, KD);
   for (int i = b.last - 1 - common; i >= b.first; --i)
-    backward(i, b.last);
+    backward_row<K>(u, kd, recip, X, i, b.last, KD);
 }
 
 /// substitute() for two factors with the same blocks, side by side.

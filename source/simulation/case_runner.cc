@@ -398,7 +398,12 @@ void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
   for (const SparseRow& row : probe_rows)
     p.probes.push_back(row.dot(s.q));
   if (layout_.energy)
-    p.energy = sys.energy(s.q, s.v, s.t);
+  {
+    // The compact quadratic forms of the energy guard, not the matrices'.
+    if (!workspace.energy)
+      workspace.energy.emplace(sys);
+    p.energy = (*workspace.energy)(s.q, s.v, s.t);
+  }
 }
 
 RunGuard CaseRunner::make_guard() const

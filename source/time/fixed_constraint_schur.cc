@@ -130,15 +130,9 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     work.reinit(n_dofs);
     work_pair.reinit(n_dofs);
   }
-  column_start.assign(1, 0);
-  column_index.clear();
-  column_value.clear();
+  flat_columns.clear();
   for (const SparseRow& c : columns)
-  {
-    column_index.insert(column_index.end(), c.index.begin(), c.index.end());
-    column_value.insert(column_value.end(), c.value.begin(), c.value.end());
-    column_start.push_back(column_index.size());
-  }
+    flat_columns.push_back(c);
   for (unsigned int k = 0; k < n; ++k)
     if (!(diagonal[k] > 0.))
       throw SimulationError("the " + what +
@@ -255,12 +249,12 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
     work = 0.;
     return;
   }
-  const unsigned int* __restrict index = column_index.data();
-  const double* __restrict value = column_value.data();
+  const unsigned int* __restrict index = flat_columns.index.data();
+  const double* __restrict value = flat_columns.value.data();
   double* __restrict out = y.begin();
   for (unsigned int k = 0; k < n; ++k)
     if (const double f = factors[k]; f != 0.)
-      for (unsigned int e = column_start[k]; e < column_start[k + 1]; ++e)
+      for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
         out[index[e]] += f * value[e];
 }
 
@@ -295,13 +289,13 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& f,
     work_pair.clear();
     return;
   }
-  const unsigned int* __restrict index = column_index.data();
-  const double* __restrict value = column_value.data();
+  const unsigned int* __restrict index = flat_columns.index.data();
+  const double* __restrict value = flat_columns.value.data();
   double* __restrict out_y = y.begin();
   double* __restrict out_z = z.begin();
   for (unsigned int k = 0; k < n; ++k)
     if (f[k] != 0. || g[k] != 0.)
-      for (unsigned int e = column_start[k]; e < column_start[k + 1]; ++e)
+      for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
       {
         out_y[index[e]] += f[k] * value[e];
         out_z[index[e]] += g[k] * value[e];

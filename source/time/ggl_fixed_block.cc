@@ -54,15 +54,9 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
         Q_rows[k].add(l, column[k]);
   }
   X_mu.initialize(mu_columns, n_dofs);
-  Q_start.assign(1, 0);
-  Q_column.clear();
-  Q_value.clear();
+  Q.clear();
   for (const SparseRow& row : Q_rows)
-  {
-    Q_column.insert(Q_column.end(), row.index.begin(), row.index.end());
-    Q_value.insert(Q_value.end(), row.value.begin(), row.value.end());
-    Q_start.push_back(Q_column.size());
-  }
+    Q.push_back(row);
   P_eta.reinit(m);
   Q_mu.reinit(m);
   N_mu.reinit(m);
@@ -174,12 +168,7 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     P.vmult(P_eta, eta[j]);
     N.vmult(N_mu, mu[j]);
     for (unsigned int k = 0; k < m; ++k)
-    {
-      double s = 0.;
-      for (unsigned int e = Q_start[k]; e < Q_start[k + 1]; ++e)
-        s += Q_value[e] * mu[j][Q_column[e]];
-      Q_mu[k] = s;
-    }
+      Q_mu[k] = Q.dot(k, mu[j].begin());
     const dealii::Vector<double>& x = *xs[j];
     rhs[j] = 0.;
     for (unsigned int k = 0; k < m; ++k)

@@ -104,16 +104,10 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   for (const unsigned int i : fixed)
     for (const unsigned int j : at_n.states()[i].G.index)
       constant_refresh_rows.push_back(j);
-  fixed_rows.start.assign(1, 0);
   for (const unsigned int i : fixed)
   {
-    const ConstraintState& state = at_n.states()[i];
-    fixed_rows.index.insert(fixed_rows.index.end(), state.G.index.begin(),
-                            state.G.index.end());
-    fixed_rows.value.insert(fixed_rows.value.end(), state.G.value.begin(),
-                            state.G.value.end());
-    fixed_rows.start.push_back(fixed_rows.index.size());
-    fixed_rows.offset.push_back(state.z);
+    fixed_rows.push_back(at_n.states()[i].G);
+    fixed_rows.offset.push_back(at_n.states()[i].z);
   }
   is_moving.assign(m, false);
   for (const unsigned int i : moving)

@@ -7,6 +7,7 @@
 #include <pantocat/simulation/run_guard.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
+#include <pantocat/system/energy_functional.h>
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -139,6 +140,8 @@ public:
     std::vector<ConstraintState> rows;
     /// Each constraint's kind, read at the first time point.
     std::vector<char> time_dependent, compliant;
+    /// E(t) of the energy column, made at the first time point that needs it.
+    std::optional<EnergyFunctional> energy;
   };
   /**
    * time_point() into @p point, reusing its vectors and the constraint rows

@@ -59,4 +59,37 @@ struct SparseRow
     return s;
   }
 };
+
+/**
+ * Many constant rows stored flat, for the loops over them every step (no
+ * pointer to follow per row): row k is entries [start[k], start[k + 1]) of
+ * index and value.
+ */
+struct CompressedRows
+{
+  std::vector<unsigned int> start{0}, index;
+  std::vector<double> value;
+
+  void clear()
+  {
+    start.assign(1, 0);
+    index.clear();
+    value.clear();
+  }
+  void push_back(const SparseRow& row)
+  {
+    index.insert(index.end(), row.index.begin(), row.index.end());
+    value.insert(value.end(), row.value.begin(), row.value.end());
+    start.push_back(index.size());
+  }
+  unsigned int size() const { return start.size() - 1; }
+  /// row k . x, summed in SparseRow::dot()'s order.
+  double dot(const unsigned int k, const double* __restrict x) const
+  {
+    double s = 0.;
+    for (unsigned int e = start[k]; e < start[k + 1]; ++e)
+      s += value[e] * x[index[e]];
+    return s;
+  }
+};
 } // namespace pantocat

@@ -119,10 +119,8 @@ private:
   unsigned int n = 0;
   std::string what;
   std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (or none)
-  /// The same columns stored flat: column k is [column_start[k], column_start[k+1]).
-  std::vector<unsigned int> column_start, column_index;
-  std::vector<double> column_value;
-  std::vector<SparseRow> rows; ///< G_k, when the columns are dropped
+  CompressedRows flat_columns;    ///< the same columns stored flat
+  std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
   std::function<void(InterleavedColumns&)> solve_columns_with_A;
   mutable dealii::Vector<double> work;  ///< G_F^T lambda, when the columns are dropped

@@ -89,9 +89,7 @@ private:
   unsigned int m = 0;
   double c = 0.;
   FixedConstraintSchur P, N; ///< P + C on F + E, N on F
-  /// Q by rows (compressed).
-  std::vector<unsigned int> Q_start, Q_column;
-  std::vector<double> Q_value;
+  CompressedRows Q;          ///< Q by rows
   TruncatedColumns X_lambda, X_mu, Y;
   std::vector<double> ratio;
   std::vector<SparseRow> rows; ///< G of the constraints

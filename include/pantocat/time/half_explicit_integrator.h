@@ -253,18 +253,9 @@ private:
    * The rows G_k and offsets z_k of the fixed constraints (constant; G_t,
    * G_tt, z_t, z_tt are 0), stored flat for the per-step loops over them.
    */
-  struct FixedRows
+  struct FixedRows : CompressedRows
   {
-    std::vector<unsigned int> start, index;
-    std::vector<double> value, offset;
-    /// G_k . x, summed in SparseRow::dot()'s order.
-    double dot(const unsigned int k, const double* __restrict x) const
-    {
-      double s = 0.;
-      for (unsigned int e = start[k]; e < start[k + 1]; ++e)
-        s += value[e] * x[index[e]];
-      return s;
-    }
+    std::vector<double> offset;
   };
   FixedRows fixed_rows;
   std::vector<bool> is_moving; ///< constraint i is a moving (time-dependent) one
