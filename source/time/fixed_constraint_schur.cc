@@ -117,12 +117,15 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     return;
   columns.clear();
   std::vector<Entry> lower = lower_entries(G, A, n_dofs, diagonal, columns);
+  flat_columns.clear();
+  for (const SparseRow& c : columns)
+    flat_columns.push_back(c);
   rows.clear();
   if (!A.keep_columns && static_cast<double>(n_column_entries()) > A.solve_cost &&
       A.solve)
   {
     // One solve with G_F^T lambda reads fewer entries than the columns.
-    columns.clear();
+    flat_columns.clear();
     for (const SparseRow* g : G)
       rows.push_back(*g);
     solve_with_A = A.solve;
@@ -130,9 +133,9 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     work.reinit(n_dofs);
     work_pair.reinit(n_dofs);
   }
-  flat_columns.clear();
-  for (const SparseRow& c : columns)
-    flat_columns.push_back(c);
+  // add_columns() reads the flat copy; the rows are kept only when asked for.
+  if (!A.keep_columns)
+    columns = {};
   for (unsigned int k = 0; k < n; ++k)
     if (!(diagonal[k] > 0.))
       throw SimulationError("the " + what +
@@ -316,10 +319,7 @@ void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
 
 std::size_t FixedConstraintSchur::n_column_entries() const
 {
-  std::size_t s = 0;
-  for (const SparseRow& c : columns)
-    s += c.size();
-  return s;
+  return flat_columns.index.size();
 }
 
 void FixedConstraintSchur::solve(dealii::Vector<double>& x) const

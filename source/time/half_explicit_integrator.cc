@@ -114,17 +114,16 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     is_moving[i] = true;
   // The fixed constraints by unknown (find_fixed_near()).
   fixed_at_start.assign(n + 1, 0);
-  for (const unsigned int i : fixed)
-    for (const unsigned int j : at_n.states()[i].G.index)
-      ++fixed_at_start[j + 1];
+  for (const unsigned int j : fixed_rows.index)
+    ++fixed_at_start[j + 1];
   for (unsigned int j = 0; j < n; ++j)
     fixed_at_start[j + 1] += fixed_at_start[j];
   fixed_at.resize(fixed_at_start[n]);
   {
     std::vector<unsigned int> next(fixed_at_start.begin(), fixed_at_start.end() - 1);
-    for (unsigned int k = 0; k < fixed.size(); ++k)
-      for (const unsigned int j : at_n.states()[fixed[k]].G.index)
-        fixed_at[next[j]++] = k;
+    for (unsigned int k = 0; k < fixed_rows.size(); ++k)
+      for (unsigned int e = fixed_rows.start[k]; e < fixed_rows.start[k + 1]; ++e)
+        fixed_at[next[fixed_rows.index[e]]++] = k;
   }
   near_mark.assign(fixed.size(), false);
   std::sort(constant_refresh_rows.begin(), constant_refresh_rows.end());
@@ -164,14 +163,6 @@ inline void predict_unconstrained(const int i, const double a, const double two_
  * @p q_new: one pass over the unknowns per step instead of two. Rows whose a
  * changes afterwards (constraint forces, coupled rows) are predicted again
  * from their final a (HalfExplicitIntegrator::refresh_prediction()).
- */
-/**
- * banded_forces() on the rows of one uniform run: its coefficients as local
- * scalars, every pointer restrict, so that the loop vectorises. The
- * operations and their order are those of banded_forces()'s rows; with
- * @p symmetric (K(i, i+o) = K(i, i-o) in the run: the wires' interiors) each
- * pair of neighbours takes one product, k_o (q_{i-o} + q_{i+o}), as the
- * single-sweep kernel of bench/ does.
  */
 /// A uniform run's coefficients as values (local scalars for the compiler).
 struct RunCoefficients
@@ -537,16 +528,18 @@ void HalfExplicitIntegrator::compute_moving_columns()
     {
       // Y = W^-1 G^T and a* in one sweep (M diagonal: the FDM with Rayleigh damping).
       const unsigned int n = system.n_dofs();
-      pair_columns.assign(2 * n, 0.);
-      for (std::size_t k = 0; k < sn[i].G.size(); ++k)
-        pair_columns[2 * sn[i].G.index[k]] += sn[i].G.value[k];
+      if (batch_W.size() != n)
+        batch_W.reinit(n);
+      else
+        batch_W.clear();
+      batch_W.add_row(0, sn[i].G, 1.);
       for (unsigned int k = 0; k < n; ++k)
-        pair_columns[2 * k + 1] = (*free_rhs)[k];
-      W->solve_interleaved(pair_columns.data(), 2);
+        batch_W(k, 1) = (*free_rhs)[k];
+      W->solve_interleaved(batch_W.data(), InterleavedColumns::width);
       for (unsigned int k = 0; k < n; ++k)
       {
-        x.Y[k] = pair_columns[2 * k];
-        (*free_rhs)[k] = pair_columns[2 * k + 1];
+        x.Y[k] = batch_W(k, 0);
+        (*free_rhs)[k] = batch_W(k, 1);
       }
     }
     else
@@ -1057,6 +1050,9 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
 
 void HalfExplicitIntegrator::prepare_step()
 {
+  at_n.at(t);
+  at_half.at(t + 0.5 * dt, 1); // (40) needs G and G_t at t_{n+1/2} and t_{n+1}
+  at_next.at(t + dt, 1);
   const bool fuse = smoothed_mass_inverse.factorised() && !moving.empty();
   if (fuse)
   {
@@ -1072,9 +1068,6 @@ void HalfExplicitIntegrator::prepare_step()
 
 void HalfExplicitIntegrator::advance()
 {
-  at_n.at(t);
-  at_half.at(t + 0.5 * dt, 1); // (40) needs G and G_t at t_{n+1/2} and t_{n+1}
-  at_next.at(t + dt, 1);
   prepare_step();
   active_set.start(active_now);
   for (;;)
@@ -1147,9 +1140,6 @@ void HalfExplicitIntegrator::advance()
 void HalfExplicitIntegrator::finish()
 {
   // Step 1 alone at the final time: a_N and lambda_N with the current active set.
-  at_n.at(t);
-  at_half.at(t + 0.5 * dt, 1);
-  at_next.at(t + dt, 1);
   prepare_step();
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)

@@ -102,8 +102,8 @@ public:
   /// columns.
   void add_columns(const std::vector<double>& f, dealii::Vector<double>& y,
                    const std::vector<double>& g, dealii::Vector<double>& z) const;
-  /// The truncated columns A^-1 G_k^T (empty if add_columns() solves instead,
-  /// unless ColumnSolver::keep_columns).
+  /// The truncated columns A^-1 G_k^T, kept only with ColumnSolver::keep_columns
+  /// (add_columns() reads their flat copy).
   const std::vector<SparseRow>& truncated_columns() const { return columns; }
   /// out = (G_F A^-1 G_F^T) in over all constraints (no selection, no compliance).
   void vmult(dealii::Vector<double>& out, const dealii::Vector<double>& in) const;
@@ -118,8 +118,8 @@ public:
 private:
   unsigned int n = 0;
   std::string what;
-  std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (or none)
-  CompressedRows flat_columns;    ///< the same columns stored flat
+  std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (keep_columns only)
+  CompressedRows flat_columns;    ///< the same columns stored flat (or none)
   std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
   std::function<void(InterleavedColumns&)> solve_columns_with_A;

@@ -171,9 +171,9 @@ private:
    */
   dealii::Vector<double> free_acceleration;
   bool free_acceleration_ready = false;
-  /// The moving constraints' columns at t_n, with a* beside the first (see above).
+  /// The rows at t_n, t_{n+1/2}, t_{n+1}, then the moving constraints' columns
+  /// at t_n, with a* beside the first (see above).
   void prepare_step();
-  std::vector<double> pair_columns; ///< Y beside a*, interleaved (M diagonal)
   /**
    * After compute_forces() predicted q*, v* in its sweep: predicts them again
    * on the rows whose a changed after the sweep (coupled rows, the rows of the
@@ -264,7 +264,7 @@ private:
   std::vector<unsigned int> fixed_at_start, fixed_at;
   std::vector<bool> near_mark; ///< workspace of find_fixed_near()
   std::vector<MovingColumns> columns;
-  InterleavedColumns batch_W, batch_M; ///< workspace of compute_factorised_columns()
+  InterleavedColumns batch_W, batch_M; ///< workspace of compute_moving_columns()
   std::vector<double> lambda, gaps;
   /// The impulses of the impact at t_{n+1} (reported with t_{n+1}), or empty.
   std::vector<double> pending_impulse;
