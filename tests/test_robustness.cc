@@ -7,6 +7,7 @@
 #include <pantocat/io/external_program.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/io/plots.h>
+#include <pantocat/lac/vector_bounds.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/time/integrator_registry.h>
@@ -20,6 +21,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 using namespace pantocat;
 
@@ -217,4 +219,38 @@ TEST(Robustness, AStepThatDividesTheRunIsKeptBitForBit)
   p.time_step = 0.3; // the probe's case: 2 steps of 0.25 s, not 0.6 s
   EXPECT_EQ(p.number_of_steps(0.5), 2u);
   EXPECT_DOUBLE_EQ(p.step_for(0.5), 0.25);
+}
+
+// The run's bound guard counts the entries beyond the span, NaN and infinity
+// included, with a vector loop over blocks of four and a scalar tail. The
+// count must be exact for every length (a tail entry within the bound is not
+// outside): checked against the plain loop for lengths 0 to 11 and every
+// position of a NaN, an infinity and a large entry.
+TEST(Robustness, TheBoundGuardCountsEntriesOutsideExactlyForEveryLength)
+{
+  const double bound = 100.;
+  const double specials[] = {std::numeric_limits<double>::quiet_NaN(),
+                             -std::numeric_limits<double>::infinity(), -150., 100.};
+  for (unsigned int n = 0; n < 12; ++n)
+    for (unsigned int where = 0; where <= n; ++where)
+      for (const double special : specials)
+      {
+        dealii::Vector<double> x(n);
+        for (unsigned int i = 0; i < n; ++i)
+          x(i) = (i % 3 == 0 ? -1. : 1.) * 0.37 * i;
+        if (where < n)
+          x(where) = special;
+        std::size_t expected = 0;
+        double largest = 0.;
+        for (unsigned int i = 0; i < n; ++i)
+        {
+          expected += !(std::abs(x(i)) <= bound);
+          largest = std::max(largest, std::abs(x(i)));
+        }
+        EXPECT_EQ(count_outside(x, bound), expected) << "n = " << n << ", at " << where;
+        if (std::isfinite(special) || where == n)
+          EXPECT_EQ(largest_magnitude(x), largest) << "n = " << n;
+        else
+          EXPECT_FALSE(std::isfinite(largest_magnitude(x))) << "n = " << n;
+      }
 }

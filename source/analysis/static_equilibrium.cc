@@ -1,6 +1,8 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/lac/interleaved_columns.h>
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 
@@ -20,9 +22,9 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
 {
   try
   {
-    K_inverse.initialize(system.stiffness);
+    K_inverse.factorize(system.stiffness, "stiffness matrix");
   }
-  catch (...)
+  catch (const SimulationError&)
   {
     throw SimulationError("static equilibrium: the stiffness matrix is singular "
                           "(a body without tension, bending or support?)");
@@ -37,14 +39,31 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
   const bool keep = static_cast<double>(system.n_dofs()) * m <= column_budget;
   X.assign(keep ? m : 0, dealii::Vector<double>(system.n_dofs()));
   schur.reinit(m, m);
-  dealii::Vector<double> work(keep ? 0 : system.n_dofs());
-  for (unsigned int l = 0; l < m; ++l)
+  InterleavedColumns batch;
+  batch.reinit(system.n_dofs());
+  constexpr unsigned int width = InterleavedColumns::width;
+  for (unsigned int first = 0; first < m; first += width)
   {
-    dealii::Vector<double>& x = keep ? X[l] : work;
-    column(l, x);
-    for (unsigned int k = 0; k < m; ++k)
-      schur(k, l) = states[k].G.dot(x);
+    const unsigned int count = std::min(width, m - first);
+    columns(first, count, batch);
+    for (unsigned int c = 0; c < count; ++c)
+    {
+      for (unsigned int k = 0; k < m; ++k)
+        schur(k, first + c) = batch.dot(states[k].G, c);
+      if (keep)
+        for (unsigned int i = 0; i < system.n_dofs(); ++i)
+          X[first + c](i) = batch(i, c);
+    }
   }
+}
+
+void StaticEquilibriumSolver::columns(const unsigned int first, const unsigned int count,
+                                      InterleavedColumns& batch) const
+{
+  batch.clear();
+  for (unsigned int c = 0; c < count; ++c)
+    batch.add_row(c, states[first + c].G, 1.);
+  K_inverse.solve_interleaved(batch.data(), InterleavedColumns::width);
 }
 
 void StaticEquilibriumSolver::column(const unsigned int i,

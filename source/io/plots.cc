@@ -200,19 +200,32 @@ plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>
 namespace
 {
 
-/// "plot 'time_series.csv' using 1:c title 'name', ..." for the @p names that exist.
-void plot_columns(std::ostream& gp, const std::vector<std::string>& columns,
+/// The columns that the plots draw, read from time_series.csv once into the
+/// datablock $plotted (time first). A wide CSV (one column per dropper) costs
+/// gnuplot a full parse for every curve that names the file; the datablock
+/// keeps only the drawn columns.
+void read_plotted_columns(std::ostream& gp, const std::vector<std::string>& columns,
+                          const std::vector<std::string>& names)
+{
+  gp << "set table $plotted\nplot 'time_series.csv' using 1";
+  for (const std::string& name : names)
+    gp << ':' << column_of(columns, name);
+  gp << " with table\nunset table\nset datafile separator whitespace\n";
+}
+
+/// "plot $plotted using 1:c title 'name', ..." for the @p names, whose
+/// datablock columns follow @p plotted (time is column 1).
+void plot_columns(std::ostream& gp, const std::vector<std::string>& plotted,
                   const std::vector<std::string>& names)
 {
   gp << "plot ";
   bool first = true;
   for (const std::string& name : names)
-    if (const std::size_t c = column_of(columns, name))
-    {
-      gp << (first ? "" : ", ") << "'time_series.csv' using 1:" << c
-         << " with lines title " << gnuplot_string(name);
-      first = false;
-    }
+  {
+    gp << (first ? "" : ", ") << "$plotted using 1:" << column_of(plotted, name) + 1
+       << " with lines title " << gnuplot_string(name);
+    first = false;
+  }
   gp << '\n';
 }
 } // namespace
@@ -250,12 +263,16 @@ std::vector<std::string> plot_time_series(const std::string& dir,
        << "set datafile separator ','\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set grid\nset xlabel 't [s]'\nset key outside right\n";
+    std::vector<std::string> plotted;
+    for (const Plot& plot : plots)
+      plotted.insert(plotted.end(), plot.names.begin(), plot.names.end());
+    read_plotted_columns(gp, columns, plotted);
     for (const Plot& plot : plots)
     {
       gp << "set output '" << plot.png << "'\n"
          << "set title " << gnuplot_string(title + ": " + plot.what) << "\n"
          << "set ylabel '" << plot.ylabel << "'\n";
-      plot_columns(gp, columns, plot.names);
+      plot_columns(gp, plotted, plot.names);
     }
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);

@@ -1,15 +1,17 @@
 #pragma once
 
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/semi_discrete_system.h>
 
 #include <deal.II/lac/full_matrix.h>
-#include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/vector.h>
 
 #include <vector>
 
 namespace pantocat
 {
+class InterleavedColumns;
+
 /// The solution of the elliptic problem of Sec. 2.2: q and the constraint forces.
 struct StaticEquilibrium
 {
@@ -33,9 +35,11 @@ struct StaticEquilibrium
  * force is positive, iterated like the active set (a taut elastic dropper
  * pulls, a slack one does not).
  *
- * The constructor factorises K once by a sparse direct solver (UMFPACK) and
- * forms X = K^-1 G^T and the Schur complement S = G K^-1 G^T of every
- * constraint (one back-substitution per constraint); a solve() is then one
+ * The constructor factorises K once by a sparse direct solver (the banded
+ * Cholesky of SparseDirectSolver; K is symmetric positive definite and banded
+ * within each body) and forms X = K^-1 G^T and the Schur complement
+ * S = G K^-1 G^T of every constraint (back-substitutions of four constraints
+ * side by side); a solve() is then one
  * back-substitution for its load plus, per active-set iteration, a small dense
  * solve with the rows and columns of S of the active constraints. K, G and z
  * do not depend on the load, so any number of loads (the static elasticity:
@@ -85,10 +89,12 @@ private:
   int constraint_to_switch(const StaticEquilibrium& s) const;
 
   const SemiDiscreteSystem& system;
-  dealii::SparseDirectUMFPACK K_inverse;
+  SparseDirectSolver K_inverse;
   std::vector<ConstraintState> states; ///< G and z of every constraint at t
   /// column <- K^-1 G_i^T.
   void column(unsigned int i, dealii::Vector<double>& column) const;
+  /// Columns c < @p count of @p batch <- K^-1 G_{first+c}^T (the others zero).
+  void columns(unsigned int first, unsigned int count, InterleavedColumns& batch) const;
   std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i, or empty
   dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
 };
