@@ -26,26 +26,34 @@ constexpr int long_block = 256;
 /**
  * Row @p j of the forward substitution U^T y = b in the block that starts at
  * row @p first, with half bandwidth @p width, for K interleaved right-hand
- * sides. U(i, j), i <= j <= i + kd, sits at u[(kd + i - j) + j (kd + 1)].
+ * sides: y_j = b_j / U(j, j) - sum_m (U(j - m, j) / U(j, j)) y_{j-m}, the
+ * quotients read from @p l at the places of U(j - m, j) in the band
+ * (SparseDirectSolver's lower_scaled). The term of the row just before comes
+ * last: the recurrence waits one multiply-subtract per row, not the whole sum
+ * and a division.
  */
 template <int K>
-inline void forward_row(const double* __restrict u, const int kd,
+inline void forward_row(const double* __restrict l, const int kd,
                         const double* __restrict recip, double* __restrict X, const int j,
                         const int first, const int width)
 {
   double s[K];
   for (int r = 0; r < K; ++r)
-    s[r] = X[j * K + r];
-  const double* column = u + static_cast<std::size_t>(j) * (kd + 1) + kd;
-  for (int m = 1; m <= width; ++m)
+    s[r] = X[j * K + r] * recip[j];
+  const double* column = l + static_cast<std::size_t>(j) * (kd + 1) + kd;
+  for (int m = width; m >= 1; --m)
     if (j - m >= first)
       for (int r = 0; r < K; ++r)
         s[r] -= column[-m] * X[(j - m) * K + r];
   for (int r = 0; r < K; ++r)
-    X[j * K + r] = s[r] * recip[j];
+    X[j * K + r] = s[r];
 }
 
-/// Row @p i of the backward substitution U x = y in the block that ends before @p last.
+/**
+ * Row @p i of the backward substitution U x = y in the block that ends before
+ * @p last: x_i = y_i / U(i, i) - sum_m (U(i, i + m) / U(i, i)) x_{i+m}, the
+ * quotients read from @p u at the places of U(i, i + m) (upper_scaled).
+ */
 template <int K>
 inline void backward_row(const double* __restrict u, const int kd,
                          const double* __restrict recip, double* __restrict X,
@@ -53,15 +61,17 @@ inline void backward_row(const double* __restrict u, const int kd,
 {
   double s[K];
   for (int r = 0; r < K; ++r)
-    s[r] = X[i * K + r];
-  for (int m = 1; m <= width; ++m)
+    s[r] = X[i * K + r] * recip[i];
+  for (int m = width; m >= 1; --m)
     if (i + m < last)
       for (int r = 0; r < K; ++r)
         s[r] -=
             u[(kd - m) + static_cast<std::size_t>(i + m) * (kd + 1)] * X[(i + m) * K + r];
   for (int r = 0; r < K; ++r)
-    X[i * K + r] = s[r] * recip[i];
+    X[i * K + r] = s[r];
 }
+
+using ScaledBand = SparseDirectSolver::ScaledBand;
 
 /**
  * Forward (U^T y = b) and backward (U x = y) substitution on the rows
@@ -70,14 +80,14 @@ inline void backward_row(const double* __restrict u, const int kd,
  * run time), for K interleaved right-hand sides.
  */
 template <int KD, int K>
-void substitute(const double* __restrict u, const int kd, const double* __restrict recip,
-                double* __restrict X, const int first, const int last, const int bw = 0)
+void substitute(const ScaledBand& f, double* __restrict X, const int first,
+                const int last, const int bw = 0)
 {
   const int width = KD < 0 ? bw : KD;
   for (int j = first; j < last; ++j)
-    forward_row<K>(u, kd, recip, X, j, first, width);
+    forward_row<K>(f.lower, f.kd, f.recip, X, j, first, width);
   for (int i = last - 1; i >= first; --i)
-    backward_row<K>(u, kd, recip, X, i, last, width);
+    backward_row<K>(f.upper, f.kd, f.recip, X, i, last, width);
 }
 
 /**
@@ -89,95 +99,70 @@ void substitute(const double* __restrict u, const int kd, const double* __restri
  * substitute(), in the same order.
  */
 template <int KD, int K>
-void substitute_two(const double* __restrict u, const int kd,
-                    const double* __restrict recip, double* __restrict X,
+void substitute_two(const ScaledBand& f, double* __restrict X,
                     const SparseDirectSolver::Block& a,
                     const SparseDirectSolver::Block& b)
 {
   const int common = std::min(a.last - a.first, b.last - b.first);
   for (int t = 0; t < common; ++t)
   {
-    forward_row<K>(u, kd, recip, X, a.first + t, a.first, KD);
-    forward_row<K>(u, kd, recip, X, b.first + t, b.first, KD);
+    forward_row<K>(f.lower, f.kd, f.recip, X, a.first + t, a.first, KD);
+    forward_row<K>(f.lower, f.kd, f.recip, X, b.first + t, b.first, KD);
   }
   for (int j = a.first + common; j < a.last; ++j)
-    forward_row<K>(u, kd, recip, X, j, a.first, KD);
+    forward_row<K>(f.lower, f.kd, f.recip, X, j, a.first, KD);
   for (int j = b.first + common; j < b.last; ++j)
-    forward_row<K>(u, kd, recip, X, j, b.first, KD);
+    forward_row<K>(f.lower, f.kd, f.recip, X, j, b.first, KD);
   // Backward from each block's last row; the longer block's first rows alone.
   for (int t = 0; t < common; ++t)
   {
-    backward_row<K>(u, kd, recip, X, a.last - 1 - t, a.last, KD);
-    backward_row<K>(u, kd, recip, X, b.last - 1 - t, b.last, KD);
+    backward_row<K>(f.upper, f.kd, f.recip, X, a.last - 1 - t, a.last, KD);
+    backward_row<K>(f.upper, f.kd, f.recip, X, b.last - 1 - t, b.last, KD);
   }
   for (int i = a.last - 1 - common; i >= a.first; --i)
-    backward_row<K>(u, kd, recip, X, i, a.last, KD);
+    backward_row<K>(f.upper, f.kd, f.recip, X, i, a.last, KD);
   for (int i = b.last - 1 - common; i >= b.first; --i)
-    backward_row<K>(u, kd, recip, X, i, b.last, KD);
+    backward_row<K>(f.upper, f.kd, f.recip, X, i, b.last, KD);
 }
 
-/// substitute() for two factors with the same blocks, side by side.
+/**
+ * substitute() for two factors with the same blocks, side by side (row j of
+ * the one and row j of the other in the same iteration), with the larger
+ * half bandwidth KD of the two.
+ */
 template <int KD, int K>
-void substitute_pair(const double* __restrict u, const double* __restrict recip,
-                     double* __restrict X, const double* __restrict u2,
-                     const double* __restrict recip2, double* __restrict X2, const int kd,
-                     const int first, const int last)
+void substitute_pair(const ScaledBand& f, double* __restrict X, const ScaledBand& g,
+                     double* __restrict X2, const int first, const int last)
 {
-  const int ld = kd + 1;
   for (int j = first; j < last; ++j)
   {
-    double s[K], s2[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[j * K + r], s2[r] = X2[j * K + r];
-    const std::size_t column = static_cast<std::size_t>(j) * ld + kd;
-    for (int m = 1; m <= KD; ++m)
-      if (j - m >= first)
-        for (int r = 0; r < K; ++r)
-        {
-          s[r] -= u[column - m] * X[(j - m) * K + r];
-          s2[r] -= u2[column - m] * X2[(j - m) * K + r];
-        }
-    for (int r = 0; r < K; ++r)
-      X[j * K + r] = s[r] * recip[j], X2[j * K + r] = s2[r] * recip2[j];
+    forward_row<K>(f.lower, f.kd, f.recip, X, j, first, KD);
+    forward_row<K>(g.lower, g.kd, g.recip, X2, j, first, KD);
   }
   for (int i = last - 1; i >= first; --i)
   {
-    double s[K], s2[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[i * K + r], s2[r] = X2[i * K + r];
-    for (int m = 1; m <= KD; ++m)
-      if (i + m < last)
-      {
-        const std::size_t e = (kd - m) + static_cast<std::size_t>(i + m) * ld;
-        for (int r = 0; r < K; ++r)
-        {
-          s[r] -= u[e] * X[(i + m) * K + r];
-          s2[r] -= u2[e] * X2[(i + m) * K + r];
-        }
-      }
-    for (int r = 0; r < K; ++r)
-      X[i * K + r] = s[r] * recip[i], X2[i * K + r] = s2[r] * recip2[i];
+    backward_row<K>(f.upper, f.kd, f.recip, X, i, last, KD);
+    backward_row<K>(g.upper, g.kd, g.recip, X2, i, last, KD);
   }
 }
 
 template <int K>
-void substitute_block(const double* u, const int kd, const double* recip, double* X,
-                      const SparseDirectSolver::Block& b)
+void substitute_block(const ScaledBand& f, double* X, const SparseDirectSolver::Block& b)
 {
   switch (b.bandwidth)
   {
   case 0:
-    return substitute<0, K>(u, kd, recip, X, b.first, b.last);
+    return substitute<0, K>(f, X, b.first, b.last);
   case 1:
-    return substitute<1, K>(u, kd, recip, X, b.first, b.last);
+    return substitute<1, K>(f, X, b.first, b.last);
   case 2:
-    return substitute<2, K>(u, kd, recip, X, b.first, b.last);
+    return substitute<2, K>(f, X, b.first, b.last);
   case 3:
-    return substitute<3, K>(u, kd, recip, X, b.first, b.last);
+    return substitute<3, K>(f, X, b.first, b.last);
   case 4:
-    return substitute<4, K>(u, kd, recip, X, b.first, b.last);
+    return substitute<4, K>(f, X, b.first, b.last);
   default:
-    return substitute<-1, K>(u, kd, recip, X, b.first, b.last, b.bandwidth);
+    return substitute<-1, K>(f, X, b.first, b.last, b.bandwidth);
   }
 }
 } // namespace
@@ -242,7 +227,8 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
       }
     }
   const int ld = kd + 1;
-  band.assign(static_cast<std::size_t>(ld) * n, 0.);
+  // LAPACK upper band storage: U(i, j), i <= j <= i + kd, at (kd + i - j) + j ld.
+  std::vector<double> band(static_cast<std::size_t>(ld) * n, 0.);
   for (auto it = A.begin(); it != A.end(); ++it)
   {
     const int i = it->row(), j = it->column();
@@ -256,6 +242,17 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
   reciprocal.resize(n);
   for (int i = 0; i < n; ++i)
     reciprocal[i] = 1. / band[kd + static_cast<std::size_t>(i) * ld];
+  // U(i, j) at band[(kd + i - j) + j ld] over U(j, j) (forward) and over
+  // U(i, i) (backward), at the same places.
+  lower_scaled.assign(band.size(), 0.);
+  upper_scaled.assign(band.size(), 0.);
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - kd); i < j; ++i)
+    {
+      const std::size_t e = (kd + i - j) + static_cast<std::size_t>(j) * ld;
+      lower_scaled[e] = band[e] * reciprocal[j];
+      upper_scaled[e] = band[e] * reciprocal[i];
+    }
   find_blocks(A); // the Cholesky factor has the block structure of A
   return true;
 }
@@ -296,7 +293,8 @@ void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
   if (banded)
     return;
   n = matrix.m();
-  band.clear();
+  lower_scaled.clear();
+  upper_scaled.clear();
   independent_blocks.clear();
   try
   {
@@ -332,6 +330,11 @@ void SparseDirectSolver::solve_general(dealii::Vector<double>& x) const
     x[i] = klu->x[i];
 }
 
+SparseDirectSolver::ScaledBand SparseDirectSolver::scaled_band() const
+{
+  return {lower_scaled.data(), upper_scaled.data(), reciprocal.data(), kd};
+}
+
 void SparseDirectSolver::solve(dealii::Vector<double>& x) const
 {
   if (!banded)
@@ -357,26 +360,25 @@ void SparseDirectSolver::solve_interleaved_with(double* X,
     other.solve_interleaved(X_other, 4);
     return;
   }
+  const ScaledBand f = scaled_band(), g = other.scaled_band();
   for (std::size_t k = 0; k < independent_blocks.size(); ++k)
   {
     const Block& b = independent_blocks[k];
     const int width = std::max(b.bandwidth, other.independent_blocks[k].bandwidth);
-    const double *u = band.data(), *u2 = other.band.data();
-    const double *r = reciprocal.data(), *r2 = other.reciprocal.data();
     switch (width)
     {
     case 1:
-      substitute_pair<1, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      substitute_pair<1, 4>(f, X, g, X_other, b.first, b.last);
       break;
     case 2:
-      substitute_pair<2, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      substitute_pair<2, 4>(f, X, g, X_other, b.first, b.last);
       break;
     case 3:
-      substitute_pair<3, 4>(u, r, X, u2, r2, X_other, kd, b.first, b.last);
+      substitute_pair<3, 4>(f, X, g, X_other, b.first, b.last);
       break;
     default: // rare: separate substitutions of this block
-      substitute_block<4>(u, kd, r, X, b);
-      substitute_block<4>(u2, kd, r2, X_other, other.independent_blocks[k]);
+      substitute_block<4>(f, X, b);
+      substitute_block<4>(g, X_other, other.independent_blocks[k]);
     }
   }
 }
@@ -396,6 +398,7 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
     }
     return;
   }
+  const ScaledBand f = scaled_band();
   for (std::size_t i = 0; i < independent_blocks.size(); ++i)
   {
     const Block& b = independent_blocks[i];
@@ -411,27 +414,27 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
     {
       const Block& c = independent_blocks[i + 1];
       if (pair_bandwidth == 1)
-        substitute_two<1, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+        substitute_two<1, 1>(f, X, b, c);
       else if (pair_bandwidth == 2)
-        substitute_two<2, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+        substitute_two<2, 1>(f, X, b, c);
       else
-        substitute_two<3, 1>(band.data(), kd, reciprocal.data(), X, b, c);
+        substitute_two<3, 1>(f, X, b, c);
       ++i;
       continue;
     }
     switch (k)
     {
     case 1:
-      substitute_block<1>(band.data(), kd, reciprocal.data(), X, b);
+      substitute_block<1>(f, X, b);
       break;
     case 2:
-      substitute_block<2>(band.data(), kd, reciprocal.data(), X, b);
+      substitute_block<2>(f, X, b);
       break;
     case 3:
-      substitute_block<3>(band.data(), kd, reciprocal.data(), X, b);
+      substitute_block<3>(f, X, b);
       break;
     case 4:
-      substitute_block<4>(band.data(), kd, reciprocal.data(), X, b);
+      substitute_block<4>(f, X, b);
       break;
     default:
       AssertThrow(false,

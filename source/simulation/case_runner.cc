@@ -98,6 +98,26 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
     return;
   throw SimulationError(m.str());
 }
+/**
+ * The initial state within the bound of check_bounded(): a static catenary
+ * that sags by more than its length (loads far beyond what it carries, such
+ * as an initial contact force of 1e308 N) is no result.
+ */
+void check_initial_bounded(const DynamicState& s, const double bound)
+{
+  const double largest = largest_magnitude(s.q);
+  if (largest <= bound)
+    return;
+  std::ostringstream m;
+  m << "initial state: ";
+  if (std::isfinite(largest))
+    m << "a displacement of " << largest << " m exceeds the span " << bound << " m";
+  else
+    m << "non-finite positions";
+  m << " (are the loads at t = 0, e.g. Pantograph/Initial contact force, within what "
+       "the catenary carries?)";
+  throw SimulationError(m.str());
+}
 } // namespace
 
 CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
@@ -129,6 +149,7 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
                 ? consistent_initial_state(built.catenary_only, built.system,
                                            initial_contacts(built))
                 : shaped_initial_state(built.system, *space, data.scene);
+  check_initial_bounded(initial, data.catenary.length());
 }
 
 CaseRunner::~CaseRunner() = default;

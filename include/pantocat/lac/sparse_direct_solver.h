@@ -81,6 +81,15 @@ public:
   {
     int first = 0, last = 0, bandwidth = 0;
   };
+  /// The banded factor as the substitutions read it (see lower_scaled, upper_scaled).
+  struct ScaledBand
+  {
+    const double* lower; ///< U(j - m, j) / U(j, j), at the places of U in the band
+    const double* upper; ///< U(i, i + m) / U(i, i), likewise
+    const double* recip; ///< 1 / U(i, i)
+    int kd;              ///< the factor's half bandwidth (its storage)
+  };
+
   /// The uncoupled blocks of the banded factor (empty on the UMFPACK path).
   const std::vector<Block>& blocks() const { return independent_blocks; }
 
@@ -94,8 +103,14 @@ private:
   std::unique_ptr<Klu> klu;
   bool banded = false;
   int n = 0, kd = 0;
-  std::vector<double> band;       ///< LAPACK upper band storage of the Cholesky factor U
-  std::vector<double> reciprocal; ///< 1 / U(i, i)
+  std::vector<double> reciprocal; ///< 1 / U(i, i) of the Cholesky factor U
+  /// U(i, j) / U(j, j) and U(i, j) / U(i, i) in LAPACK's upper band storage
+  /// (U(i, j), i <= j <= i + kd, at (kd + i - j) + j (kd + 1)):
+  /// the substitutions' coefficients (one multiply-subtract per row on the
+  /// recurrence's path instead of the row's whole sum and a scaling).
+  std::vector<double> lower_scaled, upper_scaled;
+  /// The scaled factor as the substitutions read it.
+  ScaledBand scaled_band() const;
   std::vector<Block> independent_blocks;
   dealii::SparseDirectUMFPACK umfpack;
 };
