@@ -111,6 +111,57 @@ private:
   std::vector<unsigned int> part_of;
 };
 
+namespace
+{
+/// Entries [first, last) of a vector: outside them it is exactly zero.
+struct Support
+{
+  unsigned int first = 0, last = 0;
+};
+
+Support support_of(const dealii::Vector<double>& x)
+{
+  Support s;
+  const unsigned int n = x.size();
+  while (s.first < n && x[s.first] == 0.)
+    ++s.first;
+  s.last = n;
+  while (s.last > s.first && x[s.last - 1] == 0.)
+    --s.last;
+  return s;
+}
+
+Support join(const Support& a, const Support& b)
+{
+  if (a.first == a.last)
+    return b;
+  if (b.first == b.last)
+    return a;
+  return {std::min(a.first, b.first), std::max(a.last, b.last)};
+}
+
+/**
+ * y += a x on the support of x: the entries of deal.II's y.add(a, x) there,
+ * and y unchanged elsewhere (x is zero there). The columns M^-1 G^T of a
+ * diagonal mass have a few entries; those of a banded inverse decay until
+ * they underflow: a pass over their support, not over all unknowns.
+ */
+void add_on(dealii::Vector<double>& y, const double a, const dealii::Vector<double>& x,
+            const Support& s)
+{
+  for (unsigned int i = s.first; i < s.last; ++i)
+    y[i] += a * x[i];
+}
+
+/// y += a x + b w on @p s, the joint support of x and w (as y.add(a, x, b, w)).
+void add_on(dealii::Vector<double>& y, const double a, const dealii::Vector<double>& x,
+            const double b, const dealii::Vector<double>& w, const Support& s)
+{
+  for (unsigned int i = s.first; i < s.last; ++i)
+    y[i] = y[i] + a * x[i] + b * w[i];
+}
+} // namespace
+
 /// The rows of the constraints at t_n, t_{n+1/2}, t_{n+1} and their columns.
 struct HalfExplicitStepMap::Rows
 {
@@ -118,6 +169,17 @@ struct HalfExplicitStepMap::Rows
   /// Y = (M + dt/2 D)^-1 G(t_n)^T, P = M^-1 G(t_n)^T, Q = M^-1 G_t(t_{n+1/2})^T,
   /// R = M^-1 G(t_{n+1/2})^T, for the rigid constraints.
   std::vector<dealii::Vector<double>> Y, P, Q, R;
+  /// Where Y, P, P and Q together, and R of each rigid constraint are not zero.
+  std::vector<Support> on_Y, on_P, on_PQ, on_R;
+
+  /// The supports of rigid constraint @p k's columns, after they changed.
+  void find_supports(const unsigned int k)
+  {
+    on_Y[k] = support_of(Y[k]);
+    on_P[k] = support_of(P[k]);
+    on_PQ[k] = join(on_P[k], support_of(Q[k]));
+    on_R[k] = support_of(R[k]);
+  }
 };
 
 HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
@@ -137,6 +199,8 @@ HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
   rows->at_next.resize(m);
   for (auto* c : {&rows->Y, &rows->P, &rows->Q, &rows->R})
     c->assign(rigid.size(), dealii::Vector<double>(n));
+  for (auto* c : {&rows->on_Y, &rows->on_P, &rows->on_PQ, &rows->on_R})
+    c->assign(rigid.size(), Support());
   // The constant rows and their columns, once.
   for (unsigned int i = 0; i < m; ++i)
     if (!system.constraints[i]->depends_on_time())
@@ -153,6 +217,7 @@ HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
       column(*mass_inverse, s.G, rows->P[k]);
       column(*mass_inverse, s.G_t, rows->Q[k]);
       rows->R[k] = rows->P[k];
+      rows->find_supports(k);
     }
 }
 
@@ -189,6 +254,7 @@ void HalfExplicitStepMap::evaluate_rows(const double t_n, const double t_half,
       column(*mass_inverse, rows->at_n[i].G, rows->P[k]);
       column(*mass_inverse, rows->at_half[i].G_t, rows->Q[k]);
       column(*mass_inverse, rows->at_half[i].G, rows->R[k]);
+      rows->find_supports(k);
     }
 }
 
@@ -234,7 +300,7 @@ void HalfExplicitStepMap::apply(const double t_n, const double t_half,
     S.gauss_jordan();
     S.vmult(lambda, rhs);
     for (unsigned int l = 0; l < m; ++l)
-      a.add(lambda(l), rows->Y[l]);
+      add_on(a, lambda(l), rows->Y[l], rows->on_Y[l]);
   }
 
   // (40): v* = v_prev + 2 dt a, q* = q + dt (v + v*)/2, then eta and mu.
@@ -267,9 +333,9 @@ void HalfExplicitStepMap::apply(const double t_n, const double t_half,
     for (unsigned int l = 0; l < m; ++l)
     {
       const double eta = solution(l), mu = solution(m + l);
-      q_new.add(h * h * eta, rows->P[l], h * eta, rows->Q[l]);
-      q_new.add(h * mu, rows->R[l]);
-      v_new.add(2. * h * eta, rows->P[l]);
+      add_on(q_new, h * h * eta, rows->P[l], h * eta, rows->Q[l], rows->on_PQ[l]);
+      add_on(q_new, h * mu, rows->R[l], rows->on_R[l]);
+      add_on(v_new, 2. * h * eta, rows->P[l], rows->on_P[l]);
     }
   }
   x.v_prev.swap(x.v); // v_{n} becomes v_prev
