@@ -66,12 +66,26 @@ void StaticEquilibriumSolver::columns(const unsigned int first, const unsigned i
   K_inverse.solve_interleaved(batch.data(), InterleavedColumns::width);
 }
 
-void StaticEquilibriumSolver::column(const unsigned int i,
-                                     dealii::Vector<double>& x) const
+void StaticEquilibriumSolver::add_columns_formed_again(
+    const std::vector<unsigned int>& act, const dealii::Vector<double>& lambda,
+    dealii::Vector<double>& q) const
 {
-  x = 0.;
-  states[i].G.add_transpose_to(x, 1.);
-  K_inverse.solve(x);
+  constexpr unsigned int width = InterleavedColumns::width;
+  InterleavedColumns batch;
+  if (!act.empty())
+    batch.reinit(system.n_dofs());
+  for (unsigned int first = 0; first < act.size(); first += width)
+  {
+    const unsigned int count = std::min<unsigned int>(width, act.size() - first);
+    batch.clear();
+    for (unsigned int c = 0; c < count; ++c)
+      batch.add_row(c, states[act[first + c]].G, 1.);
+    K_inverse.solve_interleaved(batch.data(), width);
+    // In the order of the kept columns' q.add(lambda_k, X_k), k = 0, 1, ...
+    for (unsigned int c = 0; c < count; ++c)
+      for (unsigned int i = 0; i < system.n_dofs(); ++i)
+        q(i) += lambda(first + c) * batch(i, c);
+  }
 }
 
 void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& active,
@@ -113,12 +127,12 @@ void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& act
   }
   out.q = q_free;
   out.multipliers.assign(states.size(), 0.);
-  dealii::Vector<double> work(X.empty() && m > 0 ? system.n_dofs() : 0);
+  if (X.empty())
+    add_columns_formed_again(act, lambda, out.q);
   for (unsigned int k = 0; k < m; ++k)
   {
-    if (X.empty())
-      column(act[k], work);
-    out.q.add(lambda(k), X.empty() ? work : X[act[k]]);
+    if (!X.empty())
+      out.q.add(lambda(k), X[act[k]]);
     out.multipliers[act[k]] = lambda(k);
   }
   out.gaps.resize(states.size());

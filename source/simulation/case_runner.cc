@@ -98,6 +98,7 @@ void check_bounded(const DynamicState& s, const unsigned long step, const double
     return;
   throw SimulationError(m.str());
 }
+
 /**
  * The initial state within the bound of check_bounded(): a static catenary
  * that sags by more than its length (loads far beyond what it carries, such

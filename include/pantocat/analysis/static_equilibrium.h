@@ -91,10 +91,13 @@ private:
   const SemiDiscreteSystem& system;
   SparseDirectSolver K_inverse;
   std::vector<ConstraintState> states; ///< G and z of every constraint at t
-  /// column <- K^-1 G_i^T.
-  void column(unsigned int i, dealii::Vector<double>& column) const;
   /// Columns c < @p count of @p batch <- K^-1 G_{first+c}^T (the others zero).
   void columns(unsigned int first, unsigned int count, InterleavedColumns& batch) const;
+  /// q += sum_k lambda_k K^-1 G_{act_k}^T, the columns formed again four at a time
+  /// (beyond the column budget), with the arithmetic of the kept columns.
+  void add_columns_formed_again(const std::vector<unsigned int>& act,
+                                const dealii::Vector<double>& lambda,
+                                dealii::Vector<double>& q) const;
   std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i, or empty
   dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
 };
