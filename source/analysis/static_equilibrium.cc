@@ -39,13 +39,14 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
   const bool keep = static_cast<double>(system.n_dofs()) * m <= column_budget;
   X.assign(keep ? m : 0, dealii::Vector<double>(system.n_dofs()));
   schur.reinit(m, m);
+  std::vector<unsigned int> all(m);
+  for (unsigned int i = 0; i < m; ++i)
+    all[i] = i;
   InterleavedColumns batch;
   batch.reinit(system.n_dofs());
-  constexpr unsigned int width = InterleavedColumns::width;
-  for (unsigned int first = 0; first < m; first += width)
+  for (unsigned int first = 0; first < m; first += InterleavedColumns::width)
   {
-    const unsigned int count = std::min(width, m - first);
-    columns(first, count, batch);
+    const unsigned int count = columns(all, first, batch);
     for (unsigned int c = 0; c < count; ++c)
     {
       for (unsigned int k = 0; k < m; ++k)
@@ -57,30 +58,30 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
   }
 }
 
-void StaticEquilibriumSolver::columns(const unsigned int first, const unsigned int count,
-                                      InterleavedColumns& batch) const
+unsigned int
+StaticEquilibriumSolver::columns(const std::vector<unsigned int>& constraints,
+                                 const unsigned int first,
+                                 InterleavedColumns& batch) const
 {
+  constexpr unsigned int width = InterleavedColumns::width;
+  const unsigned int count = std::min<unsigned int>(width, constraints.size() - first);
   batch.clear();
   for (unsigned int c = 0; c < count; ++c)
-    batch.add_row(c, states[first + c].G, 1.);
-  K_inverse.solve_interleaved(batch.data(), InterleavedColumns::width);
+    batch.add_row(c, states[constraints[first + c]].G, 1.);
+  K_inverse.solve_interleaved(batch.data(), width);
+  return count;
 }
 
 void StaticEquilibriumSolver::add_columns_formed_again(
     const std::vector<unsigned int>& act, const dealii::Vector<double>& lambda,
     dealii::Vector<double>& q) const
 {
-  constexpr unsigned int width = InterleavedColumns::width;
   InterleavedColumns batch;
   if (!act.empty())
     batch.reinit(system.n_dofs());
-  for (unsigned int first = 0; first < act.size(); first += width)
+  for (unsigned int first = 0; first < act.size(); first += InterleavedColumns::width)
   {
-    const unsigned int count = std::min<unsigned int>(width, act.size() - first);
-    batch.clear();
-    for (unsigned int c = 0; c < count; ++c)
-      batch.add_row(c, states[act[first + c]].G, 1.);
-    K_inverse.solve_interleaved(batch.data(), width);
+    const unsigned int count = columns(act, first, batch);
     // In the order of the kept columns' q.add(lambda_k, X_k), k = 0, 1, ...
     for (unsigned int c = 0; c < count; ++c)
       for (unsigned int i = 0; i < system.n_dofs(); ++i)

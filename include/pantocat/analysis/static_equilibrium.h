@@ -91,8 +91,12 @@ private:
   const SemiDiscreteSystem& system;
   SparseDirectSolver K_inverse;
   std::vector<ConstraintState> states; ///< G and z of every constraint at t
-  /// Columns c < @p count of @p batch <- K^-1 G_{first+c}^T (the others zero).
-  void columns(unsigned int first, unsigned int count, InterleavedColumns& batch) const;
+  /**
+   * Column c of @p batch <- K^-1 G_i^T for the constraints i =
+   * @p constraints[first + c], c < 4 (the others zero); returns how many.
+   */
+  unsigned int columns(const std::vector<unsigned int>& constraints, unsigned int first,
+                       InterleavedColumns& batch) const;
   /// q += sum_k lambda_k K^-1 G_{act_k}^T, the columns formed again four at a time
   /// (beyond the column budget), with the arithmetic of the kept columns.
   void add_columns_formed_again(const std::vector<unsigned int>& act,
