@@ -392,6 +392,48 @@ void HalfExplicitIntegrator::compute_forces()
   smoothed_mass_inverse.apply(a);
 }
 
+namespace
+{
+/**
+ * out = f - K q - D (v_{n-1} + v_n)/2 with K and D/2 stored by diagonals
+ * (@p k[o + b], @p d[o + b] for the offsets listed; the entries outside the
+ * matrix are 0), one diagonal at a time on blocks of rows that stay in the
+ * first-level cache while the diagonals pass. Each row's terms come in the
+ * order of the offsets, whatever the block. Compiled for AVX2 beside the
+ * baseline, chosen when the program starts: a wider vector per instruction,
+ * the same operations on each entry (no fused multiply-add), so the same bits.
+ */
+__attribute__((target_clones("avx2", "default"))) void
+subtract_diagonals(const int n, const int b, const std::vector<int>& k_offsets,
+                   const std::vector<std::vector<double>>& k,
+                   const std::vector<int>& d_offsets,
+                   const std::vector<std::vector<double>>& d, const double* f,
+                   const double* __restrict q, const double* __restrict vp,
+                   const double* __restrict v, double* __restrict out)
+{
+  constexpr int block = 512;
+  for (int begin = 0; begin < n; begin += block)
+  {
+    const int end = std::min(n, begin + block);
+    std::copy(f + begin, f + end, out + begin);
+    for (const int o : k_offsets)
+    {
+      const double* __restrict ko = k[o + b].data();
+      const int first = std::max(begin, -o), last = std::min(end, n - o);
+      for (int i = first; i < last; ++i)
+        out[i] -= ko[i] * q[i + o];
+    }
+    for (const int o : d_offsets)
+    {
+      const double* __restrict dd = d[o + b].data();
+      const int first = std::max(begin, -o), last = std::min(end, n - o);
+      for (int i = first; i < last; ++i)
+        out[i] -= dd[i] * (vp[i + o] + v[i + o]);
+    }
+  }
+}
+} // namespace
+
 void HalfExplicitIntegrator::unscaled_forces(double* out)
 {
   const int n = q.size(), b = forces.bandwidth;
@@ -399,22 +441,8 @@ void HalfExplicitIntegrator::unscaled_forces(double* out)
   const double* __restrict vv = v.begin();
   const double* __restrict vp = previous->begin();
   const double* f = load_at_time_n();
-  std::copy(f, f + n, out);
-  // out -= K q, one diagonal at a time; the entries outside the matrix are 0.
-  for (const int o : forces.stiffness_offsets)
-  {
-    const double* __restrict k = forces.stiffness[o + b].data();
-    const int first = std::max(0, -o), last = std::min(n, n - o);
-    for (int i = first; i < last; ++i)
-      out[i] -= k[i] * qq[i + o];
-  }
-  for (const int o : forces.damping_offsets)
-  {
-    const double* __restrict d = forces.half_damping[o + b].data();
-    const int first = std::max(0, -o), last = std::min(n, n - o);
-    for (int i = first; i < last; ++i)
-      out[i] -= d[i] * (vp[i + o] + vv[i + o]);
-  }
+  subtract_diagonals(n, b, forces.stiffness_offsets, forces.stiffness,
+                     forces.damping_offsets, forces.half_damping, f, qq, vp, vv, out);
   add_compliant_loads(out, nullptr);
 }
 
