@@ -74,6 +74,94 @@ inline void backward_row(const double* __restrict u, const int kd,
 using ScaledBand = SparseDirectSolver::ScaledBand;
 
 /**
+ * The forward substitution of one block with a compile-time half bandwidth
+ * KD > 0, row by row, with the KD rows solved last kept in registers (the
+ * window): row j reads them there, not from X, where each row would wait for
+ * the store of the row before to reach its load (the recurrence is
+ * latency-bound). The operations of a row and their order are forward_row()'s.
+ */
+template <int KD, int K>
+struct ForwardChain
+{
+  const ScaledBand& f;
+  double* __restrict X;
+  int first, last;
+  double w[KD][K]; ///< w[m - 1]: row j - m
+
+  /// The rows [first, first + KD) as forward_row() does them, then the window.
+  void start()
+  {
+    for (int j = first; j < std::min(last, first + KD); ++j)
+      forward_row<K>(f.lower, f.kd, f.recip, X, j, first, KD);
+    if (last - first > KD)
+      for (int m = 1; m <= KD; ++m)
+        for (int r = 0; r < K; ++r)
+          w[m - 1][r] = X[(first + KD - m) * K + r];
+  }
+
+  /// Row j >= first + KD.
+  void step(const int j)
+  {
+    const double* column = f.lower + static_cast<std::size_t>(j) * (f.kd + 1) + f.kd;
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[j * K + r] * f.recip[j];
+    for (int m = KD; m >= 1; --m)
+      for (int r = 0; r < K; ++r)
+        s[r] -= column[-m] * w[m - 1][r];
+    for (int r = 0; r < K; ++r)
+      X[j * K + r] = s[r];
+    for (int m = KD - 1; m >= 1; --m)
+      for (int r = 0; r < K; ++r)
+        w[m][r] = w[m - 1][r];
+    for (int r = 0; r < K; ++r)
+      w[0][r] = s[r];
+  }
+};
+
+/// The backward substitution of one block, as ForwardChain (backward_row()'s operations).
+template <int KD, int K>
+struct BackwardChain
+{
+  const ScaledBand& f;
+  double* __restrict X;
+  int first, last;
+  double w[KD][K]; ///< w[m - 1]: row i + m
+
+  /// The rows [last - KD, last) as backward_row() does them, then the window.
+  void start()
+  {
+    for (int i = last - 1; i >= std::max(first, last - KD); --i)
+      backward_row<K>(f.upper, f.kd, f.recip, X, i, last, KD);
+    if (last - first > KD)
+      for (int m = 1; m <= KD; ++m)
+        for (int r = 0; r < K; ++r)
+          w[m - 1][r] = X[(last - 1 - KD + m) * K + r];
+  }
+
+  /// Row i < last - KD.
+  void step(const int i)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = X[i * K + r] * f.recip[i];
+    for (int m = KD; m >= 1; --m)
+    {
+      const double u = f.upper[(f.kd - m) + static_cast<std::size_t>(i + m) * (f.kd + 1)];
+      for (int r = 0; r < K; ++r)
+        s[r] -= u * w[m - 1][r];
+    }
+    for (int r = 0; r < K; ++r)
+      X[i * K + r] = s[r];
+    for (int m = KD - 1; m >= 1; --m)
+      for (int r = 0; r < K; ++r)
+        w[m][r] = w[m - 1][r];
+    for (int r = 0; r < K; ++r)
+      w[0][r] = s[r];
+  }
+};
+
+/**
  * Forward (U^T y = b) and backward (U x = y) substitution on the rows
  * [first, last) of one uncoupled block with half bandwidth KD (a compile-time
  * constant, so that the loops unroll; KD < 0: the block's bandwidth @p bw at
@@ -83,6 +171,18 @@ template <int KD, int K>
 void substitute(const ScaledBand& f, double* __restrict X, const int first,
                 const int last, const int bw = 0)
 {
+  if constexpr (KD > 0)
+  {
+    ForwardChain<KD, K> forward{f, X, first, last, {}};
+    forward.start();
+    for (int j = first + KD; j < last; ++j)
+      forward.step(j);
+    BackwardChain<KD, K> backward{f, X, first, last, {}};
+    backward.start();
+    for (int i = last - 1 - KD; i >= first; --i)
+      backward.step(i);
+    return;
+  }
   const int width = KD < 0 ? bw : KD;
   for (int j = first; j < last; ++j)
     forward_row<K>(f.lower, f.kd, f.recip, X, j, first, width);
@@ -91,38 +191,49 @@ void substitute(const ScaledBand& f, double* __restrict X, const int first,
 }
 
 /**
- * substitute() on two uncoupled blocks of the same factor side by side: row
- * t of the one and row t of the other in the same iteration. The recurrences
- * are latency-bound (each row waits for the one before), so two independent
- * chains in flight take about the time of one: a section's contact wire and
- * messenger are two such blocks. Each row's operations are those of
- * substitute(), in the same order.
+ * Two independent chains of the same kind side by side: rows t of both in
+ * the same iteration, then the longer one's rest alone. The recurrences are
+ * latency-bound (each row waits for the one before), so two chains in
+ * flight take about the time of one.
+ */
+template <int KD, typename Chain, typename RowA, typename RowB>
+void side_by_side(Chain& a, Chain& b, const int length_a, const int length_b,
+                  const RowA& row_a, const RowB& row_b)
+{
+  a.start();
+  b.start();
+  const int common = std::min(length_a, length_b);
+  for (int t = KD; t < common; ++t)
+  {
+    a.step(row_a(t));
+    b.step(row_b(t));
+  }
+  for (int t = std::max(common, KD); t < length_a; ++t)
+    a.step(row_a(t));
+  for (int t = std::max(common, KD); t < length_b; ++t)
+    b.step(row_b(t));
+}
+
+/**
+ * substitute() on two uncoupled blocks of the same factor side by side: a
+ * section's contact wire and messenger are two such blocks. Each row's
+ * operations are those of substitute(), in the same order.
  */
 template <int KD, int K>
 void substitute_two(const ScaledBand& f, double* __restrict X,
                     const SparseDirectSolver::Block& a,
                     const SparseDirectSolver::Block& b)
 {
-  const int common = std::min(a.last - a.first, b.last - b.first);
-  for (int t = 0; t < common; ++t)
-  {
-    forward_row<K>(f.lower, f.kd, f.recip, X, a.first + t, a.first, KD);
-    forward_row<K>(f.lower, f.kd, f.recip, X, b.first + t, b.first, KD);
-  }
-  for (int j = a.first + common; j < a.last; ++j)
-    forward_row<K>(f.lower, f.kd, f.recip, X, j, a.first, KD);
-  for (int j = b.first + common; j < b.last; ++j)
-    forward_row<K>(f.lower, f.kd, f.recip, X, j, b.first, KD);
-  // Backward from each block's last row; the longer block's first rows alone.
-  for (int t = 0; t < common; ++t)
-  {
-    backward_row<K>(f.upper, f.kd, f.recip, X, a.last - 1 - t, a.last, KD);
-    backward_row<K>(f.upper, f.kd, f.recip, X, b.last - 1 - t, b.last, KD);
-  }
-  for (int i = a.last - 1 - common; i >= a.first; --i)
-    backward_row<K>(f.upper, f.kd, f.recip, X, i, a.last, KD);
-  for (int i = b.last - 1 - common; i >= b.first; --i)
-    backward_row<K>(f.upper, f.kd, f.recip, X, i, b.last, KD);
+  const int length_a = a.last - a.first, length_b = b.last - b.first;
+  ForwardChain<KD, K> fa{f, X, a.first, a.last, {}}, fb{f, X, b.first, b.last, {}};
+  side_by_side<KD>(
+      fa, fb, length_a, length_b, [&](const int t) { return a.first + t; },
+      [&](const int t) { return b.first + t; });
+  // Backward from each block's last row.
+  BackwardChain<KD, K> ba{f, X, a.first, a.last, {}}, bb{f, X, b.first, b.last, {}};
+  side_by_side<KD>(
+      ba, bb, length_a, length_b, [&](const int t) { return a.last - 1 - t; },
+      [&](const int t) { return b.last - 1 - t; });
 }
 
 /**
@@ -134,16 +245,15 @@ template <int KD, int K>
 void substitute_pair(const ScaledBand& f, double* __restrict X, const ScaledBand& g,
                      double* __restrict X2, const int first, const int last)
 {
-  for (int j = first; j < last; ++j)
-  {
-    forward_row<K>(f.lower, f.kd, f.recip, X, j, first, KD);
-    forward_row<K>(g.lower, g.kd, g.recip, X2, j, first, KD);
-  }
-  for (int i = last - 1; i >= first; --i)
-  {
-    backward_row<K>(f.upper, f.kd, f.recip, X, i, last, KD);
-    backward_row<K>(g.upper, g.kd, g.recip, X2, i, last, KD);
-  }
+  const int length = last - first;
+  ForwardChain<KD, K> ff{f, X, first, last, {}}, fg{g, X2, first, last, {}};
+  side_by_side<KD>(
+      ff, fg, length, length, [&](const int t) { return first + t; },
+      [&](const int t) { return first + t; });
+  BackwardChain<KD, K> bf{f, X, first, last, {}}, bg{g, X2, first, last, {}};
+  side_by_side<KD>(
+      bf, bg, length, length, [&](const int t) { return last - 1 - t; },
+      [&](const int t) { return last - 1 - t; });
 }
 
 template <int K>
