@@ -191,20 +191,21 @@ TEST(LinearSolvers, TwoLongBlocksSideBySideEqualEachBlockSolvedAlone)
 
 TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth)
 {
-  // Uncoupled blocks of 1 to 700 rows with half bandwidths 1 to 6 (6: the
-  // bandwidth known only at run time), diagonally dominant (condition number
-  // below 10): the banded solutions for one to four interleaved right-hand
-  // sides, and for two factors side by side, equal UMFPACK's to 1e-13
-  // relative (round-off). The short blocks test the substitutions' first
-  // rows, which have fewer than a band's width of rows before them; the long
-  // ones are substituted two at a time.
+  // Uncoupled blocks of 1 to 700 rows with half bandwidths 1 to 14 (above 4:
+  // the bandwidth known only at run time, summed in partial sums for one or
+  // two right-hand sides), diagonally dominant (condition number below 10): the banded
+  // solutions for one to four interleaved right-hand sides, and for two factors side by
+  // side, equal UMFPACK's to 1e-13 relative (round-off). The short blocks test the
+  // substitutions' first rows, which have fewer than a band's width of rows before them;
+  // the long ones are substituted two at a time.
   struct Span
   {
     unsigned int length;
     int bandwidth;
   };
-  const std::vector<Span> spans = {{1, 1},   {2, 3},   {3, 3},   {4, 2},  {5, 4}, {7, 6},
-                                   {300, 3}, {600, 1}, {700, 3}, {40, 6}, {9, 5}};
+  const std::vector<Span> spans = {{1, 1},   {2, 3},  {3, 3},   {4, 2},
+                                   {5, 4},   {7, 6},  {300, 3}, {600, 1},
+                                   {700, 3}, {40, 6}, {9, 5},   {90, 14}};
   std::vector<unsigned int> first_row;
   unsigned int n = 0;
   for (const Span& s : spans)

@@ -71,6 +71,90 @@ inline void backward_row(const double* __restrict u, const int kd,
     X[i * K + r] = s[r];
 }
 
+/**
+ * The band's terms of one row, for a wide band: sum_{m = 2}^{reach}
+ * c(m) x_{row -+ m} in P partial sums per right-hand side, so that the
+ * multiply-adds of a row do not wait for each other (one chain of @p reach
+ * dependent operations per row would make a solve with one right-hand side
+ * and a band a few dozen wide latency-bound). @p c(m) is the coefficient,
+ * @p x(m) the row of X it multiplies.
+ */
+template <int K, int P, typename Coefficient, typename Row>
+inline void band_terms(const int reach, const Coefficient& c, const Row& x, double* sum)
+{
+  double p[P][K] = {};
+  int m = reach;
+  for (; m >= P + 1; m -= P)
+    for (int t = 0; t < P; ++t)
+    {
+      const double a = c(m - t);
+      const double* y = x(m - t);
+      for (int r = 0; r < K; ++r)
+        p[t][r] += a * y[r];
+    }
+  for (; m >= 2; --m)
+  {
+    const double a = c(m);
+    const double* y = x(m);
+    for (int r = 0; r < K; ++r)
+      p[0][r] += a * y[r];
+  }
+  for (int r = 0; r < K; ++r)
+  {
+    sum[r] = p[0][r];
+    for (int t = 1; t < P; ++t)
+      sum[r] += p[t][r];
+  }
+}
+
+/**
+ * forward_row() for a wide band (half bandwidth above 4: the Schur
+ * complement of many close constraints with a consistent mass matrix) and
+ * one or two right-hand sides: the terms m >= 2 by band_terms() in 4 / K
+ * partial sums, then the row just before, last. (Three or four interleaved
+ * right-hand sides are independent chains enough: forward_row().)
+ */
+template <int K>
+inline void forward_row_wide(const double* __restrict l, const int kd,
+                             const double* __restrict recip, double* __restrict X,
+                             const int j, const int first, const int width)
+{
+  const int reach = std::min(width, j - first);
+  const double* column = l + static_cast<std::size_t>(j) * (kd + 1) + kd;
+  double sum[K];
+  band_terms<K, 4 / K>(
+      reach, [&](const int m) { return column[-m]; },
+      [&](const int m) { return X + (j - m) * K; }, sum);
+  for (int r = 0; r < K; ++r)
+  {
+    double s = X[j * K + r] * recip[j] - sum[r];
+    if (reach >= 1)
+      s -= column[-1] * X[(j - 1) * K + r];
+    X[j * K + r] = s;
+  }
+}
+
+/// backward_row() for a wide band, as forward_row_wide().
+template <int K>
+inline void backward_row_wide(const double* __restrict u, const int kd,
+                              const double* __restrict recip, double* __restrict X,
+                              const int i, const int last, const int width)
+{
+  const int reach = std::min(width, last - 1 - i);
+  const auto coefficient = [&](const int m)
+  { return u[(kd - m) + static_cast<std::size_t>(i + m) * (kd + 1)]; };
+  double sum[K];
+  band_terms<K, 4 / K>(
+      reach, coefficient, [&](const int m) { return X + (i + m) * K; }, sum);
+  for (int r = 0; r < K; ++r)
+  {
+    double s = X[i * K + r] * recip[i] - sum[r];
+    if (reach >= 1)
+      s -= coefficient(1) * X[(i + 1) * K + r];
+    X[i * K + r] = s;
+  }
+}
+
 using ScaledBand = SparseDirectSolver::ScaledBand;
 
 /**
@@ -183,6 +267,18 @@ void substitute(const ScaledBand& f, double* __restrict X, const int first,
       backward.step(i);
     return;
   }
+  // Partial sums pay for one right-hand side; for two only in bands at least
+  // 12 wide (measured on a 200-row band: two right-hand sides 4.5 instead of
+  // 5.8 us at 18 wide, 3.0 instead of 2.7 us at 8 wide).
+  if constexpr (KD < 0 && K <= 2)
+    if (K == 1 || bw >= 12)
+    {
+      for (int j = first; j < last; ++j)
+        forward_row_wide<K>(f.lower, f.kd, f.recip, X, j, first, bw);
+      for (int i = last - 1; i >= first; --i)
+        backward_row_wide<K>(f.upper, f.kd, f.recip, X, i, last, bw);
+      return;
+    }
   const int width = KD < 0 ? bw : KD;
   for (int j = first; j < last; ++j)
     forward_row<K>(f.lower, f.kd, f.recip, X, j, first, width);
