@@ -192,6 +192,7 @@ private:
     int bandwidth = 0;
     std::vector<int> stiffness_offsets, damping_offsets;
     std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
+    std::vector<double> velocity_sum; ///< workspace: v_{n-1} + v_n of a block of rows
     struct Entry
     {
       unsigned int row, column;
