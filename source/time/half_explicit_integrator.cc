@@ -96,6 +96,8 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
     for (unsigned int i = 0; i < n; ++i)
       if (forces.half_damping[b][i] != 0.)
         forces.listed_damping.push_back({i, i, forces.half_damping[b][i]});
+  force_sweep.initialize(n, b, forces.stiffness_offsets, forces.stiffness,
+                         forces.damping_offsets, forces.half_damping);
   // The rows whose a changes after the sweep with a constant pattern: the
   // coupled rows, and the rows of the fixed constraints (their columns
   // (M + dt/2 D)^-1 G^T live there and on the coupled rows when it is diagonal).
@@ -392,83 +394,13 @@ void HalfExplicitIntegrator::compute_forces()
   smoothed_mass_inverse.apply(a);
 }
 
-namespace
-{
-/**
- * out = f - K q - D (v_{n-1} + v_n)/2 with K and D/2 stored by diagonals
- * (@p k[o + b], @p d[o + b] for the offsets listed; the entries outside the
- * matrix are 0), one diagonal at a time on blocks of rows that stay in the
- * first-level cache while the diagonals pass; the first diagonal writes
- * f - K q instead of a copy of f, and v_{n-1} + v_n is summed once per
- * block (@p velocity_sum, the block and its band's reach). Each row's terms
- * come in the order of the offsets, whatever the block. Compiled for AVX2 beside the
- * baseline, chosen when the program starts: a wider vector per instruction,
- * the same operations on each entry (no fused multiply-add), so the same bits.
- */
-__attribute__((target_clones("avx2", "default"))) void subtract_diagonals(
-    const int n, const int b, const std::vector<int>& k_offsets,
-    const std::vector<std::vector<double>>& k, const std::vector<int>& d_offsets,
-    const std::vector<std::vector<double>>& d, const double* f,
-    const double* __restrict q, const double* __restrict vp, const double* __restrict v,
-    double* __restrict out, std::vector<double>& velocity_sum)
-{
-  constexpr int block = 512;
-  velocity_sum.resize(block + 2 * b);
-  double* __restrict u = velocity_sum.data();
-  for (int begin = 0; begin < n; begin += block)
-  {
-    const int end = std::min(n, begin + block);
-    // The first diagonal of K writes f - K q where it reaches, f elsewhere.
-    std::size_t next = 0;
-    if (k_offsets.empty())
-      std::copy(f + begin, f + end, out + begin);
-    else
-    {
-      const int o = k_offsets[next++];
-      const double* __restrict ko = k[o + b].data();
-      const int first = std::min(end, std::max(begin, -o));
-      const int last = std::max(first, std::min(end, n - o));
-      std::copy(f + begin, f + first, out + begin);
-      for (int i = first; i < last; ++i)
-        out[i] = f[i] - ko[i] * q[i + o];
-      std::copy(f + last, f + end, out + last);
-    }
-    for (; next < k_offsets.size(); ++next)
-    {
-      const int o = k_offsets[next];
-      const double* __restrict ko = k[o + b].data();
-      const int first = std::max(begin, -o), last = std::min(end, n - o);
-      for (int i = first; i < last; ++i)
-        out[i] -= ko[i] * q[i + o];
-    }
-    if (d_offsets.empty())
-      continue;
-    // v_{n-1} + v_n once per row of the block and its band's reach.
-    const int lo = std::max(0, begin - b), hi = std::min(n, end + b);
-    for (int j = lo; j < hi; ++j)
-      u[j - lo] = vp[j] + v[j];
-    for (const int o : d_offsets)
-    {
-      const double* __restrict dd = d[o + b].data();
-      const double* __restrict uo = u + o - lo;
-      const int first = std::max(begin, -o), last = std::min(end, n - o);
-      for (int i = first; i < last; ++i)
-        out[i] -= dd[i] * uo[i];
-    }
-  }
-}
-} // namespace
-
 void HalfExplicitIntegrator::unscaled_forces(double* out)
 {
-  const int n = q.size(), b = forces.bandwidth;
   const double* __restrict qq = q.begin();
   const double* __restrict vv = v.begin();
   const double* __restrict vp = previous->begin();
   const double* f = load_at_time_n();
-  subtract_diagonals(n, b, forces.stiffness_offsets, forces.stiffness,
-                     forces.damping_offsets, forces.half_damping, f, qq, vp, vv, out,
-                     forces.velocity_sum);
+  force_sweep.apply(f, qq, vp, vv, out);
   add_compliant_loads(out, nullptr);
 }
 

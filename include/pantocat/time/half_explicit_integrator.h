@@ -2,6 +2,7 @@
 
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
+#include <pantocat/time/diagonal_force_sweep.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
@@ -192,7 +193,6 @@ private:
     int bandwidth = 0;
     std::vector<int> stiffness_offsets, damping_offsets;
     std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
-    std::vector<double> velocity_sum; ///< workspace: v_{n-1} + v_n of a block of rows
     struct Entry
     {
       unsigned int row, column;
@@ -209,6 +209,9 @@ private:
     bool damped_rows_coupled = false;
     bool symmetric_stiffness = false; ///< K(i, j) == K(j, i) exactly
   } forces;
+  /// f - K q - D (v_prev + v)/2 from the diagonals above, when M + dt/2 D is not
+  /// diagonal.
+  DiagonalForceSweep force_sweep;
 
   double dt;
   double t = 0.;
