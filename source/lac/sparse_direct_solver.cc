@@ -158,11 +158,47 @@ inline void backward_row_wide(const double* __restrict u, const int kd,
 using ScaledBand = SparseDirectSolver::ScaledBand;
 
 /**
+ * The KD rows a substitution solved last, for K interleaved right-hand
+ * sides, kept in registers (w[m - 1]: the row m before the next one): the
+ * next row reads them there, not from X, where each row would wait for the
+ * store of the row before to reach its load (the recurrence is
+ * latency-bound).
+ */
+template <int KD, int K>
+struct Window
+{
+  double w[KD][K];
+
+  /// Row @p x: x = x / U(row, row) - sum_{m = KD..1} c(m) w[m - 1] (the
+  /// operations of forward_row() and backward_row(), in their order), then
+  /// the window moves on by one row. Always inlined: the window stays in
+  /// registers only inside the caller's loop (GCC left the FDM's chains, KD
+  /// = 2, as calls).
+  template <typename Coefficient>
+  [[gnu::always_inline]] void step(double* x, const double recip, const Coefficient& c)
+  {
+    double s[K];
+    for (int r = 0; r < K; ++r)
+      s[r] = x[r] * recip;
+    for (int m = KD; m >= 1; --m)
+    {
+      const double a = c(m);
+      for (int r = 0; r < K; ++r)
+        s[r] -= a * w[m - 1][r];
+    }
+    for (int r = 0; r < K; ++r)
+      x[r] = s[r];
+    for (int m = KD - 1; m >= 1; --m)
+      for (int r = 0; r < K; ++r)
+        w[m][r] = w[m - 1][r];
+    for (int r = 0; r < K; ++r)
+      w[0][r] = s[r];
+  }
+};
+
+/**
  * The forward substitution of one block with a compile-time half bandwidth
- * KD > 0, row by row, with the KD rows solved last kept in registers (the
- * window): row j reads them there, not from X, where each row would wait for
- * the store of the row before to reach its load (the recurrence is
- * latency-bound). The operations of a row and their order are forward_row()'s.
+ * KD > 0, row by row, with a Window of the rows solved last.
  */
 template <int KD, int K>
 struct ForwardChain
@@ -170,7 +206,7 @@ struct ForwardChain
   const ScaledBand& f;
   double* __restrict X;
   int first, last;
-  double w[KD][K]; ///< w[m - 1]: row j - m
+  Window<KD, K> window;
 
   /// The rows [first, first + KD) as forward_row() does them, then the window.
   void start()
@@ -180,27 +216,14 @@ struct ForwardChain
     if (last - first > KD)
       for (int m = 1; m <= KD; ++m)
         for (int r = 0; r < K; ++r)
-          w[m - 1][r] = X[(first + KD - m) * K + r];
+          window.w[m - 1][r] = X[(first + KD - m) * K + r];
   }
 
-  /// Row j >= first + KD. Always inlined: the window stays in registers only
-  /// inside the caller's loop (GCC left the FDM's chains, KD = 2, as calls).
+  /// Row j >= first + KD.
   [[gnu::always_inline]] void step(const int j)
   {
     const double* column = f.lower + static_cast<std::size_t>(j) * (f.kd + 1) + f.kd;
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[j * K + r] * f.recip[j];
-    for (int m = KD; m >= 1; --m)
-      for (int r = 0; r < K; ++r)
-        s[r] -= column[-m] * w[m - 1][r];
-    for (int r = 0; r < K; ++r)
-      X[j * K + r] = s[r];
-    for (int m = KD - 1; m >= 1; --m)
-      for (int r = 0; r < K; ++r)
-        w[m][r] = w[m - 1][r];
-    for (int r = 0; r < K; ++r)
-      w[0][r] = s[r];
+    window.step(X + j * K, f.recip[j], [column](const int m) { return column[-m]; });
   }
 };
 
@@ -211,7 +234,7 @@ struct BackwardChain
   const ScaledBand& f;
   double* __restrict X;
   int first, last;
-  double w[KD][K]; ///< w[m - 1]: row i + m
+  Window<KD, K> window;
 
   /// The rows [last - KD, last) as backward_row() does them, then the window.
   void start()
@@ -221,28 +244,17 @@ struct BackwardChain
     if (last - first > KD)
       for (int m = 1; m <= KD; ++m)
         for (int r = 0; r < K; ++r)
-          w[m - 1][r] = X[(last - 1 - KD + m) * K + r];
+          window.w[m - 1][r] = X[(last - 1 - KD + m) * K + r];
   }
 
   /// Row i < last - KD.
   [[gnu::always_inline]] void step(const int i)
   {
-    double s[K];
-    for (int r = 0; r < K; ++r)
-      s[r] = X[i * K + r] * f.recip[i];
-    for (int m = KD; m >= 1; --m)
-    {
-      const double u = f.upper[(f.kd - m) + static_cast<std::size_t>(i + m) * (f.kd + 1)];
-      for (int r = 0; r < K; ++r)
-        s[r] -= u * w[m - 1][r];
-    }
-    for (int r = 0; r < K; ++r)
-      X[i * K + r] = s[r];
-    for (int m = KD - 1; m >= 1; --m)
-      for (int r = 0; r < K; ++r)
-        w[m][r] = w[m - 1][r];
-    for (int r = 0; r < K; ++r)
-      w[0][r] = s[r];
+    const double* upper = f.upper;
+    const int kd = f.kd;
+    window.step(X + i * K, f.recip[i],
+                [upper, kd, i](const int m)
+                { return upper[(kd - m) + static_cast<std::size_t>(i + m) * (kd + 1)]; });
   }
 };
 

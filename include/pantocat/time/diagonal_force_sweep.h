@@ -25,6 +25,11 @@ namespace pantocat
 class DiagonalForceSweep
 {
 public:
+  DiagonalForceSweep() = default;
+  /// Not copied: it points to the diagonals of its owner.
+  DiagonalForceSweep(const DiagonalForceSweep&) = delete;
+  DiagonalForceSweep& operator=(const DiagonalForceSweep&) = delete;
+
   /// The stored diagonals (kept by reference: the integrator owns them).
   void initialize(int n, int bandwidth, const std::vector<int>& stiffness_offsets,
                   const std::vector<std::vector<double>>& stiffness,
