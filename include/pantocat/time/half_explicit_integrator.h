@@ -209,8 +209,8 @@ private:
     bool damped_rows_coupled = false;
     bool symmetric_stiffness = false; ///< K(i, j) == K(j, i) exactly
   } forces;
-  /// f - K q - D (v_prev + v)/2 from the diagonals above, when M + dt/2 D is not
-  /// diagonal.
+  /// f - K q - D (v_prev + v)/2 from the diagonals above, for unscaled_forces()
+  /// (whenever compute_forces() does not take its fused, scaled sweep).
   DiagonalForceSweep force_sweep;
 
   double dt;
