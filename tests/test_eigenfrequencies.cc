@@ -156,3 +156,36 @@ TEST(Spectrum, LinearStringEigenvaluesConvergeWithOrderTwo)
   for (unsigned int i = 1; i < errors.size(); ++i)
     EXPECT_NEAR(std::log2(errors[i - 1] / errors[i]), 2., 0.05) << "refinement " << i;
 }
+
+TEST(Spectrum, LargestStringEigenvalueByBisectionIsTheClosedForm)
+{
+  // The top of the closed-form spectrum of the linear string (above): mode
+  // N - 1 of N intervals, omega^2 = (6 c^2/h^2) (1 - cos kh) / (2 + cos kh),
+  // kh = (N - 1) pi / N. The bisection stops between neighbouring doubles;
+  // what is left is round-off of the assembly and of the factorisations.
+  CatenaryParameters p;
+  const unsigned int n = 500;
+  DiscretisationParameters d;
+  d.n_intervals = n;
+  BlockOperator op;
+  create_catenary_discretisation(p, d)->assemble(Wire::carrier, op);
+  const double c = p.carrier.wave_speed(), h = p.span / n, kh = (n - 1.) * pi / n;
+  const double exact = 6. * c * c / (h * h) * (1. - std::cos(kh)) / (2. + std::cos(kh));
+  EXPECT_NEAR(largest_generalized_eigenvalue(op.stiffness, op.mass) / exact, 1., 1e-13);
+}
+
+TEST(Spectrum, LargestBeamEigenvalueByBisectionAgreesWithTheTridiagonalReduction)
+{
+  // The Hermite contact wire (half bandwidth 3) has no closed form; LAPACK's
+  // dsbgvx (reduction to tridiagonal form) gives its largest eigenvalue to full
+  // relative accuracy as 1 / smallest eigenvalue of the swapped pencil. Both
+  // are exact to round-off times a modest factor: 1e-13 relative.
+  CatenaryParameters p;
+  DiscretisationParameters d;
+  d.n_intervals = 500;
+  BlockOperator op;
+  create_catenary_discretisation(p, d)->assemble(Wire::contact_wire, op);
+  const double by_reduction = 1. / smallest_generalized_eigenvalue(op.mass, op.stiffness);
+  EXPECT_NEAR(largest_generalized_eigenvalue(op.stiffness, op.mass) / by_reduction, 1.,
+              1e-13);
+}

@@ -480,6 +480,13 @@ TEST(ContactForceOverX, ScriptMarksSupportsSpansAndTheWindow)
                             &s};
   EXPECT_EQ(plot.png, "contact_force_over_x_pantograph_2.png");
   EXPECT_EQ(contact_force_over_x_file("pantograph", false), "contact_force_over_x.png");
+  {
+    // Pantograph 2's x_p, lambda_p and lambda_p_filtered are columns 5 to 7.
+    std::ofstream csv(dir + "/contact_force.csv");
+    csv << "t,x_p[1],lambda_p[1],lambda_p_filtered[1],x_p[2],lambda_p[2],"
+           "lambda_p_filtered[2]\n"
+        << "0,300,1,2,100,150.5,151.5\n0.1,310,3,4,300,160.25,159.75\n";
+  }
   plot_contact_force_over_x(dir, columns, {plot}, s55_supports(), "test");
   const std::string gp = text_of(dir + "/contact_force_over_x.gp");
   for (const char* x : {"110", "165", "220", "275"})
@@ -493,8 +500,13 @@ TEST(ContactForceOverX, ScriptMarksSupportsSpansAndTheWindow)
   EXPECT_NE(gp.find("set object rectangle from first 220, graph 0 to first 300, graph 1"),
             std::string::npos)
       << gp;
-  EXPECT_NE(gp.find("using 5:6 with lines"), std::string::npos) << gp;
-  EXPECT_NE(gp.find("using 5:7 with lines"), std::string::npos) << gp;
+  // The curves are pantograph 2's columns, inline.
+  EXPECT_NE(gp.find("$raw << EOD\n100 150.5\n300 160.25\nEOD\n"), std::string::npos)
+      << gp;
+  EXPECT_NE(gp.find("$filtered << EOD\n100 151.5\n300 159.75\nEOD\n"), std::string::npos)
+      << gp;
+  EXPECT_NE(gp.find("plot $raw using 1:2 with lines"), std::string::npos) << gp;
+  EXPECT_NE(gp.find("$filtered using 1:2 with lines"), std::string::npos) << gp;
   EXPECT_NE(gp.find("set output 'contact_force_over_x_pantograph_2.png'"),
             std::string::npos);
 }

@@ -8,6 +8,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/io/csv_number.h>
+#include <pantocat/io/plot_data.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
 #include <pantocat/io/vtu_time_series_writer.h>
@@ -532,4 +533,65 @@ TEST(CsvNumber, IsPrintfsTenDigitTextForEveryValue)
              -std::numeric_limits<double>::infinity(),
              std::numeric_limits<double>::quiet_NaN()});
   EXPECT_EQ(csv_number_mismatches(xs), 0u) << "of " << xs.size() << " values";
+}
+
+TEST(PlotData, EnvelopeKeepsEveryBinsExtremesInOrderAndTheEnds)
+{
+  // A fast oscillation under a slow one, 100 000 points over [0, 1]: with 200
+  // bins the envelope keeps, per bin, the lowest and the highest point of the
+  // curve (found here by brute force), in their order, and the first and last
+  // point; nothing else.
+  const unsigned int n = 100000, bins = 200;
+  std::vector<double> x(n), y(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    x[i] = i / (n - 1.);
+    y[i] = std::sin(6.3 * x[i]) + 0.3 * std::sin(4000. * x[i] + 0.1 * (i % 7));
+  }
+  const PlotCurve c = envelope(x, y, bins);
+  ASSERT_LE(c.x.size(), 2 * bins + 2);
+  EXPECT_EQ(c.x.front(), x.front());
+  EXPECT_EQ(c.x.back(), x.back());
+  for (std::size_t k = 1; k < c.x.size(); ++k)
+    ASSERT_LT(c.x[k - 1], c.x[k]) << "point " << k; // in the order they come
+  for (unsigned int b = 0; b < bins; ++b)
+  {
+    double low = 1e300, high = -1e300, kept_low = 1e300, kept_high = -1e300;
+    for (unsigned int i = 0; i < n; ++i)
+      if (std::min<unsigned int>(bins - 1, x[i] * bins) == b)
+      {
+        low = std::min(low, y[i]);
+        high = std::max(high, y[i]);
+      }
+    for (std::size_t k = 0; k < c.x.size(); ++k)
+      if (std::min<unsigned int>(bins - 1, c.x[k] * bins) == b)
+      {
+        kept_low = std::min(kept_low, c.y[k]);
+        kept_high = std::max(kept_high, c.y[k]);
+      }
+    ASSERT_EQ(kept_low, low) << "bin " << b;
+    ASSERT_EQ(kept_high, high) << "bin " << b;
+  }
+  // Short curves pass unchanged; points that are not finite are left out.
+  const PlotCurve s = envelope({0., 1., 2.}, {5., std::nan(""), 7.}, bins);
+  EXPECT_EQ(s.x, (std::vector<double>{0., 2.}));
+  EXPECT_EQ(s.y, (std::vector<double>{5., 7.}));
+}
+
+TEST(PlotData, CsvColumnsAreReadByPlaceInTheOrderAsked)
+{
+  const std::string path = "plot_data_columns.csv";
+  {
+    std::ofstream csv(path);
+    csv << "t,a,b,c\n0,1.5,-2e-3,7\n0.25,2.5,nan,8\n";
+  }
+  const auto columns = read_csv_columns(path, {4, 1, 2});
+  ASSERT_EQ(columns.size(), 3u);
+  EXPECT_EQ(columns[0], (std::vector<double>{7., 8.}));
+  EXPECT_EQ(columns[1], (std::vector<double>{0., 0.25}));
+  EXPECT_EQ(columns[2], (std::vector<double>{1.5, 2.5}));
+  EXPECT_EQ(read_csv_columns(path, {3})[0][0], -2e-3);
+  EXPECT_TRUE(std::isnan(read_csv_columns(path, {3})[0][1]));
+  EXPECT_THROW(read_csv_columns(path, {5}), SimulationError);
+  std::filesystem::remove(path);
 }

@@ -1,6 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
 #include <pantocat/io/external_program.h>
+#include <pantocat/io/plot_data.h>
 #include <pantocat/io/plots.h>
 
 #include <deal.II/base/utilities.h>
@@ -14,6 +15,9 @@ namespace pantocat
 {
 namespace
 {
+/// Bins of envelope() per plot: two per pixel of the widest plot (1200 pixels).
+constexpr unsigned int envelope_bins = 2400;
+
 /// 1-based column of @p name in @p columns, or 0.
 std::size_t column_of(const std::vector<std::string>& columns, const std::string& name)
 {
@@ -69,7 +73,8 @@ bool plot_contact_force_statistics(const std::string& dir,
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "set datafile separator ','\n"
+       << "# The curves of contact_force.csv, kept as they are drawn: per half pixel\n"
+       << "# the lowest and the highest point.\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set output 'contact_force_statistics.png'\n"
        << "set grid\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\nset "
@@ -82,10 +87,16 @@ bool plot_contact_force_statistics(const std::string& dir,
       for (const double x : {s.first_position, s.last_position})
         gp << "set arrow from " << x << ", graph 0 to " << x
            << ", graph 1 nohead dashtype 3\n";
-    gp << "plot 'contact_force.csv' using 2:3 with lines lc rgb '#b0b0b0' title "
-          "'lambda_p'";
+    // The first contact's x_p, lambda_p and lambda_p_filtered are columns 2 to 4.
+    const auto data = read_csv_columns(dir + "/contact_force.csv",
+                                       s.filtered ? std::vector<std::size_t>{2, 3, 4}
+                                                  : std::vector<std::size_t>{2, 3});
+    write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
     if (s.filtered)
-      gp << ", 'contact_force.csv' using 2:4 with lines lc rgb '#0060c0' title 'low pass "
+      write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
+    gp << "plot $raw using 1:2 with lines lc rgb '#b0b0b0' title 'lambda_p'";
+    if (s.filtered)
+      gp << ", $filtered using 1:2 with lines lc rgb '#0060c0' title 'low pass "
          << s.filter_cutoff_hz << " Hz'";
     if (window)
       gp << ", " << f.mean << " with lines lc rgb 'black' title 'mean'"
@@ -142,7 +153,7 @@ void shade_window(std::ostream& gp, const EvaluationWindow& w, const double x0,
 }
 
 /// One pantograph's page of contact_force_over_x.gp.
-void plot_over_x(std::ostream& gp, const ForceOverXPlot& p,
+void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& csv,
                  const std::vector<std::string>& columns,
                  const std::vector<double>& supports, const std::string& title)
 {
@@ -158,11 +169,16 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p,
   shade_window(gp, s.window, p.x_begin, p.x_end);
   const auto column = [&](const std::string& name)
   { return column_of(columns, name + p.suffix); };
-  gp << "plot 'contact_force.csv' using " << column("x_p") << ':' << column("lambda_p")
-     << " with lines lc rgb '#a0a0a0' title 'lambda_p (raw)'";
+  std::vector<std::size_t> wanted{column("x_p"), column("lambda_p")};
   if (s.filtered)
-    gp << ", 'contact_force.csv' using " << column("x_p") << ':'
-       << column("lambda_p_filtered") << " with lines lw 1.5 lc rgb '#0060c0' title "
+    wanted.push_back(column("lambda_p_filtered"));
+  const auto data = read_csv_columns(csv, wanted);
+  write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
+  if (s.filtered)
+    write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
+  gp << "plot $raw using 1:2 with lines lc rgb '#a0a0a0' title 'lambda_p (raw)'";
+  if (s.filtered)
+    gp << ", $filtered using 1:2 with lines lw 1.5 lc rgb '#0060c0' title "
        << gnuplot_string("low pass " + number_to_string(s.filter_cutoff_hz, 4) +
                          " Hz (order " + std::to_string(s.filter_order) + ")");
   gp << '\n';
@@ -183,14 +199,15 @@ plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "# Shaded: the evaluation window; dashed: the supports.\n"
-       << "set datafile separator ','\n"
+       << "# Shaded: the evaluation window; dashed: the supports. The curves of\n"
+       << "# contact_force.csv, kept as they are drawn: per half pixel the lowest and\n"
+       << "# the highest point.\n"
        << "set terminal pngcairo size 1200,500 noenhanced\n"
        << "set grid ytics\nset key below horizontal\nset offsets 0, 0, graph 0.08, graph "
           "0.05\n"
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n";
     for (const ForceOverXPlot& p : plots)
-      plot_over_x(gp, p, columns, supports, title);
+      plot_over_x(gp, p, dir + "/contact_force.csv", columns, supports, title);
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
   }
@@ -200,21 +217,28 @@ plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>
 namespace
 {
 
-/// The columns that the plots draw, read from time_series.csv once into the
-/// datablock $plotted (time first). A wide CSV (one column per dropper) costs
-/// gnuplot a full parse for every curve that names the file; the datablock
-/// keeps only the drawn columns.
-void read_plotted_columns(std::ostream& gp, const std::vector<std::string>& columns,
-                          const std::vector<std::string>& names)
+/**
+ * The curves the plots draw, read from time_series.csv (@p columns, time
+ * first) and written into the script as the datablocks $c1, $c2, ... in the
+ * order of @p names, each reduced by envelope(). gnuplot then neither parses
+ * the wide CSV (one column per dropper, 18 MB for two pantographs on 13
+ * spans) nor draws more points than the picture shows.
+ */
+void write_plotted_columns(std::ostream& gp, const std::string& csv,
+                           const std::vector<std::string>& columns,
+                           const std::vector<std::string>& names)
 {
-  gp << "set table $plotted\nplot 'time_series.csv' using 1";
+  std::vector<std::size_t> wanted{1};
   for (const std::string& name : names)
-    gp << ':' << column_of(columns, name);
-  gp << " with table\nunset table\nset datafile separator whitespace\n";
+    wanted.push_back(column_of(columns, name));
+  const auto data = read_csv_columns(csv, wanted);
+  for (std::size_t k = 0; k < names.size(); ++k)
+    write_datablock(gp, "c" + std::to_string(k + 1),
+                    envelope(data[0], data[k + 1], envelope_bins));
 }
 
-/// "plot $plotted using 1:c title 'name', ..." for the @p names, whose
-/// datablock columns follow @p plotted (time is column 1).
+/// "plot $ck using 1:2 title 'name', ..." for the @p names, whose
+/// datablocks are numbered by their place in @p plotted.
 void plot_columns(std::ostream& gp, const std::vector<std::string>& plotted,
                   const std::vector<std::string>& names)
 {
@@ -222,8 +246,8 @@ void plot_columns(std::ostream& gp, const std::vector<std::string>& plotted,
   bool first = true;
   for (const std::string& name : names)
   {
-    gp << (first ? "" : ", ") << "$plotted using 1:" << column_of(plotted, name) + 1
-       << " with lines title " << gnuplot_string(name);
+    gp << (first ? "" : ", ") << "$c" << column_of(plotted, name)
+       << " using 1:2 with lines title " << gnuplot_string(name);
     first = false;
   }
   gp << '\n';
@@ -260,13 +284,14 @@ std::vector<std::string> plot_time_series(const std::string& dir,
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot time_series.gp (in this directory)\n"
-       << "set datafile separator ','\n"
+       << "# The curves of time_series.csv, kept as they are drawn: per half pixel\n"
+       << "# the lowest and the highest point.\n"
        << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set grid\nset xlabel 't [s]'\nset key outside right\n";
     std::vector<std::string> plotted;
     for (const Plot& plot : plots)
       plotted.insert(plotted.end(), plot.names.begin(), plot.names.end());
-    read_plotted_columns(gp, columns, plotted);
+    write_plotted_columns(gp, dir + "/time_series.csv", columns, plotted);
     for (const Plot& plot : plots)
     {
       gp << "set output '" << plot.png << "'\n"

@@ -56,6 +56,7 @@ public:
 private:
   /// The inverse of M + c D, block by block (diagonal blocks by division).
   class BlockInverse;
+  struct Forces;
   struct Rows;
 
   void evaluate_rows(double t_n, double t_half, double t_next);
@@ -66,8 +67,9 @@ private:
   double dt;
   std::vector<unsigned int> rigid, springs;
   std::unique_ptr<BlockInverse> mass_inverse, smoothed_inverse;
+  std::unique_ptr<Forces> forces;
   std::unique_ptr<Rows> rows;
-  dealii::Vector<double> a, r, sum, q_new, v_new;
+  dealii::Vector<double> a, q_new, v_new;
 };
 
 /// How the contact's rows enter the estimate of growth_per_step().
