@@ -2,7 +2,7 @@
 // from stored diagonals: on runs of rows whose coefficients repeat with
 // period 2 it reads them kept aside, elsewhere from the diagonals; both give
 // the row's terms in the same order, so the result is the same to the bit.
-#include <pantocat/time/diagonal_force_sweep.h>
+#include <pantocat/lac/diagonal_force_sweep.h>
 
 #include <gtest/gtest.h>
 

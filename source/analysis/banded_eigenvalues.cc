@@ -25,12 +25,13 @@ namespace pantocat
 {
 unsigned int half_bandwidth(const dealii::SparseMatrix<double>& matrix)
 {
-  unsigned int b = 0;
-  for (auto it = matrix.begin(); it != matrix.end(); ++it)
-    if (it->value() != 0.)
-      b = std::max<unsigned int>(b, it->row() > it->column() ? it->row() - it->column()
-                                                             : it->column() - it->row());
-  return b;
+  int b = 0;
+  // Row by row: a deal.II iterator's row() is a binary search.
+  for (unsigned int i = 0; i < matrix.m(); ++i)
+    for (auto it = matrix.begin(i); it != matrix.end(i); ++it)
+      if (it->value() != 0.)
+        b = std::max(b, std::abs(static_cast<int>(i) - static_cast<int>(it->column())));
+  return static_cast<unsigned int>(b);
 }
 
 namespace
@@ -40,12 +41,13 @@ std::vector<double> band_storage(const dealii::SparseMatrix<double>& A, const in
 {
   const int n = A.m();
   std::vector<double> ab((kd + 1) * n, 0.);
-  for (auto it = A.begin(); it != A.end(); ++it)
-  {
-    const int i = it->row(), j = it->column();
-    if (i <= j && j - i <= kd)
-      ab[(kd + i - j) + j * (kd + 1)] = it->value();
-  }
+  for (int i = 0; i < n; ++i)
+    for (auto it = A.begin(i); it != A.end(i); ++it)
+    {
+      const int j = it->column();
+      if (i <= j && j - i <= kd)
+        ab[(kd + i - j) + j * (kd + 1)] = it->value();
+    }
   return ab;
 }
 /// True if the band matrix sigma B - A (upper band storage) is positive

@@ -1,9 +1,9 @@
 #include <pantocat/analysis/banded_eigenvalues.h>
 #include <pantocat/analysis/half_explicit_step_map.h>
 #include <pantocat/analysis/stability_limit.h>
+#include <pantocat/lac/sparse_direct_solver.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
-#include <deal.II/lac/sparse_direct.h>
 
 #include <algorithm>
 #include <cmath>
@@ -42,9 +42,9 @@ double compliant_frequency_bound(const SemiDiscreteSystem& system, const double 
 {
   if (!system.has_compliant_constraints())
     return 0.;
-  dealii::SparseDirectUMFPACK mass_inverse;
+  SparseDirectSolver mass_inverse; // banded Cholesky (or UMFPACK)
   if (!system.mass_is_diagonal)
-    mass_inverse.initialize(system.mass);
+    mass_inverse.factorize(system.mass, "mass matrix M");
   double bound = 0.;
   ConstraintState row;
   dealii::Vector<double> column(system.n_dofs());

@@ -106,19 +106,22 @@ Plots draw_plots(const std::string& dir, const ProgramParameters& p,
   title << to_string(p.discretisation.method) << " + " << p.time_integration.integrator
         << ", v_p = " << p.pantograph().speed << " m/s";
   const PlottedColumns c = plotted_columns(runner.layout());
-  std::vector<std::string> drawn =
-      plot_time_series(dir, TimeSeriesWriter::column_names(runner.layout()),
-                       c.contact_forces, c.dropper_forces, c.coordinates, title.str());
-  if (plot_contact_force_statistics(dir, record.first_contact()->result(), title.str()))
-    drawn.push_back("contact_force_statistics.png");
+  // Three scripts, one gnuplot.
+  std::vector<PlotScript> scripts{
+      time_series_script(dir, TimeSeriesWriter::column_names(runner.layout()),
+                         c.contact_forces, c.dropper_forces, c.coordinates, title.str()),
+      contact_force_statistics_script(dir, record.first_contact()->result(),
+                                      title.str())};
   const std::vector<ForceOverXPlot> over_x = force_over_x_plots(record);
-  for (const std::string& file : plot_contact_force_over_x(
-           dir, contact_force_column_names(contact_force_columns(record)), over_x,
-           runner.case_data().catenary.support_positions(), title.str()))
-    drawn.push_back(file);
+  if (!over_x.empty())
+    scripts.push_back(contact_force_over_x_script(
+        dir, contact_force_column_names(contact_force_columns(record)), over_x,
+        runner.case_data().catenary.support_positions(), title.str()));
+  if (scripts.front().outputs.empty())
+    scripts.erase(scripts.begin()); // no time-series column to draw
   Plots plots{{"contact_force.png", "dropper_forces.png", "pantograph.png",
                "contact_force_statistics.png"},
-              drawn};
+              run_gnuplot(dir, scripts)};
   for (const ForceOverXPlot& plot : over_x)
     plots.asked.push_back(plot.png);
   return plots;

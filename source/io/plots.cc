@@ -31,16 +31,12 @@ bool gnuplot_available()
   return !find_program("gnuplot").empty();
 }
 
-std::vector<std::string> run_gnuplot(const std::string& dir, const std::string& script,
-                                     const std::vector<std::string>& outputs)
+namespace
 {
-  for (const std::string& file : outputs)
-    std::filesystem::remove(dir + "/" + file);
-  const std::string gnuplot = find_program("gnuplot");
-  // The script is a plain file name: a leading "./" keeps gnuplot from
-  // reading one that starts with '-' as an option.
-  if (gnuplot.empty() || !run_program(gnuplot, {"./" + script}, dir))
-    return {};
+/// The @p outputs of @p dir that exist and are not empty.
+std::vector<std::string> written_files(const std::string& dir,
+                                       const std::vector<std::string>& outputs)
+{
   std::vector<std::string> written;
   for (const std::string& file : outputs)
   {
@@ -50,6 +46,41 @@ std::vector<std::string> run_gnuplot(const std::string& dir, const std::string& 
       written.push_back(file);
   }
   return written;
+}
+} // namespace
+
+std::vector<std::string> run_gnuplot(const std::string& dir,
+                                     const std::vector<PlotScript>& scripts)
+{
+  std::vector<std::string> outputs, arguments;
+  for (const PlotScript& s : scripts)
+  {
+    for (const std::string& file : s.outputs)
+    {
+      std::filesystem::remove(dir + "/" + file);
+      outputs.push_back(file);
+    }
+    // A plain file name: a leading "./" keeps gnuplot from reading one that
+    // starts with '-' as an option.
+    arguments.push_back("./" + s.script);
+  }
+  const std::string gnuplot = find_program("gnuplot");
+  if (gnuplot.empty() || scripts.empty())
+    return {};
+  // One gnuplot for all scripts (one start, not one per script). gnuplot
+  // stops at the first script that fails: then each script whose plots are
+  // missing runs again alone, so that one failure costs only its own plots.
+  if (!run_program(gnuplot, arguments, dir) && scripts.size() > 1)
+    for (const PlotScript& s : scripts)
+      if (written_files(dir, s.outputs).size() < s.outputs.size())
+        run_program(gnuplot, {"./" + s.script}, dir);
+  return written_files(dir, outputs);
+}
+
+std::vector<std::string> run_gnuplot(const std::string& dir, const std::string& script,
+                                     const std::vector<std::string>& outputs)
+{
+  return run_gnuplot(dir, std::vector<PlotScript>{{script, outputs}});
 }
 
 std::string gnuplot_string(const std::string& text)
@@ -66,6 +97,13 @@ std::string gnuplot_string(const std::string& text)
 bool plot_contact_force_statistics(const std::string& dir,
                                    const ContactForceStatistics& s,
                                    const std::string& title)
+{
+  return !run_gnuplot(dir, {contact_force_statistics_script(dir, s, title)}).empty();
+}
+
+PlotScript contact_force_statistics_script(const std::string& dir,
+                                           const ContactForceStatistics& s,
+                                           const std::string& title)
 {
   const std::string script = "contact_force_statistics.gp";
   // The lines of the figures the run reports first: filtered if filtered.
@@ -108,7 +146,7 @@ bool plot_contact_force_statistics(const std::string& dir,
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
   }
-  return !run_gnuplot(dir, script, {"contact_force_statistics.png"}).empty();
+  return {script, {"contact_force_statistics.png"}};
 }
 
 std::string contact_force_over_x_file(const std::string& name, const bool several)
@@ -192,6 +230,16 @@ plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>
 {
   if (plots.empty())
     return {};
+  return run_gnuplot(dir,
+                     {contact_force_over_x_script(dir, columns, plots, supports, title)});
+}
+
+PlotScript contact_force_over_x_script(const std::string& dir,
+                                       const std::vector<std::string>& columns,
+                                       const std::vector<ForceOverXPlot>& plots,
+                                       const std::vector<double>& supports,
+                                       const std::string& title)
+{
   std::vector<std::string> pngs;
   for (const ForceOverXPlot& p : plots)
     pngs.push_back(p.png);
@@ -211,7 +259,7 @@ plot_contact_force_over_x(const std::string& dir, const std::vector<std::string>
     if (!gp)
       throw SimulationError("cannot write " + dir + "/" + script);
   }
-  return run_gnuplot(dir, script, pngs);
+  return {script, pngs};
 }
 
 namespace
@@ -261,6 +309,20 @@ std::vector<std::string> plot_time_series(const std::string& dir,
                                           const std::vector<std::string>& coordinates,
                                           const std::string& title)
 {
+  const PlotScript script = time_series_script(dir, columns, contact_forces,
+                                               dropper_forces, coordinates, title);
+  if (script.outputs.empty())
+    return {}; // nothing to draw
+  return run_gnuplot(dir, {script});
+}
+
+PlotScript time_series_script(const std::string& dir,
+                              const std::vector<std::string>& columns,
+                              const std::vector<std::string>& contact_forces,
+                              const std::vector<std::string>& dropper_forces,
+                              const std::vector<std::string>& coordinates,
+                              const std::string& title)
+{
   struct Plot
   {
     std::string png, what, ylabel;
@@ -278,9 +340,9 @@ std::vector<std::string> plot_time_series(const std::string& dir,
   plots.erase(std::remove_if(plots.begin(), plots.end(),
                              [](const Plot& plot) { return plot.names.empty(); }),
               plots.end());
-  if (plots.empty())
-    return {}; // nothing to draw
   const std::string script = "time_series.gp";
+  if (plots.empty())
+    return {script, {}}; // nothing to draw
   {
     std::ofstream gp(dir + "/" + script);
     gp << "# Redraw with: gnuplot time_series.gp (in this directory)\n"
@@ -305,6 +367,6 @@ std::vector<std::string> plot_time_series(const std::string& dir,
   std::vector<std::string> pngs;
   for (const Plot& plot : plots)
     pngs.push_back(plot.png);
-  return run_gnuplot(dir, script, pngs);
+  return {script, pngs};
 }
 } // namespace pantocat

@@ -428,32 +428,39 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
 {
   n = A.m();
   kd = 0;
-  for (auto it = A.begin(); it != A.end(); ++it)
-    if (it->value() != 0.)
-    {
-      const int d =
-          std::abs(static_cast<int>(it->row()) - static_cast<int>(it->column()));
-      kd = std::max(kd, d);
-      if (kd > max_bandwidth)
-        return false;
-      // Cholesky needs symmetry (up to round-off of the assembly).
-      if (it->row() < it->column())
+  // Row by row: a deal.II iterator's row() is a binary search.
+  for (int i = 0; i < n; ++i)
+    for (auto it = A.begin(i); it != A.end(i); ++it)
+      if (it->value() != 0.)
       {
-        const double other = A.el(it->column(), it->row());
-        if (std::abs(it->value() - other) >
-            1e-12 * (std::abs(it->value()) + std::abs(other)))
+        kd = std::max(kd, std::abs(i - static_cast<int>(it->column())));
+        if (kd > max_bandwidth)
           return false;
       }
-    }
   const int ld = kd + 1;
-  // LAPACK upper band storage: U(i, j), i <= j <= i + kd, at (kd + i - j) + j ld.
-  std::vector<double> band(static_cast<std::size_t>(ld) * n, 0.);
-  for (auto it = A.begin(); it != A.end(); ++it)
-  {
-    const int i = it->row(), j = it->column();
-    if (i <= j)
-      band[(kd + i - j) + static_cast<std::size_t>(j) * ld] = it->value();
-  }
+  // LAPACK upper band storage: U(i, j), i <= j <= i + kd, at (kd + i - j) + j ld;
+  // the lower triangle, mirrored, at the same places to check the symmetry.
+  std::vector<double> band(static_cast<std::size_t>(ld) * n, 0.), mirror(band.size(), 0.);
+  for (int i = 0; i < n; ++i)
+    for (auto it = A.begin(i); it != A.end(i); ++it)
+    {
+      const int j = it->column();
+      if (std::abs(i - j) > kd)
+        continue; // a stored zero outside the band
+      if (i <= j)
+        band[(kd + i - j) + static_cast<std::size_t>(j) * ld] = it->value();
+      else
+        mirror[(kd + j - i) + static_cast<std::size_t>(i) * ld] = it->value();
+    }
+  // Cholesky needs symmetry (up to round-off of the assembly).
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - kd); i < j; ++i)
+    {
+      const std::size_t e = (kd + i - j) + static_cast<std::size_t>(j) * ld;
+      if (std::abs(band[e] - mirror[e]) >
+          1e-12 * (std::abs(band[e]) + std::abs(mirror[e])))
+        return false;
+    }
   int info = 0;
   dpbtrf_("U", &n, &kd, band.data(), &ld, &info);
   if (info != 0) // not positive definite

@@ -65,23 +65,44 @@ bool BuiltScene::has_contact() const
   return false;
 }
 
+namespace
+{
+/// The enabled effects of @p registered, all and the catenary's part.
+struct EnabledEffects
+{
+  std::vector<const SceneEffect*> all, catenary_part;
+  std::vector<std::string> inactive;
+};
+
+EnabledEffects
+enabled_effects(const std::vector<std::unique_ptr<SceneEffect>>& registered,
+                const SceneParameters& scene, const CatenaryParameters& catenary)
+{
+  EnabledEffects e;
+  for (const auto& effect : registered)
+  {
+    if (!effect->enabled(scene, catenary))
+    {
+      e.inactive.push_back(effect->name());
+      continue;
+    }
+    e.all.push_back(effect.get());
+    if (effect->part_of_catenary())
+      e.catenary_part.push_back(effect.get());
+  }
+  return e;
+}
+} // namespace
+
 BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
                        const CatenaryDiscretisation& space)
 {
   const auto registered = registered_scene_effects();
-  std::vector<const SceneEffect*> all, catenary_part;
+  const EnabledEffects effects = enabled_effects(registered, scene, catenary);
+  const std::vector<const SceneEffect*>&all = effects.all,
+                          &catenary_part = effects.catenary_part;
   BuiltScene built;
-  for (const auto& e : registered)
-  {
-    if (!e->enabled(scene, catenary))
-    {
-      built.inactive_effects.push_back(e->name());
-      continue;
-    }
-    all.push_back(e.get());
-    if (e->part_of_catenary())
-      catenary_part.push_back(e.get());
-  }
+  built.inactive_effects = effects.inactive;
 
   const std::vector<ScenePantograph> pantographs = make_scene_pantographs(scene);
   SceneAssembly whole(scene, catenary, space, pantographs);
@@ -96,6 +117,21 @@ BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& c
   built.pantographs = std::move(whole.pantographs);
   built.dropper_indices = whole.dropper_indices;
   built.support_indices = whole.support_indices;
+  return built;
+}
+
+BuiltScene build_catenary(const SceneParameters& scene,
+                          const CatenaryParameters& catenary,
+                          const CatenaryDiscretisation& space)
+{
+  const auto registered = registered_scene_effects();
+  const EnabledEffects effects = enabled_effects(registered, scene, catenary);
+  SceneAssembly part(scene, catenary, space, make_scene_pantographs(scene));
+  assemble(part, effects.catenary_part);
+  BuiltScene built;
+  built.catenary_only = std::move(part.system);
+  built.dropper_indices = part.dropper_indices;
+  built.support_indices = part.support_indices;
   return built;
 }
 } // namespace pantocat

@@ -57,7 +57,7 @@ struct HeldCatenary
 HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameters& c,
                            const CatenaryDiscretisation& space, const bool heights)
 {
-  BuiltScene built = build_scene(scene, c, space);
+  BuiltScene built = build_catenary(scene, c, space);
   HeldCatenary h{std::move(built.catenary_only), {}, {}, {}};
   if (heights)
     remove_constraints(h.system, built.dropper_indices);
@@ -115,7 +115,9 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     r.iterations = it + 1;
     HeldCatenary h = held_catenary(scene, c, space, designing);
     const dealii::Vector<double> none(h.system.n_dofs());
-    StaticEquilibrium s = solve_static_equilibrium(h.system, none);
+    // One factorisation of K and one set of columns K^-1 G^T for both loads.
+    const StaticEquilibriumSolver solver(h.system);
+    StaticEquilibrium s = solver.solve(none);
     if (!designing)
     {
       r.dropper_forces.clear();
@@ -129,7 +131,7 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
       wire_point_row(space, h.system, Wire::carrier, c.dropper_positions[j])
           .add_transpose_to(pull, -r.dropper_forces[j]);
-    s = solve_static_equilibrium(h.system, pull);
+    s = solver.solve(pull);
     steady_arm_preloads = multipliers_of(s, h.steady_arms);
     carrier_support_preloads = multipliers_of(s, h.carrier_springs);
     double change = 0.;

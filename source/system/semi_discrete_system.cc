@@ -17,9 +17,12 @@ void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bod
     mass_is_diagonal = mass_is_diagonal && b->mass_is_diagonal;
   }
   dealii::DynamicSparsityPattern dsp(n, n);
+  // Row by row: a deal.II iterator's row() is a binary search.
   for (unsigned int k = 0; k < bodies.size(); ++k)
-    for (auto it = bodies[k]->sparsity->begin(); it != bodies[k]->sparsity->end(); ++it)
-      dsp.add(blocks[k].first + it->row(), blocks[k].first + it->column());
+    for (unsigned int i = 0; i < blocks[k].size; ++i)
+      for (auto it = bodies[k]->sparsity->begin(i); it != bodies[k]->sparsity->end(i);
+           ++it)
+        dsp.add(blocks[k].first + i, blocks[k].first + it->column());
   sparsity = std::make_unique<dealii::SparsityPattern>();
   sparsity->copy_from(dsp);
   mass.reinit(*sparsity);
@@ -34,8 +37,9 @@ void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bod
     {
       dealii::SparseMatrix<double>& target =
           m == &b.mass ? mass : (m == &b.damping ? damping : stiffness);
-      for (auto it = m->begin(); it != m->end(); ++it)
-        target.set(o + it->row(), o + it->column(), it->value());
+      for (unsigned int i = 0; i < b.size(); ++i)
+        for (auto it = m->begin(i); it != m->end(i); ++it)
+          target.set(o + i, o + it->column(), it->value());
     }
     for (unsigned int i = 0; i < b.size(); ++i)
       load(o + i) = b.load(i);

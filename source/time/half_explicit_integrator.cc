@@ -46,10 +46,12 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   factorize();
   // Diagonal storage of K and D/2.
-  for (auto it = system.stiffness.begin(); it != system.stiffness.end(); ++it)
-    forces.bandwidth =
-        std::max<int>(forces.bandwidth, std::abs(static_cast<int>(it->row()) -
-                                                 static_cast<int>(it->column())));
+  // Row by row: a deal.II iterator's row() is a binary search.
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto it = system.stiffness.begin(i); it != system.stiffness.end(i); ++it)
+      forces.bandwidth =
+          std::max<int>(forces.bandwidth,
+                        std::abs(static_cast<int>(i) - static_cast<int>(it->column())));
   const int b = forces.bandwidth;
   forces.stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
   forces.half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
@@ -411,8 +413,9 @@ void HalfExplicitIntegrator::factorize()
   smoothed.copy_from(system.mass);
   smoothed.add(0.5 * dt, system.damping);
   bool diagonal = system.mass_is_diagonal;
-  for (auto it = system.damping.begin(); diagonal && it != system.damping.end(); ++it)
-    diagonal = it->row() == it->column() || it->value() == 0.;
+  for (unsigned int i = 0; diagonal && i < system.n_dofs(); ++i)
+    for (auto it = system.damping.begin(i); diagonal && it != system.damping.end(i); ++it)
+      diagonal = it->column() == i || it->value() == 0.;
   smoothed_mass_inverse.initialize(smoothed, diagonal, "matrix M + dt/2 D");
 
   // The Schur complements of the rigid constraints with constant rows, once.

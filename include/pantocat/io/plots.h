@@ -7,6 +7,13 @@
 
 namespace pantocat
 {
+/// A gnuplot script written into a directory and the files it draws.
+struct PlotScript
+{
+  std::string script;               ///< file name in the directory
+  std::vector<std::string> outputs; ///< the PNG files it draws (none: nothing to draw)
+};
+
 /**
  * contact_force.png, dropper_forces.png and pantograph.png (Figs. 6 and 7)
  * from time_series.csv, whose header is @p columns: each plot draws the named
@@ -21,6 +28,14 @@ std::vector<std::string> plot_time_series(const std::string& directory,
                                           const std::vector<std::string>& coordinates,
                                           const std::string& title);
 
+/// Writes time_series.gp as plot_time_series() does and returns it, not run.
+PlotScript time_series_script(const std::string& directory,
+                              const std::vector<std::string>& columns,
+                              const std::vector<std::string>& contact_forces,
+                              const std::vector<std::string>& dropper_forces,
+                              const std::vector<std::string>& coordinates,
+                              const std::string& title);
+
 /**
  * contact_force_statistics.png: lambda_p over x_p from contact_force.csv
  * (columns t, x_p, lambda_p, lambda_p_filtered), the filtered force when a
@@ -30,6 +45,11 @@ std::vector<std::string> plot_time_series(const std::string& directory,
 bool plot_contact_force_statistics(const std::string& directory,
                                    const ContactForceStatistics& statistics,
                                    const std::string& title);
+
+/// Writes contact_force_statistics.gp and returns it, not run.
+PlotScript contact_force_statistics_script(const std::string& directory,
+                                           const ContactForceStatistics& statistics,
+                                           const std::string& title);
 
 /// One pantograph's plot of contact_force_over_x.gp.
 struct ForceOverXPlot
@@ -59,6 +79,13 @@ plot_contact_force_over_x(const std::string& directory,
                           const std::vector<ForceOverXPlot>& plots,
                           const std::vector<double>& supports, const std::string& title);
 
+/// Writes contact_force_over_x.gp and returns it, not run (@p plots not empty).
+PlotScript contact_force_over_x_script(const std::string& directory,
+                                       const std::vector<std::string>& columns,
+                                       const std::vector<ForceOverXPlot>& plots,
+                                       const std::vector<double>& supports,
+                                       const std::string& title);
+
 /// True if gnuplot is on the PATH (looked up without a shell: find_program()).
 bool gnuplot_available();
 
@@ -71,6 +98,14 @@ bool gnuplot_available();
 std::vector<std::string> run_gnuplot(const std::string& directory,
                                      const std::string& script,
                                      const std::vector<std::string>& outputs);
+
+/**
+ * Runs the @p scripts in one gnuplot process, as run_gnuplot() runs one
+ * (a script that fails costs only its own outputs: the scripts with outputs
+ * missing then run again one by one). Returns the outputs written.
+ */
+std::vector<std::string> run_gnuplot(const std::string& directory,
+                                     const std::vector<PlotScript>& scripts);
 
 /**
  * @p text as a single-quoted gnuplot string: quotes doubled, control

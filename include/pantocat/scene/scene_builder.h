@@ -43,4 +43,13 @@ struct BuiltScene
  */
 BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
                        const CatenaryDiscretisation& space);
+
+/**
+ * The catenary's part of the scene alone (BuiltScene::catenary_only, with its
+ * dropper_indices and support_indices; the other members empty): one assembly
+ * where build_scene() makes two, for the static problems of the dropper design.
+ */
+BuiltScene build_catenary(const SceneParameters& scene,
+                          const CatenaryParameters& catenary,
+                          const CatenaryDiscretisation& space);
 } // namespace pantocat

@@ -2,7 +2,7 @@
 
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
-#include <pantocat/time/diagonal_force_sweep.h>
+#include <pantocat/lac/diagonal_force_sweep.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>

@@ -1,4 +1,4 @@
-#include <pantocat/time/diagonal_force_sweep.h>
+#include <pantocat/lac/diagonal_force_sweep.h>
 
 #include <algorithm>
 
