@@ -50,6 +50,17 @@ std::vector<double> band_storage(const dealii::SparseMatrix<double>& A, const in
     }
   return ab;
 }
+/// LAPACK dpbtrf's info for the band matrix @p band (upper band storage,
+/// overwritten by its factor): 0, or the order of the leading minor that is
+/// not positive definite.
+int cholesky_failure(std::vector<double>& band, const int n, const int kd)
+{
+  const int ld = kd + 1;
+  int info = 0;
+  dpbtrf_("U", &n, &kd, band.data(), &ld, &info);
+  return info;
+}
+
 /// True if the band matrix sigma B - A (upper band storage) is positive
 /// definite in floating point: its Cholesky factorisation runs to the end.
 bool positive_definite(const double sigma, const std::vector<double>& a,
@@ -58,11 +69,9 @@ bool positive_definite(const double sigma, const std::vector<double>& a,
 {
   for (std::size_t e = 0; e < work.size(); ++e)
     work[e] = sigma * b[e] - a[e];
-  const int ld = kd + 1;
-  int info = 0;
-  dpbtrf_("U", &n, &kd, work.data(), &ld, &info);
-  return info == 0;
+  return cholesky_failure(work, n, kd) == 0;
 }
+
 /// What dsbgvx's @p info says went wrong for A x = lambda B x of size @p n.
 std::string dsbgvx_failure(const int info, const int n)
 {
@@ -119,19 +128,14 @@ double largest_generalized_eigenvalue(const dealii::SparseMatrix<double>& A,
   std::vector<double> work(a.size());
   // B positive definite: sigma B - A is then positive definite exactly for
   // sigma > lambda_max (Sylvester), and lambda_max is where that stops.
-  {
-    work = b;
-    const int ld = kd + 1;
-    int info = 0;
-    dpbtrf_("U", &n, &kd, work.data(), &ld, &info);
-    if (info != 0)
-      throw SimulationError(
-          "largest generalized eigenvalue: the second matrix (M, or K for the smallest "
-          "eigenvalue) is not positive definite in floating point (leading minor " +
-          std::to_string(info) +
-          "); check the masses, tensions and stiffnesses for values that are zero or "
-          "of very different magnitudes");
-  }
+  work = b;
+  if (const int info = cholesky_failure(work, n, kd); info != 0)
+    throw SimulationError(
+        "largest generalized eigenvalue: the second matrix (M, or K for the smallest "
+        "eigenvalue) is not positive definite in floating point (leading minor " +
+        std::to_string(info) +
+        "); check the masses, tensions and stiffnesses for values that are zero or "
+        "of very different magnitudes");
   // A lower bound: the Rayleigh quotients of the unit vectors, A_ii / B_ii.
   double lower = 0.;
   for (int i = 0; i < n; ++i)

@@ -18,6 +18,24 @@ namespace
 /// Bins of envelope() per plot: two per pixel of the widest plot (1200 pixels).
 constexpr unsigned int envelope_bins = 2400;
 
+/**
+ * read_csv_columns(), or empty columns if the file cannot be read: a plot
+ * that cannot get its data is not drawn (gnuplot finds no points, and the run
+ * reports the plot missing); the results already written stand.
+ */
+std::vector<std::vector<double>> curves_of(const std::string& csv,
+                                           const std::vector<std::size_t>& wanted)
+{
+  try
+  {
+    return read_csv_columns(csv, wanted);
+  }
+  catch (const SimulationError&)
+  {
+    return std::vector<std::vector<double>>(wanted.size());
+  }
+}
+
 /// 1-based column of @p name in @p columns, or 0.
 std::size_t column_of(const std::vector<std::string>& columns, const std::string& name)
 {
@@ -126,9 +144,9 @@ PlotScript contact_force_statistics_script(const std::string& dir,
         gp << "set arrow from " << x << ", graph 0 to " << x
            << ", graph 1 nohead dashtype 3\n";
     // The first contact's x_p, lambda_p and lambda_p_filtered are columns 2 to 4.
-    const auto data = read_csv_columns(dir + "/contact_force.csv",
-                                       s.filtered ? std::vector<std::size_t>{2, 3, 4}
-                                                  : std::vector<std::size_t>{2, 3});
+    const auto data = curves_of(dir + "/contact_force.csv",
+                                s.filtered ? std::vector<std::size_t>{2, 3, 4}
+                                           : std::vector<std::size_t>{2, 3});
     write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
     if (s.filtered)
       write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
@@ -210,7 +228,7 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
   std::vector<std::size_t> wanted{column("x_p"), column("lambda_p")};
   if (s.filtered)
     wanted.push_back(column("lambda_p_filtered"));
-  const auto data = read_csv_columns(csv, wanted);
+  const auto data = curves_of(csv, wanted);
   write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
   if (s.filtered)
     write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
@@ -279,7 +297,7 @@ void write_plotted_columns(std::ostream& gp, const std::string& csv,
   std::vector<std::size_t> wanted{1};
   for (const std::string& name : names)
     wanted.push_back(column_of(columns, name));
-  const auto data = read_csv_columns(csv, wanted);
+  const auto data = curves_of(csv, wanted);
   for (std::size_t k = 0; k < names.size(); ++k)
     write_datablock(gp, "c" + std::to_string(k + 1),
                     envelope(data[0], data[k + 1], envelope_bins));
