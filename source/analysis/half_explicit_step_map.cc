@@ -198,48 +198,23 @@ void add_on(dealii::Vector<double>& y, const double a, const dealii::Vector<doub
 } // namespace
 
 /**
- * K and D/2 stored by diagonals (`[offset + b][row]`) and swept by
- * DiagonalForceSweep, as the integrator does: -K q - D (v_prev + v)/2 with the
- * coefficients of a uniform wire's rows read from registers, where two deal.II
- * products and three vector updates would make five passes over the memory.
+ * K and D/2 stored by diagonals and swept by DiagonalForceSweep, as the
+ * integrator does: -K q - D (v_prev + v)/2 with the coefficients of a uniform
+ * wire's rows read from registers, where two deal.II products and three
+ * vector updates would make five passes over the memory.
  */
 struct HalfExplicitStepMap::Forces
 {
-  std::vector<int> stiffness_offsets, damping_offsets;
-  std::vector<std::vector<double>> stiffness, half_damping;
+  ForceDiagonals diagonals;
   std::vector<double> zero;
   DiagonalForceSweep sweep;
 
   explicit Forces(const SemiDiscreteSystem& system)
+      : diagonals(system.stiffness, system.damping), zero(system.n_dofs(), 0.)
   {
-    const int n = system.n_dofs();
-    int b = 0;
-    for (int i = 0; i < n; ++i)
-      for (auto it = system.sparsity->begin(i); it != system.sparsity->end(i); ++it)
-        b = std::max(b, std::abs(i - static_cast<int>(it->column())));
-    stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
-    half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
-    for (int i = 0; i < n; ++i)
-      for (auto it = system.sparsity->begin(i); it != system.sparsity->end(i); ++it)
-      {
-        const int j = it->column();
-        stiffness[j - i + b][i] = system.stiffness(i, j);
-        half_damping[j - i + b][i] = 0.5 * system.damping(i, j);
-      }
-    const auto used = [](const std::vector<double>& diagonal)
-    {
-      return std::any_of(diagonal.begin(), diagonal.end(),
-                         [](double x) { return x != 0.; });
-    };
-    for (int o = -b; o <= b; ++o)
-    {
-      if (used(stiffness[o + b]))
-        stiffness_offsets.push_back(o);
-      if (used(half_damping[o + b]))
-        damping_offsets.push_back(o);
-    }
-    zero.assign(n, 0.);
-    sweep.initialize(n, b, stiffness_offsets, stiffness, damping_offsets, half_damping);
+    const ForceDiagonals& d = diagonals;
+    sweep.initialize(system.n_dofs(), d.bandwidth, d.stiffness_offsets, d.stiffness,
+                     d.damping_offsets, d.half_damping);
   }
 
   /// r = -K q - D (v_prev + v) / 2

@@ -1,9 +1,44 @@
 #include <pantocat/lac/diagonal_force_sweep.h>
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace pantocat
 {
+ForceDiagonals::ForceDiagonals(const dealii::SparseMatrix<double>& K,
+                               const dealii::SparseMatrix<double>& D)
+{
+  const unsigned int n = K.m();
+  // Row by row: a deal.II iterator's row() is a binary search.
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto it = K.begin(i); it != K.end(i); ++it)
+      bandwidth = std::max(
+          bandwidth, std::abs(static_cast<int>(i) - static_cast<int>(it->column())));
+  const int b = bandwidth;
+  stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
+  half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
+  std::vector<bool> k_used(2 * b + 1, false), d_used(2 * b + 1, false);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    auto d = D.begin(i);
+    for (auto k = K.begin(i); k != K.end(i); ++k, ++d)
+    {
+      const int o = static_cast<int>(k->column()) - static_cast<int>(i) + b;
+      stiffness[o][i] = k->value();
+      half_damping[o][i] = 0.5 * d->value();
+      k_used[o] = k_used[o] || k->value() != 0.;
+      d_used[o] = d_used[o] || d->value() != 0.;
+    }
+  }
+  for (int o = 0; o <= 2 * b; ++o)
+  {
+    if (k_used[o])
+      stiffness_offsets.push_back(o - b);
+    if (d_used[o])
+      damping_offsets.push_back(o - b);
+  }
+}
+
 namespace
 {
 /// Rows of one block: they stay in the first-level cache while the offsets pass.

@@ -46,41 +46,14 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   factorize();
   // Diagonal storage of K and D/2.
-  // Row by row: a deal.II iterator's row() is a binary search.
-  for (unsigned int i = 0; i < n; ++i)
-    for (auto it = system.stiffness.begin(i); it != system.stiffness.end(i); ++it)
-      forces.bandwidth =
-          std::max<int>(forces.bandwidth,
-                        std::abs(static_cast<int>(i) - static_cast<int>(it->column())));
+  static_cast<ForceDiagonals&>(forces) = ForceDiagonals(system.stiffness, system.damping);
   const int b = forces.bandwidth;
-  forces.stiffness.assign(2 * b + 1, std::vector<double>(n, 0.));
-  forces.half_damping.assign(2 * b + 1, std::vector<double>(n, 0.));
-  std::vector<bool> k_used(2 * b + 1, false), d_used(2 * b + 1, false);
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    auto d = system.damping.begin(i);
-    for (auto k = system.stiffness.begin(i); k != system.stiffness.end(i); ++k, ++d)
-    {
-      const int o = static_cast<int>(k->column()) - static_cast<int>(i) + b;
-      forces.stiffness[o][i] = k->value();
-      forces.half_damping[o][i] = 0.5 * d->value();
-      k_used[o] = k_used[o] || k->value() != 0.;
-      d_used[o] = d_used[o] || d->value() != 0.;
-    }
-  }
   forces.symmetric_stiffness = true;
   for (int o = 1; o <= b; ++o)
     for (int i = 0; i + o < static_cast<int>(n); ++i)
       forces.symmetric_stiffness =
           forces.symmetric_stiffness &&
           forces.stiffness[b + o][i] == forces.stiffness[b - o][i + o];
-  for (int o = 0; o <= 2 * b; ++o)
-  {
-    if (k_used[o])
-      forces.stiffness_offsets.push_back(o - b);
-    if (d_used[o])
-      forces.damping_offsets.push_back(o - b);
-  }
   std::vector<bool> coupled(n, false);
   for (unsigned int i = 0; i < n; ++i)
     for (auto d = system.damping.begin(i); d != system.damping.end(i); ++d)

@@ -1,10 +1,30 @@
 #pragma once
 
+#include <deal.II/lac/sparse_matrix.h>
+
 #include <array>
 #include <vector>
 
 namespace pantocat
 {
+/**
+ * K and D/2 of a semi-discrete system stored by diagonals (offsets -b..b,
+ * zero-padded), as DiagonalForceSweep reads them: the operators are banded
+ * within each body, and a diagonal sweep vectorises. The offsets on which an
+ * operator vanishes are left out of its list.
+ */
+struct ForceDiagonals
+{
+  int bandwidth = 0;
+  std::vector<int> stiffness_offsets, damping_offsets;
+  std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
+
+  ForceDiagonals() = default;
+  /// From @p K and @p D, which share one sparsity pattern.
+  ForceDiagonals(const dealii::SparseMatrix<double>& K,
+                 const dealii::SparseMatrix<double>& D);
+};
+
 /**
  * The right-hand side of the half-explicit step (39) before its solve,
  * out = f - K q - D (v_{n-1} + v_n)/2, with K and D/2 stored by diagonals

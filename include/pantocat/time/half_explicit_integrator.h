@@ -1,8 +1,8 @@
 #pragma once
 
+#include <pantocat/lac/diagonal_force_sweep.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
-#include <pantocat/lac/diagonal_force_sweep.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
@@ -185,14 +185,10 @@ private:
   /// f(t_n): the system's constant load, or f(t_n) in load_now if it depends on t.
   const double* load_at_time_n();
 
-  /// K and D/2 stored by diagonals (offsets -b..b, zero-padded): the
-  /// semi-discrete operators are banded within each body, and a diagonal
-  /// sweep vectorises. Offsets on which an operator vanishes are skipped.
-  struct BandedOperator
+  /// K and D/2 stored by diagonals (ForceDiagonals), and what the fused
+  /// sweeps need to know about them.
+  struct BandedOperator : ForceDiagonals
   {
-    int bandwidth = 0;
-    std::vector<int> stiffness_offsets, damping_offsets;
-    std::vector<std::vector<double>> stiffness, half_damping; ///< [offset + b][row]
     struct Entry
     {
       unsigned int row, column;
