@@ -9,7 +9,7 @@
 // generalized-alpha; the last line is one banded solve with the FEM BDF-2
 // matrix (the reference of the implicit methods' target, 2.5 solves per step).
 // Usage (from the repository root): bench_constraints [steps] [m ...]
-// [--only=fem+bdf2] (one column)
+// [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
@@ -22,6 +22,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
@@ -129,8 +130,11 @@ int main(int argc, char** argv)
   const unsigned int steps = argc > 1 ? std::atoi(argv[1]) : 1000;
   std::vector<unsigned int> counts;
   std::string only; // --only=fem+bdf2 : one column
+  bool baseline = true;
   for (int i = 2; i < argc; ++i)
-    if (std::string(argv[i]).rfind("--only=", 0) == 0)
+    if (std::string(argv[i]) == "--no-baseline")
+      baseline = false;
+    else if (std::string(argv[i]).rfind("--only=", 0) == 0)
       only = std::string(argv[i]).substr(7);
     else
       counts.push_back(std::atoi(argv[i]));
@@ -160,7 +164,9 @@ int main(int argc, char** argv)
   std::cout << "\n| 0 |";
   for (const Column& c : columns)
   {
-    without.push_back(step_time(span_with_droppers(0, c.method, c.integrator), c.steps));
+    without.push_back(
+        baseline ? step_time(span_with_droppers(0, c.method, c.integrator), c.steps)
+                 : std::nan(""));
     std::cout << ' ' << std::setprecision(3) << without.back() << " | 1 |" << std::flush;
   }
   std::cout << '\n';
@@ -176,6 +182,8 @@ int main(int argc, char** argv)
     }
     std::cout << '\n';
   }
+  if (!baseline)
+    return 0;
   std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
             << std::setprecision(3)
             << banded_solve_time(span_with_droppers(0, "fem", "bdf2")) << " us\n";

@@ -14,6 +14,7 @@
 #include <pantocat/system/energy_functional.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/disjoint_fixed_constraints.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/half_explicit_integrator.h>
@@ -957,6 +958,196 @@ TEST(FixedConstraintSchur, ADiagonalComplementIsInvertedEntryByEntry)
       EXPECT_NEAR(back, b[j](k), 1e-14 * std::abs(b[j](k))) << "k = " << k;
     }
   }
+}
+
+namespace
+{
+/// A diagonal n x n matrix with entries @p diagonal, and a 2 x 2 block on the
+/// last two rows when @p coupled.
+struct SmallMatrix
+{
+  SmallMatrix(const std::vector<double>& diagonal, const bool coupled)
+  {
+    const unsigned int n = diagonal.size();
+    dealii::DynamicSparsityPattern d(n, n);
+    for (unsigned int i = 0; i < n; ++i)
+      d.add(i, i);
+    if (coupled)
+    {
+      d.add(n - 2, n - 1);
+      d.add(n - 1, n - 2);
+    }
+    pattern.copy_from(d);
+    matrix.reinit(pattern);
+    for (unsigned int i = 0; i < n; ++i)
+      matrix.set(i, i, diagonal[i]);
+    if (coupled)
+    {
+      matrix.set(n - 2, n - 1, 0.1);
+      matrix.set(n - 1, n - 2, 0.1);
+    }
+  }
+  dealii::SparsityPattern pattern;
+  dealii::SparseMatrix<double> matrix;
+};
+
+/// Droppers (unknowns j and 20 + j) and supports (one unknown) on 42 unknowns.
+CompressedRows disjoint_rows(std::vector<double>& offsets, std::vector<unsigned int>& ids)
+{
+  CompressedRows rows;
+  SparseRow row;
+  for (unsigned int k = 0; k < 13; ++k)
+  {
+    row.clear();
+    if (k == 3 || k == 12) // supports
+      row.add(k, 1.);
+    else
+    {
+      row.add(k, -1. - 0.01 * k);
+      row.add(20 + k, 1. + 0.02 * k);
+    }
+    rows.push_back(row);
+    offsets.push_back(0.001 * (k + 1));
+    ids.push_back(2 * k + 1); // constraint numbers of a system with others between
+  }
+  return rows;
+}
+} // namespace
+
+TEST(DisjointFixedConstraints, EachConstraintHoldsAndTheBatchedPassIsTheSameToTheBit)
+{
+  // The FDM's fixed constraints under diagonal M and W = M + dt/2 D: each
+  // multiplier follows from its own row. After accelerate() G_k a = 0 for the
+  // selected constraints of (39) (to 1e-14 relative: one division, two
+  // products), after project() G_k q + z_k = 0 and G_k v = 0 for those of
+  // (40) (the fixed block [h^2 S, h S; 2h S, 0] solved exactly), and the
+  // others keep their values. The batched pass that projects while it
+  // accelerates (droppers eight at a time) gives the same bits as the two
+  // passes one after the other, also with some constraints deferred.
+  const unsigned int n = 42;
+  std::vector<double> m(n), w(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    m[i] = 1. + 0.5 * std::sin(0.7 * i);
+    w[i] = m[i] + 0.05 * (1. + std::cos(1.1 * i));
+  }
+  SmallMatrix Mm(m, false), Wm(w, false);
+  MassInverse M, W;
+  M.initialize(Mm.matrix, true, "M");
+  W.initialize(Wm.matrix, true, "W");
+  std::vector<double> offsets;
+  std::vector<unsigned int> ids;
+  const CompressedRows rows = disjoint_rows(offsets, ids);
+  DisjointFixedConstraints F;
+  ASSERT_TRUE(F.initialize(rows, offsets, ids, W, M, n));
+  std::vector<bool> keep_a(13, true), keep_p(13, true);
+  keep_a[5] = false;
+  keep_p[6] = false;
+  F.select_acceleration(keep_a);
+  F.select_position(keep_p);
+
+  const double h = 1e-4;
+  std::vector<double> q(n), v(n), vp(n), a0(n);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    q[i] = 0.01 * std::sin(0.3 * i);
+    v[i] = 0.2 * std::cos(0.5 * i);
+    vp[i] = v[i] + 1e-3 * std::sin(2.1 * i);
+    a0[i] = 3. * std::cos(0.9 * i) + 1.;
+  }
+  const auto row_dot = [&](const unsigned int k, const std::vector<double>& x)
+  { return rows.dot(k, x.data()); };
+
+  // Two passes: accelerate() with the prediction, then project().
+  std::vector<double> a1 = a0, q1(n), v1(n), lambda1(30, 0.), gaps1(30, 0.);
+  for (unsigned int i = 0; i < n; ++i) // the force sweep's prediction
+  {
+    v1[i] = vp[i] + 2. * h * a0[i];
+    q1[i] = q[i] + 0.5 * h * (v[i] + v1[i]);
+  }
+  std::vector<double> q0 = q1, v0 = v1;
+  DisjointFixedConstraints::Prediction p1{q.data(),  v.data(),  vp.data(),
+                                          q1.data(), v1.data(), h};
+  F.accelerate(a1.data(), lambda1, &p1);
+  for (unsigned int k = 0; k < 13; ++k)
+  {
+    if (keep_a[k])
+      EXPECT_LT(std::abs(row_dot(k, a1)), 1e-14 * std::abs(row_dot(k, a0))) << k;
+    else
+      EXPECT_EQ(lambda1[ids[k]], 0.);
+  }
+  for (unsigned int e = rows.start[5]; e < rows.start[6]; ++e)
+    EXPECT_EQ(a1[rows.index[e]], a0[rows.index[e]]);
+  std::vector<double> q_star = q1, v_star = v1;
+  F.project(q1.data(), v1.data(), h, gaps1);
+  for (unsigned int k = 0; k < 13; ++k)
+  {
+    EXPECT_EQ(gaps1[ids[k]], row_dot(k, q1) + offsets[k]);
+    if (!keep_p[k])
+      continue;
+    EXPECT_LT(std::abs(row_dot(k, q1) + offsets[k]), 1e-16) << k;
+    EXPECT_LT(std::abs(row_dot(k, v1)), 1e-15) << k;
+  }
+  for (unsigned int e = rows.start[6]; e < rows.start[7]; ++e)
+    EXPECT_EQ(q1[rows.index[e]], q_star[rows.index[e]]);
+
+  // One pass, all projected at once; then with two deferred to project().
+  for (const std::vector<unsigned int>& deferred :
+       {std::vector<unsigned int>{}, std::vector<unsigned int>{4, 9}})
+  {
+    std::vector<double> a2 = a0, q2 = q0, v2 = v0, lambda2(30, 0.), gaps2(30, 0.);
+    std::vector<bool> now(13, true);
+    for (const unsigned int k : deferred)
+      now[k] = false;
+    DisjointFixedConstraints::Prediction p2{q.data(),  v.data(),  vp.data(),
+                                            q2.data(), v2.data(), h};
+    F.accelerate(a2.data(), lambda2, &p2, &now, &gaps2);
+    F.project(q2.data(), v2.data(), h, gaps2, deferred);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      EXPECT_EQ(a2[i], a1[i]) << i;
+      EXPECT_EQ(q2[i], q1[i]) << i;
+      EXPECT_EQ(v2[i], v1[i]) << i;
+    }
+    for (unsigned int i = 0; i < 30; ++i)
+    {
+      EXPECT_EQ(lambda2[i], lambda1[i]) << i;
+      EXPECT_EQ(gaps2[i], gaps1[i]) << i;
+    }
+  }
+}
+
+TEST(DisjointFixedConstraints, RowsThatShareAnUnknownOrACoupledBlockAreNotTaken)
+{
+  // Then G W^-1 G^T is not diagonal (or a column leaves its row): the
+  // Schur-complement path must take them.
+  const unsigned int n = 42;
+  std::vector<double> d(n, 1.);
+  SmallMatrix plain(d, false), coupled(d, true);
+  MassInverse M, C;
+  M.initialize(plain.matrix, true, "M");
+  C.initialize(coupled.matrix, false, "M with a coupled block");
+  ASSERT_FALSE(C.coupled().empty());
+  std::vector<double> offsets;
+  std::vector<unsigned int> ids;
+  CompressedRows rows = disjoint_rows(offsets, ids);
+  DisjointFixedConstraints F;
+  EXPECT_TRUE(F.initialize(rows, offsets, ids, M, M, n));
+  SparseRow shared; // on unknown 0, as dropper 0
+  shared.add(0, 1.);
+  CompressedRows overlapping = rows;
+  overlapping.push_back(shared);
+  offsets.push_back(0.);
+  ids.push_back(99);
+  EXPECT_FALSE(F.initialize(overlapping, offsets, ids, M, M, n));
+  EXPECT_FALSE(F.used());
+  SparseRow on_block; // on the coupled rows n - 2, n - 1
+  on_block.add(n - 1, 1.);
+  CompressedRows into_block = rows;
+  into_block.push_back(on_block);
+  EXPECT_TRUE(F.initialize(into_block, offsets, ids, M, M, n));
+  EXPECT_FALSE(F.initialize(into_block, offsets, ids, M, C, n));
+  EXPECT_FALSE(F.initialize(into_block, offsets, ids, C, M, n));
 }
 
 TEST(HalfExplicit, TimePointsFromTheIntegratorsRowsEqualTheirOwn)

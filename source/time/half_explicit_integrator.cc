@@ -2,6 +2,7 @@
 #include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/multiplier_system.h>
+#include <pantocat/time/unconstrained_prediction.h>
 
 #include <algorithm>
 #include <cmath>
@@ -73,14 +74,6 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
         forces.listed_damping.push_back({i, i, forces.half_damping[b][i]});
   force_sweep.initialize(n, b, forces.stiffness_offsets, forces.stiffness,
                          forces.damping_offsets, forces.half_damping);
-  // The rows whose a changes after the sweep with a constant pattern: the
-  // coupled rows, and the rows of the fixed constraints (their columns
-  // (M + dt/2 D)^-1 G^T live there and on the coupled rows when it is diagonal).
-  for (const auto& entry : forces.listed_damping)
-    constant_refresh_rows.push_back(entry.row);
-  for (const unsigned int i : fixed)
-    for (const unsigned int j : at_n.states()[i].G.index)
-      constant_refresh_rows.push_back(j);
   for (const unsigned int i : fixed)
   {
     fixed_rows.push_back(at_n.states()[i].G);
@@ -103,6 +96,24 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
         fixed_at[next[fixed_rows.index[e]]++] = k;
   }
   near_mark.assign(fixed.size(), false);
+  take_disjoint_fixed_constraints();
+}
+
+void HalfExplicitIntegrator::take_disjoint_fixed_constraints()
+{
+  disjoint.initialize(fixed_rows, fixed_rows.offset, fixed, smoothed_mass_inverse,
+                      mass_inverse, system.n_dofs());
+  project_now.assign(fixed.size(), true);
+  // The rows whose a changes after the sweep with a constant pattern: the
+  // coupled rows, and the rows of the fixed constraints (their columns
+  // (M + dt/2 D)^-1 G^T live there and on the coupled rows when it is
+  // diagonal), unless DisjointFixedConstraints predicts those itself.
+  constant_refresh_rows.clear();
+  for (const auto& entry : forces.listed_damping)
+    constant_refresh_rows.push_back(entry.row);
+  if (!disjoint.used())
+    for (const unsigned int j : fixed_rows.index)
+      constant_refresh_rows.push_back(j);
   std::sort(constant_refresh_rows.begin(), constant_refresh_rows.end());
   constant_refresh_rows.erase(
       std::unique(constant_refresh_rows.begin(), constant_refresh_rows.end()),
@@ -111,23 +122,6 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
 
 namespace
 {
-/**
- * The unconstrained step of (40) at unknown @p i: v*_i = v_prev,i + 2 dt a_i,
- * q*_i = q_i + dt (v_i + v*_i)/2, with @p two_dt = 2 dt and @p half_dt =
- * dt/2. Every place that predicts a row (the force sweeps, the rows predicted
- * again, the step without a fused sweep) calls this: the same operations in
- * the same order, so q*, v* are the same to the bit wherever they are made.
- */
-inline void predict_unconstrained(const int i, const double a, const double two_dt,
-                                  const double half_dt, const double* __restrict q,
-                                  const double* __restrict v, const double* __restrict vp,
-                                  double* __restrict q_new, double* __restrict v_new)
-{
-  const double vn = vp[i] + two_dt * a;
-  v_new[i] = vn;
-  q_new[i] = q[i] + half_dt * (v[i] + vn);
-}
-
 /**
  * out = scale * (f - K q - D/2 (v_prev + v)) in one sweep for a symmetric K
  * of half bandwidth B and a diagonal D (the FDM and lumped-pantograph case):
@@ -406,6 +400,7 @@ void HalfExplicitIntegrator::set_time_step(const double time_step)
   dt = time_step;
   uniform_runs_built = false; // the scaling of (M + dt/2 D)^-1 changes
   factorize();
+  take_disjoint_fixed_constraints();
 }
 
 void HalfExplicitIntegrator::initialize(const DynamicState& initial)
@@ -582,19 +577,35 @@ void HalfExplicitIntegrator::reset_moving_columns()
   }
 }
 
-void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
-                                   std::vector<bool>& keep_fixed,
-                                   std::vector<unsigned int>& moving_in_A) const
+const HalfExplicitIntegrator::ActiveSplit&
+HalfExplicitIntegrator::split_of(const std::vector<unsigned int>& A)
 {
-  keep_fixed.assign(fixed.size(), false);
-  moving_in_A.clear();
+  for (const ActiveSplit& s : split_cache)
+    if (s.valid && s.indices == A)
+      return s;
+  ActiveSplit& s = split_cache[next_split_slot];
+  next_split_slot = 1 - next_split_slot;
+  s.valid = true;
+  s.indices = A;
+  s.keep.assign(fixed.size(), false);
+  s.moving.clear();
   for (const unsigned int i : A)
   {
     if (is_moving[i])
-      moving_in_A.push_back(i);
+      s.moving.push_back(i);
     else
-      keep_fixed[position[i]] = true;
+      s.keep[position[i]] = true;
   }
+  return s;
+}
+
+void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
+                                   std::vector<bool>& keep_fixed,
+                                   std::vector<unsigned int>& moving_in_A)
+{
+  const ActiveSplit& s = split_of(A);
+  keep_fixed = s.keep;
+  moving_in_A = s.moving;
 }
 
 void HalfExplicitIntegrator::MultiplierWorkspace::prepare(const unsigned int n_fixed,
@@ -663,6 +674,11 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
 {
   const auto& sn = at_n.states();
   split(A, keep, moving_active);
+  if (disjoint.used())
+  {
+    add_disjoint_acceleration_multipliers();
+    return;
+  }
   fixed_smoothed.select(keep);
   const unsigned int mF = fixed.size(), p = moving_active.size();
   if (mF + p == 0)
@@ -720,8 +736,98 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   }
 }
 
-void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A)
+void HalfExplicitIntegrator::gather_near_fixed(
+    std::vector<unsigned int> MovingColumns::*near)
 {
+  near_fixed.clear();
+  for (const unsigned int i : moving_active)
+    for (const unsigned int k : columns[position[i]].*near)
+      if (keep[k] && !near_mark[k])
+      {
+        near_mark[k] = true;
+        near_fixed.push_back(k);
+      }
+  for (const unsigned int k : near_fixed)
+    near_mark[k] = false;
+}
+
+void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
+{
+  const auto& sn = at_n.states();
+  disjoint.select_acceleration(keep);
+  const unsigned int p = moving_active.size();
+  if (p > 0)
+  {
+    // The moving constraints' multipliers first, bordered by the fixed ones
+    // on their unknowns only (the others' rows meet Y in zeros); then their
+    // forces go into a, and every fixed constraint's multiplier follows from
+    // its own row of the final a (DisjointFixedConstraints).
+    gather_near_fixed(&MovingColumns::near_Y);
+    const unsigned int nL = near_fixed.size();
+    acceleration_workspace.prepare(nL, p);
+    dealii::Vector<double>& x = acceleration_workspace.x;
+    dealii::Vector<double>& y = acceleration_workspace.y;
+    std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
+    dealii::FullMatrix<double>& D = acceleration_workspace.D;
+    for (unsigned int l = 0; l < nL; ++l)
+      x(l) = -fixed_rows.dot(near_fixed[l], a.begin());
+    for (unsigned int c = 0; c < p; ++c)
+    {
+      const ConstraintState& s = sn[moving_active[c]];
+      y(c) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
+      const dealii::Vector<double>& Y = columns[position[moving_active[c]]].Y;
+      for (unsigned int l = 0; l < nL; ++l)
+        B[c](l) = fixed_rows.dot(near_fixed[l], Y.begin());
+      for (unsigned int r = 0; r < p; ++r)
+        D(r, c) = sn[moving_active[r]].G.dot(Y);
+    }
+    std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
+    for (unsigned int c = 0; c < p; ++c)
+      C[c] = B[c];
+    solve_bordered(
+        [&](const std::vector<dealii::Vector<double>*>& xs)
+        {
+          for (dealii::Vector<double>* v : xs)
+            for (unsigned int l = 0; l < nL; ++l)
+              (*v)(l) *= disjoint.smoothed_inverse(near_fixed[l]);
+        },
+        B, C, D, x, y, acceleration_workspace.rhs, acceleration_workspace.batch, t,
+        "acceleration level");
+    for (unsigned int c = 0; c < p; ++c)
+    {
+      const unsigned int i = moving_active[c];
+      lambda[i] = y(c);
+      smoothed_mass_inverse.add_column(sn[i].G, columns[position[i]].Y, y(c), a);
+    }
+  }
+  const DisjointFixedConstraints::Prediction prediction{
+      q.begin(), v.begin(), previous->begin(), q_new.begin(), v_new.begin(), dt};
+  projected_early = predicted && update_set;
+  if (!projected_early)
+  {
+    disjoint.accelerate(a.begin(), lambda, predicted ? &prediction : nullptr);
+    return;
+  }
+  // (40) of the fixed constraints that no moving one borders in the same
+  // pass: their q*, v* are final once their own rows are predicted.
+  disjoint.select_position(split_of(*update_set).keep);
+  deferred_fixed.clear();
+  for (const unsigned int i : moving)
+    for (const unsigned int k : columns[position[i]].near_M)
+      if (project_now[k])
+      {
+        project_now[k] = false;
+        deferred_fixed.push_back(k);
+      }
+  disjoint.accelerate(a.begin(), lambda, &prediction, &project_now, &gaps);
+  for (const unsigned int k : deferred_fixed)
+    project_now[k] = true;
+}
+
+void HalfExplicitIntegrator::compute_acceleration(const std::vector<unsigned int>& A,
+                                                  const std::vector<unsigned int>* update)
+{
+  update_set = update;
   std::fill(lambda.begin(), lambda.end(), 0.);
   // The compliant forces first: they join f of (39), and the rigid
   // multipliers' g^(II) = 0 sees them.
@@ -879,10 +985,15 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   }
   split(A, keep, moving_active);
   const unsigned int mF = fixed.size(), p = moving_active.size();
-  if (mF + p > 0)
-    solve_position_and_velocity_level(sn, sh, s1);
-  for (unsigned int k = 0; k < fixed.size(); ++k)
-    gaps[fixed[k]] = fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k];
+  if (disjoint.used())
+    solve_disjoint_position_and_velocity_level(sn, sh, s1);
+  else
+  {
+    if (mF + p > 0)
+      solve_position_and_velocity_level(sn, sh, s1);
+    for (unsigned int k = 0; k < fixed.size(); ++k)
+      gaps[fixed[k]] = fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k];
+  }
   for (const auto* list : {&moving, &compliant})
     for (const unsigned int i : *list)
       gaps[i] = s1[i].position_residual(q_new);
@@ -905,45 +1016,13 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       x(k) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
       x(mF + k) = -fixed_rows.dot(k, v_new.begin());
     }
-  std::vector<dealii::Vector<double>>& B = position_workspace.B;
-  std::vector<dealii::Vector<double>>& C = position_workspace.C;
-  dealii::FullMatrix<double>& D = position_workspace.D;
-  for (unsigned int c = 0; c < p; ++c)
-  {
-    const ConstraintState& sc = s1[moving_active[c]];
-    y(c) = -(sc.G.dot(q_new) + sc.z);
-    y(p + c) = -(sc.G_t.dot(q_new) + sc.G.dot(v_new) + sc.z_t);
-    const MovingColumns& X = columns[position[moving_active[c]]];
-    // Fixed rows against the moving unknowns (their G_t = 0), and the moving
-    // rows against the fixed unknowns through U, V (M symmetric: G_c M^-1 G_l^T = G_l
-    // U_c). The fixed rows not near the columns meet them in zeros.
-    for (const unsigned int k : X.near_M)
-      if (keep[k])
-      {
-        const auto G = [&](const dealii::Vector<double>& column)
-        { return fixed_rows.dot(k, column.begin()); };
-        const double GP = G(X.P), GQ = G(X.Q), GR = G(X.R);
-        B[c](k) = h * h * GP + h * GQ;
-        B[c](mF + k) = 2. * h * GP;
-        B[p + c](k) = h * GR;
-        const double GU = G(X.U), GV = G(X.V);
-        C[c](k) = h * h * GU;
-        C[c](mF + k) = h * GU;
-        C[p + c](k) = h * h * GV + 2. * h * GU;
-        C[p + c](mF + k) = h * GV;
-      }
-    // Moving rows against the moving unknowns, as (40) reads.
-    for (unsigned int r = 0; r < p; ++r)
-    {
-      const ConstraintState& s = s1[moving_active[r]];
-      const double GP = s.G.dot(X.P), GQ = s.G.dot(X.Q), GR = s.G.dot(X.R);
-      const double GtP = s.G_t.dot(X.P), GtQ = s.G_t.dot(X.Q), GtR = s.G_t.dot(X.R);
-      D(r, c) = h * h * GP + h * GQ;
-      D(r, p + c) = h * GR;
-      D(p + r, c) = h * h * GtP + h * GtQ + 2. * h * GP;
-      D(p + r, p + c) = h * GtR;
-    }
-  }
+  fill_position_border(s1, mF,
+                       [&](const MovingColumns& X, const auto& visit)
+                       {
+                         for (const unsigned int k : X.near_M)
+                           if (keep[k])
+                             visit(k, k);
+                       });
   // The fixed block [h^2 S, h S; 2h S, 0] (S = G_F M^-1 G_F^T) by two solves with S:
   // eta = S^-1 r_v / (2h), mu = S^-1 r_g / h - h eta. The halves r_g, r_v of
   // all right-hand sides go through S side by side (four at a time).
@@ -983,7 +1062,8 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       }
     }
   };
-  solve_bordered(solve_all, B, C, D, x, y, position_workspace.rhs,
+  solve_bordered(solve_all, position_workspace.B, position_workspace.C,
+                 position_workspace.D, x, y, position_workspace.rhs,
                  position_workspace.batch, t + dt, "position/velocity level");
 
   // q += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v += M^-1 2h G^T eta:
@@ -998,6 +1078,15 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       factors_v[k] = 2. * h * eta;
     }
   fixed_mass.add_columns(factors, q_new, factors_v, v_new);
+  add_moving_position_corrections(sn, sh);
+}
+
+void HalfExplicitIntegrator::add_moving_position_corrections(
+    const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh)
+{
+  const unsigned int p = moving_active.size();
+  const dealii::Vector<double>& y = position_workspace.y;
+  const double h = dt;
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int j = moving_active[c];
@@ -1008,6 +1097,111 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
     mass_inverse.add_column(sh[j].G, X.R, h * mu, q_new);
     mass_inverse.add_column(sn[j].G, X.P, 2. * h * eta, v_new);
   }
+}
+
+template <typename NearFixed>
+void HalfExplicitIntegrator::fill_position_border(const std::vector<ConstraintState>& s1,
+                                                  const unsigned int half,
+                                                  const NearFixed& near_fixed_of)
+{
+  const unsigned int p = moving_active.size();
+  const double h = dt;
+  dealii::Vector<double>& y = position_workspace.y;
+  std::vector<dealii::Vector<double>>& B = position_workspace.B;
+  std::vector<dealii::Vector<double>>& C = position_workspace.C;
+  dealii::FullMatrix<double>& D = position_workspace.D;
+  for (unsigned int c = 0; c < p; ++c)
+  {
+    const ConstraintState& sc = s1[moving_active[c]];
+    y(c) = -(sc.G.dot(q_new) + sc.z);
+    y(p + c) = -(sc.G_t.dot(q_new) + sc.G.dot(v_new) + sc.z_t);
+    const MovingColumns& X = columns[position[moving_active[c]]];
+    // Fixed rows against the moving unknowns (their G_t = 0), and the moving
+    // rows against the fixed unknowns through U, V (M symmetric: G_c M^-1 G_l^T = G_l
+    // U_c). The fixed rows not near the columns meet them in zeros. Fixed
+    // constraint k has the unknowns (slot, half + slot).
+    near_fixed_of(X,
+                  [&](const unsigned int slot, const unsigned int k)
+                  {
+                    const auto G = [&](const dealii::Vector<double>& column)
+                    { return fixed_rows.dot(k, column.begin()); };
+                    const double GP = G(X.P), GQ = G(X.Q), GR = G(X.R);
+                    B[c](slot) = h * h * GP + h * GQ;
+                    B[c](half + slot) = 2. * h * GP;
+                    B[p + c](slot) = h * GR;
+                    const double GU = G(X.U), GV = G(X.V);
+                    C[c](slot) = h * h * GU;
+                    C[c](half + slot) = h * GU;
+                    C[p + c](slot) = h * h * GV + 2. * h * GU;
+                    C[p + c](half + slot) = h * GV;
+                  });
+    // Moving rows against the moving unknowns, as (40) reads.
+    for (unsigned int r = 0; r < p; ++r)
+    {
+      const ConstraintState& s = s1[moving_active[r]];
+      const double GP = s.G.dot(X.P), GQ = s.G.dot(X.Q), GR = s.G.dot(X.R);
+      const double GtP = s.G_t.dot(X.P), GtQ = s.G_t.dot(X.Q), GtR = s.G_t.dot(X.R);
+      D(r, c) = h * h * GP + h * GQ;
+      D(r, p + c) = h * GR;
+      D(p + r, c) = h * h * GtP + h * GtQ + 2. * h * GP;
+      D(p + r, p + c) = h * GtR;
+    }
+  }
+}
+
+void HalfExplicitIntegrator::solve_disjoint_position_and_velocity_level(
+    const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
+    const std::vector<ConstraintState>& s1)
+{
+  disjoint.select_position(keep);
+  const unsigned int p = moving_active.size();
+  const double h = dt;
+  const bool projected = projected_early;
+  projected_early = false;
+  if (p > 0)
+  {
+    // The moving constraints' eta, mu first, bordered by the fixed ones on
+    // their unknowns only; their corrections go into q*, v*, and every fixed
+    // constraint's eta, mu follow from its own row (DisjointFixedConstraints).
+    gather_near_fixed(&MovingColumns::near_M);
+    const unsigned int nL = near_fixed.size();
+    position_workspace.prepare(2 * nL, 2 * p);
+    dealii::Vector<double>& x = position_workspace.x;
+    for (unsigned int l = 0; l < nL; ++l)
+    {
+      const unsigned int k = near_fixed[l];
+      x(l) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
+      x(nL + l) = -fixed_rows.dot(k, v_new.begin());
+    }
+    fill_position_border(s1, nL,
+                         [&](const MovingColumns&, const auto& visit)
+                         {
+                           for (unsigned int l = 0; l < nL; ++l)
+                             visit(l, near_fixed[l]);
+                         });
+    // The fixed block [h^2 S, h S; 2h S, 0] of one constraint: eta = S^-1 r_v /
+    // (2h), mu = S^-1 r_g / h - h eta.
+    solve_bordered(
+        [&](const std::vector<dealii::Vector<double>*>& xs)
+        {
+          for (dealii::Vector<double>* r : xs)
+            for (unsigned int l = 0; l < nL; ++l)
+            {
+              const double inverse = disjoint.mass_inverse(near_fixed[l]);
+              const double eta = (*r)(nL + l) * inverse / (2. * h);
+              (*r)(nL + l) = (*r)(l)*inverse / h - h * eta;
+              (*r)(l) = eta;
+            }
+        },
+        position_workspace.B, position_workspace.C, position_workspace.D, x,
+        position_workspace.y, position_workspace.rhs, position_workspace.batch, t + dt,
+        "position/velocity level");
+    add_moving_position_corrections(sn, sh);
+  }
+  if (projected)
+    disjoint.project(q_new.begin(), v_new.begin(), h, gaps, deferred_fixed);
+  else
+    disjoint.project(q_new.begin(), v_new.begin(), h, gaps);
 }
 
 void HalfExplicitIntegrator::prepare_step()
@@ -1034,8 +1228,8 @@ void HalfExplicitIntegrator::advance()
   active_set.start(active_now);
   for (;;)
   {
-    compute_acceleration(
-        active_set.force_indices()); // g^(II): touching ones carry no force
+    // g^(II): touching ones carry no force
+    compute_acceleration(active_set.force_indices(), &active_set.active_indices());
     compute_update(active_set.active_indices());
     if (active_set.accept(gaps, lambda, t + dt, step_number + 1))
       break;

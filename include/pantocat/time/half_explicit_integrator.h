@@ -3,6 +3,7 @@
 #include <pantocat/lac/diagonal_force_sweep.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
+#include <pantocat/time/disjoint_fixed_constraints.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
@@ -133,7 +134,10 @@ private:
    */
   void add_acceleration_multipliers(const std::vector<unsigned int>& active);
   /// Step 1: a_n and lambda_n for the active set.
-  void compute_acceleration(const std::vector<unsigned int>& active);
+  /// With @p update (the set of step 2), DisjointFixedConstraints may do
+  /// step 2 of the constraints that no moving one borders in the same pass.
+  void compute_acceleration(const std::vector<unsigned int>& active,
+                            const std::vector<unsigned int>* update = nullptr);
   /// Step 2: q_{n+1}, v_{n+1} for the active set; fills the gaps at t_{n+1}.
   void compute_update(const std::vector<unsigned int>& active);
   /// eta, mu of (40) for the constraints split() found, and their corrections of q*, v*.
@@ -142,6 +146,34 @@ private:
                                          const std::vector<ConstraintState>& at_next);
   void compute_moving_columns();
   struct MovingColumns;
+  /**
+   * The FDM's path (DisjointFixedConstraints): the moving constraints'
+   * multipliers bordered by the fixed ones near them (near_fixed), then
+   * one pass over the fixed constraints per level.
+   */
+  void add_disjoint_acceleration_multipliers();
+  void
+  solve_disjoint_position_and_velocity_level(const std::vector<ConstraintState>& at_n,
+                                             const std::vector<ConstraintState>& at_half,
+                                             const std::vector<ConstraintState>& at_next);
+  /// near_fixed <- the kept fixed constraints in the moving columns' lists @p near.
+  void gather_near_fixed(std::vector<unsigned int> MovingColumns::*near);
+  /**
+   * y, the border B, C and the moving block D of (40)'s multiplier system
+   * from the moving columns; @p near_fixed_of(X, visit) calls visit(slot, k)
+   * for the fixed constraints k near X, whose unknowns are slot and
+   * @p half + slot.
+   */
+  template <typename NearFixed>
+  void fill_position_border(const std::vector<ConstraintState>& at_next,
+                            unsigned int half, const NearFixed& near_fixed_of);
+  /// q* += M^-1 (h^2 G^T eta + h G_t^T eta + h G^T mu), v* += 2h M^-1 G^T eta
+  /// of the moving constraints (their eta, mu in position_workspace.y).
+  void add_moving_position_corrections(const std::vector<ConstraintState>& at_n,
+                                       const std::vector<ConstraintState>& at_half);
+  /// DisjointFixedConstraints if the fixed constraints qualify, and the rows
+  /// refresh_prediction() predicts again.
+  void take_disjoint_fixed_constraints();
   /// The columns of one moving constraint when M and M + dt/2 D are factorised.
   /// With @p free_rhs, also free_rhs <- W^-1 free_rhs in W's sweep (beside Y).
   void compute_factorised_columns(const SparseDirectSolver& W,
@@ -153,7 +185,18 @@ private:
   void reset_moving_columns();
   /// keep[k] for the fixed constraints among @p active, and the moving ones among them.
   void split(const std::vector<unsigned int>& active, std::vector<bool>& keep,
-             std::vector<unsigned int>& moving_active) const;
+             std::vector<unsigned int>& moving_active);
+  /// The same, kept for the last two sets asked for (the force and the active
+  /// indices of a step, which seldom change): O(m) only when they do.
+  struct ActiveSplit
+  {
+    bool valid = false;
+    std::vector<unsigned int> indices, moving;
+    std::vector<bool> keep;
+  };
+  const ActiveSplit& split_of(const std::vector<unsigned int>& active);
+  ActiveSplit split_cache[2];
+  int next_split_slot = 0;
   void factorize();
   /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2 + G_c^T lambda_c), with
   /// the compliant forces lambda_c, in one pass over the
@@ -226,11 +269,20 @@ private:
   ActiveSetIteration active_set;
   ImpactProjection impacts; ///< after a step in which a constraint closed
   std::vector<bool> active_now;
-  std::vector<unsigned int> fixed;     ///< rigid constraints with constant rows
-  std::vector<unsigned int> moving;    ///< rigid constraints whose rows move
-  std::vector<int> position;           ///< of constraint i in fixed or moving
-  FixedConstraintSchur fixed_smoothed; ///< G_F (M + dt/2 D)^-1 G_F^T
-  FixedConstraintSchur fixed_mass;     ///< G_F M^-1 G_F^T
+  std::vector<unsigned int> fixed;      ///< rigid constraints with constant rows
+  std::vector<unsigned int> moving;     ///< rigid constraints whose rows move
+  std::vector<int> position;            ///< of constraint i in fixed or moving
+  FixedConstraintSchur fixed_smoothed;  ///< G_F (M + dt/2 D)^-1 G_F^T
+  FixedConstraintSchur fixed_mass;      ///< G_F M^-1 G_F^T
+  DisjointFixedConstraints disjoint;    ///< the same, one by one, when they qualify
+  std::vector<unsigned int> near_fixed; ///< workspace of gather_near_fixed()
+  /// compute_update()'s set, during compute_acceleration() in advance().
+  const std::vector<unsigned int>* update_set = nullptr;
+  /// Step 2 of the fixed constraints was done in step 1's pass, but for
+  /// deferred_fixed (those near the moving constraints' columns).
+  bool projected_early = false;
+  std::vector<unsigned int> deferred_fixed;
+  std::vector<bool> project_now; ///< true but for deferred_fixed
   /// Columns of a moving constraint, every step: Y = (M+dt/2 D)^-1 G(t_n)^T,
   /// P = M^-1 G(t_n)^T, Q = M^-1 G_t(t_{n+1/2})^T, R = M^-1 G(t_{n+1/2})^T,
   /// and its rows at t_{n+1} against M^-1: U = M^-1 G(t_{n+1})^T, V = M^-1
