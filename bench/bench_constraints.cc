@@ -3,7 +3,8 @@
 // benchmark) or FEM with N+1 = 500 (Hermite beam, h = 0.2 m), the benchmark's wires and
 // pantograph at 32 m/s, dt = 5e-5 s, m bilateral droppers evenly spaced (0.95 m long), m
 // = 0 (Droppers = absent), 2, 10, 40, 100, 200. Each integrator's time per step (no
-// observers, start-up not timed, the fastest of 5 batches), and its ratio to
+// observers, start-up not timed; the cases of a column run their batches in
+// turns, the fastest of 10 batches counts), and its ratio to
 // the same grid without droppers: the target is 1.5 for m up to 200.
 // Columns: FDM and FEM with the half-explicit method, BDF-2 and
 // generalized-alpha; the last line is one banded solve with the FEM BDF-2
@@ -26,6 +27,7 @@
 #include <cstdlib>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -34,7 +36,7 @@ using Clock = std::chrono::steady_clock;
 
 namespace
 {
-constexpr unsigned int batches = 5;
+constexpr unsigned int batches = 10;
 
 /// The case: prm/benchmark-32.prm on a 100 m span with m droppers.
 ProgramParameters span_with_droppers(const unsigned int m, const std::string& method,
@@ -102,23 +104,44 @@ double banded_solve_time(const ProgramParameters& p)
   return best;
 }
 
-/// Microseconds per step of the integrator alone (fastest of the batches).
-double step_time(const ProgramParameters& p, const unsigned int steps)
+/**
+ * Microseconds per step of the integrator alone for each case of @p cases:
+ * all integrators are made first, then their batches run in turns (case 1,
+ * case 2, ..., case 1, ...), and each case's fastest batch counts. A machine
+ * whose speed drifts then slows every case of a turn alike, and the ratios
+ * to m = 0 are measured side by side.
+ */
+std::vector<double> step_times(const std::vector<ProgramParameters>& cases,
+                               const unsigned int steps)
 {
-  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
-  auto integrator = create_time_integrator(simulation.system(), p.time_integration);
-  integrator->initialize(simulation.initial_state());
-  integrator->advance(); // start-up not timed
-  double best = 1e300;
+  struct Running
+  {
+    std::unique_ptr<CaseRunner> simulation;
+    std::unique_ptr<TimeIntegrator> integrator;
+  };
+  std::vector<Running> running;
+  for (const ProgramParameters& p : cases)
+  {
+    Running r;
+    r.simulation = std::make_unique<CaseRunner>(
+        p.make_case(), Measurements{p.output.probe_positions, p.output.energy});
+    r.integrator = create_time_integrator(r.simulation->system(), p.time_integration);
+    r.integrator->initialize(r.simulation->initial_state());
+    r.integrator->advance(); // start-up not timed
+    running.push_back(std::move(r));
+  }
+  std::vector<double> best(cases.size(), 1e300);
   const unsigned int per_batch = std::max(1u, steps / batches);
   for (unsigned int b = 0; b < batches; ++b)
-  {
-    const auto t0 = Clock::now();
-    for (unsigned int k = 0; k < per_batch; ++k)
-      integrator->advance();
-    best = std::min(best, 1e6 * std::chrono::duration<double>(Clock::now() - t0).count() /
-                              per_batch);
-  }
+    for (std::size_t c = 0; c < running.size(); ++c)
+    {
+      const auto t0 = Clock::now();
+      for (unsigned int k = 0; k < per_batch; ++k)
+        running[c].integrator->advance();
+      best[c] = std::min(best[c],
+                         1e6 * std::chrono::duration<double>(Clock::now() - t0).count() /
+                             per_batch);
+    }
   return best;
 }
 } // namespace
@@ -154,31 +177,37 @@ int main(int argc, char** argv)
                                  [&](const Column& c)
                                  { return c.method + "+" + c.integrator != only; }),
                   columns.end());
-  std::vector<double> without;
   std::cout << "| m |";
   for (const Column& c : columns)
     std::cout << ' ' << c.method << " + " << c.integrator << " [us/step] | ratio |";
   std::cout << "\n|---|";
   for (std::size_t k = 0; k < columns.size(); ++k)
     std::cout << "---|---|";
-  std::cout << "\n| 0 |";
+  std::cout << '\n';
+  // Each column's cases (m = 0 first) in turns; the table row by row.
+  std::vector<unsigned int> ms = counts;
+  if (baseline)
+    ms.insert(ms.begin(), 0);
+  std::vector<std::vector<double>> times; // [column][case]
   for (const Column& c : columns)
   {
-    without.push_back(
-        baseline ? step_time(span_with_droppers(0, c.method, c.integrator), c.steps)
-                 : std::nan(""));
-    std::cout << ' ' << std::setprecision(3) << without.back() << " | 1 |" << std::flush;
+    std::vector<ProgramParameters> cases;
+    for (const unsigned int m : ms)
+      cases.push_back(span_with_droppers(m, c.method, c.integrator));
+    times.push_back(step_times(cases, c.steps));
   }
-  std::cout << '\n';
-  for (const unsigned int m : counts)
+  for (std::size_t r = 0; r < ms.size(); ++r)
   {
-    std::cout << "| " << m << " |";
+    std::cout << "| " << ms[r] << " |";
     for (std::size_t k = 0; k < columns.size(); ++k)
     {
-      const Column& c = columns[k];
-      const double t = step_time(span_with_droppers(m, c.method, c.integrator), c.steps);
-      std::cout << ' ' << std::setprecision(3) << t << " | " << t / without[k] << " |"
-                << std::flush;
+      const double t = times[k][r];
+      std::cout << ' ' << std::setprecision(3) << t << " | ";
+      if (baseline)
+        std::cout << t / times[k][0];
+      else
+        std::cout << '-';
+      std::cout << " |";
     }
     std::cout << '\n';
   }

@@ -1043,8 +1043,8 @@ TEST(DisjointFixedConstraints, EachConstraintHoldsAndTheBatchedPassIsTheSameToTh
   std::vector<bool> keep_a(13, true), keep_p(13, true);
   keep_a[5] = false;
   keep_p[6] = false;
-  F.select_acceleration(keep_a);
-  F.select_position(keep_p);
+  F.select_acceleration(keep_a, 1);
+  F.select_position(keep_p, 1);
 
   const double h = 1e-4;
   std::vector<double> q(n), v(n), vp(n), a0(n);

@@ -22,16 +22,35 @@ ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
 
 void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
 {
-  at_start = active_at_start;
-  current.assign(at_start.size(), Status::inactive);
-  for (unsigned int i = 0; i < current.size(); ++i)
+  const std::size_t m = active_at_start.size();
+  at_start.resize(m);
+  current.resize(m);
+  for (std::size_t i = 0; i < m; ++i)
+  {
+    at_start[i] = active_at_start[i];
     // Bilateral constraints are always active (engaged if compliant).
-    if (at_start[i] || !unilateral[i])
-      current[i] = compliant[i] ? Status::engaged : Status::active;
-  released.assign(current.size(), false);
+    current[i] = at_start[i] || !unilateral[i]
+                     ? (compliant[i] ? Status::engaged : Status::active)
+                     : Status::inactive;
+  }
+  released.assign(m, false);
   visited.resize(1); // keeps the capacity: no allocation per step
   visited[0] = current;
-  update_indices();
+  // Most steps start from the set the step before started from.
+  if (indexed.size() != m ||
+      !std::equal(current.begin(), current.end(), indexed.begin(),
+                  [](const Status s, const char c) { return static_cast<char>(s) == c; }))
+    update_indices();
+}
+
+const std::vector<bool>& ActiveSetIteration::active() const
+{
+  if (!holds_flags_current)
+  {
+    holds_flags.assign(holds.begin(), holds.end());
+    holds_flags_current = true;
+  }
+  return holds_flags;
 }
 
 void ActiveSetIteration::update_indices()
@@ -39,9 +58,12 @@ void ActiveSetIteration::update_indices()
   indices.clear();
   force.clear();
   engaged.clear();
-  holds.assign(current.size(), false);
+  holds.resize(current.size());
+  indexed.resize(current.size());
+  holds_flags_current = false;
   for (unsigned int i = 0; i < current.size(); ++i)
   {
+    indexed[i] = static_cast<char>(current[i]);
     holds[i] = current[i] != Status::inactive;
     if (current[i] == Status::engaged)
       engaged.push_back(i);

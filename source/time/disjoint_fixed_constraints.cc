@@ -78,55 +78,59 @@ bool DisjointFixedConstraints::initialize(const CompressedRows& rows,
 
 namespace
 {
-void select(const std::vector<bool>& keep, const std::vector<double>& schur,
-            std::vector<bool>& selected, bool& valid, std::vector<double>& inverse)
+void select(const std::vector<bool>& keep, const unsigned long version,
+            const std::vector<double>& schur, unsigned long& selected,
+            std::vector<double>& inverse)
 {
-  if (valid && keep == selected)
+  if (version == selected && version != 0)
     return;
-  selected = keep;
-  valid = true;
+  selected = version;
   for (std::size_t k = 0; k < schur.size(); ++k)
     inverse[k] = keep[k] ? 1. / (schur[k] + 0.) : 0.; // as FixedConstraintSchur::select
 }
 } // namespace
 
-void DisjointFixedConstraints::select_acceleration(const std::vector<bool>& keep)
+void DisjointFixedConstraints::select_acceleration(const std::vector<bool>& keep,
+                                                   const unsigned long version)
 {
-  select(keep, schur_w, selected_w, selected_w_valid, inverse_w);
+  select(keep, version, schur_w, selected_w, inverse_w);
 }
 
-void DisjointFixedConstraints::select_position(const std::vector<bool>& keep)
+void DisjointFixedConstraints::select_position(const std::vector<bool>& keep,
+                                               const unsigned long version)
 {
-  select(keep, schur_m, selected_m, selected_m_valid, inverse_m);
+  select(keep, version, schur_m, selected_m, inverse_m);
 }
 
 void DisjointFixedConstraints::accelerate_and_project(
-    const unsigned int first, const unsigned int count, double* __restrict a,
+    const unsigned int* ks, const unsigned int count, double* __restrict a,
     std::vector<double>& lambda, const Prediction& p, std::vector<double>& gaps) const
 {
-  // Constraints [first, first + count) with two unknowns each, their values
+  // Constraints ks[0 .. count) with two unknowns each, their values
   // in registers and each phase over all of them: each value is loaded and
   // stored once, and the constraints' chains of dependent operations (two
   // divisions among them) overlap instead of following one another. The
   // operations and their order per constraint are those of accelerate() and
   // project_one(): the same bits.
   constexpr unsigned int B = batch;
-  const Entry* __restrict x = entries.data() + start[first];
+  const Entry* x[B];
+  for (unsigned int b = 0; b < count; ++b)
+    x[b] = entries.data() + start[ks[b]];
   unsigned int j0[B], j1[B];
   double a0[B], a1[B], q0[B], q1[B], v0[B], v1[B], l[B];
   for (unsigned int b = 0; b < count; ++b)
   {
-    j0[b] = x[2 * b].unknown;
-    j1[b] = x[2 * b + 1].unknown;
+    j0[b] = x[b][0].unknown;
+    j1[b] = x[b][1].unknown;
     a0[b] = a[j0[b]];
     a1[b] = a[j1[b]];
   }
   // (39)
   for (unsigned int b = 0; b < count; ++b)
   {
-    const double inverse = inverse_w[first + b];
-    const Entry& e0 = x[2 * b];
-    const Entry& e1 = x[2 * b + 1];
+    const double inverse = inverse_w[ks[b]];
+    const Entry& e0 = x[b][0];
+    const Entry& e1 = x[b][1];
     const double s = 0. + e0.g * a0[b] + e1.g * a1[b];
     l[b] = inverse != 0. ? -s * inverse : 0.;
     a0[b] = inverse != 0. ? a0[b] + l[b] * e0.w_col : a0[b];
@@ -143,12 +147,12 @@ void DisjointFixedConstraints::accelerate_and_project(
   // (40)
   for (unsigned int b = 0; b < count; ++b)
   {
-    const double inverse = inverse_m[first + b];
-    const Entry& e0 = x[2 * b];
-    const Entry& e1 = x[2 * b + 1];
+    const double inverse = inverse_m[ks[b]];
+    const Entry& e0 = x[b][0];
+    const Entry& e1 = x[b][1];
     const double sq = 0. + e0.g * q0[b] + e1.g * q1[b];
     const double sv = 0. + e0.g * v0[b] + e1.g * v1[b];
-    const double r_g = -(sq + offset[first + b]), r_v = -sv;
+    const double r_g = -(sq + offset[ks[b]]), r_v = -sv;
     const double eta = r_v * inverse / (2. * h);
     const double mu = r_g * inverse / h - h * eta;
     const double fq = h * h * eta + h * mu, fv = 2. * h * eta;
@@ -162,7 +166,7 @@ void DisjointFixedConstraints::accelerate_and_project(
   }
   for (unsigned int b = 0; b < count; ++b)
   {
-    const unsigned int k = first + b;
+    const unsigned int k = ks[b];
     if (inverse_w[k] != 0.)
     {
       lambda[id[k]] = l[b];
@@ -173,35 +177,49 @@ void DisjointFixedConstraints::accelerate_and_project(
     p.q_new[j1[b]] = q1[b];
     p.v_new[j0[b]] = v0[b];
     p.v_new[j1[b]] = v1[b];
-    gaps[id[k]] = 0. + x[2 * b].g * q0[b] + x[2 * b + 1].g * q1[b] + offset[k];
+    gaps[id[k]] = 0. + x[b][0].g * q0[b] + x[b][1].g * q1[b] + offset[k];
   }
 }
 
-void DisjointFixedConstraints::accelerate(double* __restrict a,
+void DisjointFixedConstraints::accelerate(double* a, std::vector<double>& lambda,
+                                          const Prediction* predict,
+                                          const std::vector<bool>* project_now,
+                                          std::vector<double>* gaps) const
+{
+  accelerate(nullptr, id.size(), a, lambda, predict, project_now, gaps);
+}
+
+void DisjointFixedConstraints::accelerate(const unsigned int* which,
+                                          const unsigned int count, double* __restrict a,
                                           std::vector<double>& lambda,
                                           const Prediction* predict,
                                           const std::vector<bool>* project_now,
                                           std::vector<double>* gaps) const
 {
   const Entry* __restrict x = entries.data();
-  const unsigned int n = id.size();
-  for (unsigned int k = 0; k < n; ++k)
+  unsigned int ks[batch];
+  for (unsigned int i = 0; i < count; ++i)
   {
-    const unsigned int first = start[k], last = start[k + 1];
+    const unsigned int k = which ? which[i] : i;
     if (predict && project_now)
     {
       // Droppers (two unknowns each) that no moving constraint borders, in batches.
-      unsigned int count = 0;
-      while (count < batch && k + count < n && (*project_now)[k + count] &&
-             start[k + count + 1] - start[k + count] == 2)
-        ++count;
-      if (count > 0)
+      unsigned int n_batch = 0;
+      for (unsigned int next = i; n_batch < batch && next < count; ++next)
       {
-        accelerate_and_project(k, count, a, lambda, *predict, *gaps);
-        k += count - 1;
+        const unsigned int l = which ? which[next] : next;
+        if (!(*project_now)[l] || start[l + 1] - start[l] != 2)
+          break;
+        ks[n_batch++] = l;
+      }
+      if (n_batch > 0)
+      {
+        accelerate_and_project(ks, n_batch, a, lambda, *predict, *gaps);
+        i += n_batch - 1;
         continue;
       }
     }
+    const unsigned int first = start[k], last = start[k + 1];
     if (const double inverse = inverse_w[k]; inverse != 0.)
     {
       double s = 0.;

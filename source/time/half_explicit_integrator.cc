@@ -218,7 +218,9 @@ void uniform_run_forces(const UniformForceRun& run, const ForceException* except
         run_acceleration<B, damped, symmetric>(own, x.row, q, vp, v);
     out[x.row] = acceleration;
     if constexpr (predict)
-      predict_unconstrained(x.row, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
+      if (x.predict)
+        predict_unconstrained(x.row, acceleration, two_dt, half_dt, q, v, vp, q_new,
+                              v_new);
   }
 }
 
@@ -586,6 +588,7 @@ HalfExplicitIntegrator::split_of(const std::vector<unsigned int>& A)
   ActiveSplit& s = split_cache[next_split_slot];
   next_split_slot = 1 - next_split_slot;
   s.valid = true;
+  s.version = ++split_versions;
   s.indices = A;
   s.keep.assign(fixed.size(), false);
   s.moving.clear();
@@ -606,6 +609,7 @@ void HalfExplicitIntegrator::split(const std::vector<unsigned int>& A,
   const ActiveSplit& s = split_of(A);
   keep_fixed = s.keep;
   moving_in_A = s.moving;
+  keep_version = s.version;
 }
 
 void HalfExplicitIntegrator::MultiplierWorkspace::prepare(const unsigned int n_fixed,
@@ -754,7 +758,7 @@ void HalfExplicitIntegrator::gather_near_fixed(
 void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
 {
   const auto& sn = at_n.states();
-  disjoint.select_acceleration(keep);
+  disjoint.select_acceleration(keep, keep_version);
   const unsigned int p = moving_active.size();
   if (p > 0)
   {
@@ -810,7 +814,8 @@ void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
   }
   // (40) of the fixed constraints that no moving one borders in the same
   // pass: their q*, v* are final once their own rows are predicted.
-  disjoint.select_position(split_of(*update_set).keep);
+  const ActiveSplit& update_split = split_of(*update_set);
+  disjoint.select_position(update_split.keep, update_split.version);
   deferred_fixed.clear();
   for (const unsigned int i : moving)
     for (const unsigned int k : columns[position[i]].near_M)
@@ -942,6 +947,15 @@ void HalfExplicitIntegrator::build_uniform_runs(const double* scale)
   {
     uniform_runs.clear();
     force_exceptions.clear();
+  }
+  // DisjointFixedConstraints predicts its rows again from their final a.
+  if (disjoint.used())
+  {
+    std::vector<bool> predicted_again(n, false);
+    for (const unsigned int j : fixed_rows.index)
+      predicted_again[j] = true;
+    for (ForceException& x : force_exceptions)
+      x.predict = !predicted_again[x.row];
   }
 }
 
@@ -1153,7 +1167,7 @@ void HalfExplicitIntegrator::solve_disjoint_position_and_velocity_level(
     const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
     const std::vector<ConstraintState>& s1)
 {
-  disjoint.select_position(keep);
+  disjoint.select_position(keep, keep_version);
   const unsigned int p = moving_active.size();
   const double h = dt;
   const bool projected = projected_early;

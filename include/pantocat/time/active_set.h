@@ -93,7 +93,7 @@ public:
 
   /// Constraints that hold at t_{n+1} (active or touching) and the engaged
   /// compliant ones: the flags of DynamicState::active.
-  const std::vector<bool>& active() const { return holds; }
+  const std::vector<bool>& active() const;
   /// The engaged compliant constraints: forces by the linear law -k g - c dg/dt.
   const std::vector<unsigned int>& engaged_indices() const { return engaged; }
   /// Their indices: the constraints of g^(0) and g^(I).
@@ -129,7 +129,14 @@ private:
   unsigned int max_iterations;
   ClosingConstraint closing;
   bool allow_touching;
-  std::vector<bool> at_start, holds, released;
+  /// One byte per constraint (the loops per step read bytes, not bits).
+  std::vector<char> at_start, holds, released;
+  /// holds as the flags of active(), made again only after holds changed.
+  mutable std::vector<bool> holds_flags;
+  mutable bool holds_flags_current = false;
+  /// The set that indices, force, engaged and holds were made for:
+  /// update_indices() is skipped when a step starts from the same set.
+  std::vector<char> indexed;
   /// Each constraint's kind, read once (the loops per step touch no constraint object).
   std::vector<char> unilateral, compliant;
   std::vector<Status> current;

@@ -45,9 +45,13 @@ public:
   /// True after a successful initialize().
   bool used() const { return in_use; }
 
-  /// The constraints k with @p keep[k] carry multipliers in (39), respectively (40).
-  void select_acceleration(const std::vector<bool>& keep);
-  void select_position(const std::vector<bool>& keep);
+  /**
+   * The constraints k with @p keep[k] carry multipliers in (39), respectively
+   * (40); @p version names the selection (the same version, the same keep:
+   * nothing to do).
+   */
+  void select_acceleration(const std::vector<bool>& keep, unsigned long version);
+  void select_position(const std::vector<bool>& keep, unsigned long version);
   /// 1/(G_k W^-1 G_k^T) if k is selected for (39), else 0.
   double smoothed_inverse(const unsigned int k) const { return inverse_w[k]; }
   /// 1/(G_k M^-1 G_k^T) if k is selected for (40), else 0.
@@ -79,12 +83,17 @@ public:
   /// The same for the constraints @p which only.
   void project(double* q, double* v, double dt, std::vector<double>& gaps,
                const std::vector<unsigned int>& which) const;
+  /// accelerate() for the @p count constraints @p which only (in that order).
+  void accelerate(const unsigned int* which, unsigned int count, double* a,
+                  std::vector<double>& lambda, const Prediction* predict,
+                  const std::vector<bool>* project_now = nullptr,
+                  std::vector<double>* gaps = nullptr) const;
 
 private:
-  /// accelerate() and project() of the @p count <= batch constraints from
-  /// @p first on, each with two unknowns, phase by phase.
+  /// accelerate() and project() of the @p count <= batch constraints @p ks,
+  /// each with two unknowns, phase by phase.
   static constexpr unsigned int batch = 8;
-  void accelerate_and_project(unsigned int first, unsigned int count, double* a,
+  void accelerate_and_project(const unsigned int* ks, unsigned int count, double* a,
                               std::vector<double>& lambda, const Prediction& predict,
                               std::vector<double>& gaps) const;
   /// (40) and the gap for constraint @p k.
@@ -104,7 +113,7 @@ private:
   std::vector<unsigned int> id;
   std::vector<double> schur_w, schur_m;     ///< G_k W^-1 G_k^T, G_k M^-1 G_k^T
   std::vector<double> inverse_w, inverse_m; ///< their inverses where selected, else 0
-  std::vector<bool> selected_w, selected_m;
-  bool selected_w_valid = false, selected_m_valid = false;
+  /// The versions of the selections in inverse_w and inverse_m (0: none yet).
+  unsigned long selected_w = 0, selected_m = 0;
 };
 } // namespace pantocat

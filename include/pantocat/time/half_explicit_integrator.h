@@ -29,6 +29,9 @@ struct ForceException
 {
   int row = 0;
   double f = 0., d0 = 0., scale = 0.;
+  /// False for a row that is predicted again after the constraints' forces
+  /// anyway (DisjointFixedConstraints): the sweep then skips its q*, v*.
+  bool predict = true;
 };
 
 struct UniformForceRun
@@ -191,12 +194,15 @@ private:
   struct ActiveSplit
   {
     bool valid = false;
+    unsigned long version = 0; ///< a new number whenever the split is made again
     std::vector<unsigned int> indices, moving;
     std::vector<bool> keep;
   };
   const ActiveSplit& split_of(const std::vector<unsigned int>& active);
   ActiveSplit split_cache[2];
   int next_split_slot = 0;
+  unsigned long split_versions = 0;
+  unsigned long keep_version = 0; ///< the version of keep
   void factorize();
   /// a <- (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2 + G_c^T lambda_c), with
   /// the compliant forces lambda_c, in one pass over the
