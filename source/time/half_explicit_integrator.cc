@@ -676,7 +676,6 @@ void HalfExplicitIntegrator::add_compliant_loads(double* f, const double* scalin
 void HalfExplicitIntegrator::add_acceleration_multipliers(
     const std::vector<unsigned int>& A)
 {
-  const auto& sn = at_n.states();
   split(A, keep, moving_active);
   if (disjoint.used())
   {
@@ -687,52 +686,68 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
   const unsigned int mF = fixed.size(), p = moving_active.size();
   if (mF + p == 0)
     return;
-  // g^(II) = G a + 2 G_t v + G_tt q + z_tt = 0 at t_n.
-  const auto level2 = [&](const unsigned int i)
-  {
-    const ConstraintState& s = sn[i];
-    return -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
-  };
   acceleration_workspace.prepare(mF, p);
   dealii::Vector<double>& x = acceleration_workspace.x;
-  dealii::Vector<double>& y = acceleration_workspace.y;
   // The fixed ones: G_t, G_tt, z_tt are 0.
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       x(k) = -fixed_rows.dot(k, a.begin());
-  // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
-  // ((M + dt/2 D) is symmetric), D = G_c Y_c'.
-  std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
-  dealii::FullMatrix<double>& D = acceleration_workspace.D;
-  for (unsigned int c = 0; c < p; ++c)
-  {
-    y(c) = level2(moving_active[c]);
-    const MovingColumns& X = columns[position[moving_active[c]]];
-    const dealii::Vector<double>& Y = X.Y;
-    for (const unsigned int k : X.near_Y) // the others meet Y in zeros
-      if (keep[k])
-        B[c](k) = fixed_rows.dot(k, Y.begin());
-    for (unsigned int r = 0; r < p; ++r)
-      D(r, c) = sn[moving_active[r]].G.dot(Y);
-  }
-  std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
-  for (unsigned int c = 0; c < p; ++c)
-    C[c] = B[c];
+  fill_acceleration_border(
+      [&](const MovingColumns& X, const auto& visit)
+      {
+        for (const unsigned int k : X.near_Y) // the others meet Y in zeros
+          if (keep[k])
+            visit(k, k);
+      });
   solve_bordered(
       [&](const std::vector<dealii::Vector<double>*>& xs)
       {
         for (dealii::Vector<double>* v : xs)
           fixed_smoothed.solve(*v);
       },
-      B, C, D, x, y, acceleration_workspace.rhs, acceleration_workspace.batch, t,
-      "acceleration level");
+      acceleration_workspace.B, acceleration_workspace.C, acceleration_workspace.D, x,
+      acceleration_workspace.y, acceleration_workspace.rhs, acceleration_workspace.batch,
+      t, "acceleration level");
   // a += (M + dt/2 D)^-1 G^T lambda: the fixed rows' truncated columns.
   factors.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       factors[k] = lambda[fixed[k]] = x(k);
   fixed_smoothed.add_columns(factors, a);
+  add_moving_acceleration_forces();
+}
+
+template <typename NearFixed>
+void HalfExplicitIntegrator::fill_acceleration_border(const NearFixed& near_fixed_of)
+{
+  const auto& sn = at_n.states();
+  const unsigned int p = moving_active.size();
+  dealii::Vector<double>& y = acceleration_workspace.y;
+  std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
+  std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
+  dealii::FullMatrix<double>& D = acceleration_workspace.D;
+  // The moving constraints border the fixed ones: B = G_F Y_c, C = B^T
+  // ((M + dt/2 D) is symmetric), D = G_c Y_c'; g^(II) = G a + 2 G_t v + G_tt
+  // q + z_tt = 0 at t_n.
   for (unsigned int c = 0; c < p; ++c)
+  {
+    const ConstraintState& s = sn[moving_active[c]];
+    y(c) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
+    const MovingColumns& X = columns[position[moving_active[c]]];
+    near_fixed_of(X, [&](const unsigned int slot, const unsigned int k)
+                  { B[c](slot) = fixed_rows.dot(k, X.Y.begin()); });
+    for (unsigned int r = 0; r < p; ++r)
+      D(r, c) = sn[moving_active[r]].G.dot(X.Y);
+  }
+  for (unsigned int c = 0; c < p; ++c)
+    C[c] = B[c];
+}
+
+void HalfExplicitIntegrator::add_moving_acceleration_forces()
+{
+  const auto& sn = at_n.states();
+  const dealii::Vector<double>& y = acceleration_workspace.y;
+  for (unsigned int c = 0; c < moving_active.size(); ++c)
   {
     const unsigned int i = moving_active[c];
     lambda[i] = y(c);
@@ -757,7 +772,6 @@ void HalfExplicitIntegrator::gather_near_fixed(
 
 void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
 {
-  const auto& sn = at_n.states();
   disjoint.select_acceleration(keep, keep_version);
   const unsigned int p = moving_active.size();
   if (p > 0)
@@ -770,24 +784,14 @@ void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
     const unsigned int nL = near_fixed.size();
     acceleration_workspace.prepare(nL, p);
     dealii::Vector<double>& x = acceleration_workspace.x;
-    dealii::Vector<double>& y = acceleration_workspace.y;
-    std::vector<dealii::Vector<double>>& B = acceleration_workspace.B;
-    dealii::FullMatrix<double>& D = acceleration_workspace.D;
     for (unsigned int l = 0; l < nL; ++l)
       x(l) = -fixed_rows.dot(near_fixed[l], a.begin());
-    for (unsigned int c = 0; c < p; ++c)
-    {
-      const ConstraintState& s = sn[moving_active[c]];
-      y(c) = -(s.G.dot(a) + 2. * s.G_t.dot(v) + s.G_tt.dot(q) + s.z_tt);
-      const dealii::Vector<double>& Y = columns[position[moving_active[c]]].Y;
-      for (unsigned int l = 0; l < nL; ++l)
-        B[c](l) = fixed_rows.dot(near_fixed[l], Y.begin());
-      for (unsigned int r = 0; r < p; ++r)
-        D(r, c) = sn[moving_active[r]].G.dot(Y);
-    }
-    std::vector<dealii::Vector<double>>& C = acceleration_workspace.C;
-    for (unsigned int c = 0; c < p; ++c)
-      C[c] = B[c];
+    fill_acceleration_border(
+        [&](const MovingColumns&, const auto& visit)
+        {
+          for (unsigned int l = 0; l < nL; ++l)
+            visit(l, near_fixed[l]);
+        });
     solve_bordered(
         [&](const std::vector<dealii::Vector<double>*>& xs)
         {
@@ -795,14 +799,10 @@ void HalfExplicitIntegrator::add_disjoint_acceleration_multipliers()
             for (unsigned int l = 0; l < nL; ++l)
               (*v)(l) *= disjoint.smoothed_inverse(near_fixed[l]);
         },
-        B, C, D, x, y, acceleration_workspace.rhs, acceleration_workspace.batch, t,
-        "acceleration level");
-    for (unsigned int c = 0; c < p; ++c)
-    {
-      const unsigned int i = moving_active[c];
-      lambda[i] = y(c);
-      smoothed_mass_inverse.add_column(sn[i].G, columns[position[i]].Y, y(c), a);
-    }
+        acceleration_workspace.B, acceleration_workspace.C, acceleration_workspace.D, x,
+        acceleration_workspace.y, acceleration_workspace.rhs,
+        acceleration_workspace.batch, t, "acceleration level");
+    add_moving_acceleration_forces();
   }
   const DisjointFixedConstraints::Prediction prediction{
       q.begin(), v.begin(), previous->begin(), q_new.begin(), v_new.begin(), dt};

@@ -159,6 +159,16 @@ private:
   solve_disjoint_position_and_velocity_level(const std::vector<ConstraintState>& at_n,
                                              const std::vector<ConstraintState>& at_half,
                                              const std::vector<ConstraintState>& at_next);
+  /**
+   * y, the border B, C = B^T and the moving block D of (39)'s multiplier
+   * system from the moving columns Y; @p near_fixed_of(X, visit) calls
+   * visit(slot, k) for the fixed constraints k near X (unknown slot).
+   */
+  template <typename NearFixed>
+  void fill_acceleration_border(const NearFixed& near_fixed_of);
+  /// lambda and a += (M + dt/2 D)^-1 G^T lambda of the moving constraints
+  /// (their multipliers in acceleration_workspace.y).
+  void add_moving_acceleration_forces();
   /// near_fixed <- the kept fixed constraints in the moving columns' lists @p near.
   void gather_near_fixed(std::vector<unsigned int> MovingColumns::*near);
   /**
