@@ -68,7 +68,11 @@ struct UniformForceRun
  * G_F M^-1 G_F^T (FixedConstraintSchur: sparse, banded, refactorised only when
  * the active set changes); the few moving ones (the contact) border them, with
  * their columns (M + dt/2 D)^-1 G^T, M^-1 G^T, ... computed each step. A step
- * thus costs O(n + m), not O(n m + m^3).
+ * thus costs O(n + m), not O(n m + m^3). When both complements are diagonal
+ * (the FDM's droppers and supports under diagonal M and D: no two share an
+ * unknown), DisjointFixedConstraints takes each fixed constraint from its own
+ * row in one pass, and the moving ones are bordered only by the fixed ones on
+ * their unknowns.
  *
  * Compliant constraints (Constraint::is_compliant) are explicit forces: in
  * step 1, lambda_i = max(0, -k g_i - c dg_i/dt) (unilateral, 0 when g_i >= 0)
