@@ -3,13 +3,11 @@
 # gnuplot `using` spec takes (14 columns): every plot must still be drawn, as
 # a real PNG file, and none reported missing.
 #   -DEXE=... -DPRM=... -DOUTDIR=dir
+include(${CMAKE_CURRENT_LIST_DIR}/run_or_fail.cmake)
 file(REMOVE_RECURSE ${OUTDIR})
-execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR} --set "Pantograph/Final position=202"
-                        --set "Statistics/Window spans="
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "run failed (${status}):\n${out}\n${err}")
-endif()
+run_or_fail("run" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}
+            --set "Pantograph/Final position=202"
+            --set "Statistics/Window spans=")
 find_program(GNUPLOT gnuplot)
 if(NOT GNUPLOT)
   return()

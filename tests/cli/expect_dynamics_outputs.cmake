@@ -3,13 +3,11 @@
 # summary.json with the documented keys (and the statistics), the three PNG
 # plots, the ParaView frames, and the statistics and timer table on screen.
 #   -DEXE=... -DPRM=... -DOUTDIR=dir
+include(${CMAKE_CURRENT_LIST_DIR}/run_or_fail.cmake)
 file(REMOVE_RECURSE ${OUTDIR})
-execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR} --set "Pantograph/Final position=2.32"
-                        --set "Output/VTU interval=0.005"
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "run failed (${status}):\n${out}\n${err}")
-endif()
+run_or_fail("run" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}
+            --set "Pantograph/Final position=2.32"
+            --set "Output/VTU interval=0.005")
 foreach(f parameters.prm time_series.csv summary.json contact_force.png dropper_forces.png
           pantograph.png time_series.gp solution.pvd vtu/wires-00002.vtu
           contact_force.csv contact_force_statistics.png contact_force_statistics.gp

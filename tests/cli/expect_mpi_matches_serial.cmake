@@ -4,20 +4,14 @@
 #   -DEXE=... -DMPIEXEC=... -DPRM=... -DOUTDIR=dir -DTABLE=work_precision.csv
 #   -DCPU_COLUMN=n (1-based index of cpu_seconds; 0: the table has none)
 cmake_minimum_required(VERSION 3.13) # list() keeps the empty CSV fields (CMP0007)
+include(${CMAKE_CURRENT_LIST_DIR}/run_or_fail.cmake)
 file(REMOVE_RECURSE ${OUTDIR}-serial ${OUTDIR}-mpi)
-execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR}-serial
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "serial run failed (${status}):\n${out}\n${err}")
-endif()
+run_or_fail("serial run" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}-serial)
 if(out MATCHES "MPI")
   message(FATAL_ERROR "the serial run should not mention MPI:\n${out}")
 endif()
-execute_process(COMMAND ${MPIEXEC} --oversubscribe -np 2 ${EXE} ${PRM} -o ${OUTDIR}-mpi
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "2-rank run failed (${status}):\n${out}\n${err}")
-endif()
+run_or_fail("2-rank run" out
+            COMMAND ${MPIEXEC} --oversubscribe -np 2 ${EXE} ${PRM} -o ${OUTDIR}-mpi)
 if(NOT out MATCHES "on 2 MPI ranks")
   message(FATAL_ERROR "the 2-rank run did not run on 2 ranks:\n${out}")
 endif()

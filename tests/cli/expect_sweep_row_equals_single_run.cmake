@@ -4,19 +4,13 @@
 #   -DEXE=... -DPRM=small-speed-sweep.prm -DOUTDIR=dir -DSPEED_KMH=115.2
 #   -DSPEED_MS=32 (the speed of the single run)
 cmake_minimum_required(VERSION 3.19) # string(JSON)
+include(${CMAKE_CURRENT_LIST_DIR}/run_or_fail.cmake)
 find_program(AWK NAMES awk mawk gawk REQUIRED)
 file(REMOVE_RECURSE ${OUTDIR}-sweep ${OUTDIR}-single)
-execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR}-sweep RESULT_VARIABLE status
-                OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "sweep failed (${status}):\n${out}\n${err}")
-endif()
-execute_process(COMMAND ${EXE} ${PRM} -o ${OUTDIR}-single --set "Run/Mode=dynamics"
-                        --set "Pantograph/Speed=${SPEED_MS}"
-                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT status EQUAL 0)
-  message(FATAL_ERROR "single run failed (${status}):\n${out}\n${err}")
-endif()
+run_or_fail("sweep" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}-sweep)
+run_or_fail("single run" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}-single
+            --set "Run/Mode=dynamics"
+            --set "Pantograph/Speed=${SPEED_MS}")
 file(READ ${OUTDIR}-single/summary.json summary)
 file(STRINGS ${OUTDIR}-sweep/speed_sweep.csv lines)
 list(GET lines 0 header)
