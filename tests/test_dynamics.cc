@@ -902,6 +902,64 @@ TEST(EnergyFunctional, QuadraticFormOfANonSymmetricPattern)
   EXPECT_EQ(A.matrix_norm_square(x), -4.);
 }
 
+// Both storages of QuadraticForm, by offset (a band) and by row, on
+// small-integer matrices and vectors: every product and sum is exact, so
+// each must equal the integer double sum x^T A x. A tridiagonal matrix that
+// is not symmetric is stored by offset; adding the anti-diagonal (20
+// offsets) makes it row by row. The energy guard's forms on the paper's FDM
+// and FEM grids are stored by offset (its cost per step, doc/benchmarks.md).
+TEST(EnergyFunctional, QuadraticFormByOffsetAndByRowAreExact)
+{
+  const int n = 40;
+  for (const bool anti_diagonal : {false, true})
+  {
+    dealii::DynamicSparsityPattern dsp(n, n);
+    for (int i = 0; i < n; ++i)
+    {
+      dsp.add(i, i);
+      if (i + 1 < n)
+      {
+        dsp.add(i, i + 1);
+        dsp.add(i + 1, i);
+      }
+      if (anti_diagonal)
+        dsp.add(i, n - 1 - i);
+    }
+    dealii::SparsityPattern pattern;
+    pattern.copy_from(dsp);
+    dealii::SparseMatrix<double> A(pattern);
+    for (int i = 0; i < n; ++i)
+    {
+      A.set(i, i, i % 7 - 3);
+      if (i + 1 < n)
+      {
+        A.set(i, i + 1, 2.);
+        A.set(i + 1, i, i % 3 - 1);
+      }
+      if (anti_diagonal)
+        A.add(i, n - 1 - i, 3.);
+    }
+    dealii::Vector<double> x(n);
+    long long exact = 0;
+    for (int i = 0; i < n; ++i)
+      x(i) = i % 5 - 2;
+    for (int i = 0; i < n; ++i)
+      for (auto e = A.begin(i); e != A.end(i); ++e)
+        exact += static_cast<long long>(x(i) * e->value() * x(e->column()));
+    const QuadraticForm form(A);
+    EXPECT_EQ(form.banded(), !anti_diagonal);
+    EXPECT_EQ(form(x), static_cast<double>(exact)) << "anti-diagonal " << anti_diagonal;
+  }
+  for (const SpaceMethod method : {SpaceMethod::fdm, SpaceMethod::fem})
+  {
+    ProgramParameters p;
+    p.discretisation.method = method;
+    CaseRunner simulation(p.make_case(), {});
+    EXPECT_TRUE(QuadraticForm(simulation.system().mass).banded());
+    EXPECT_TRUE(QuadraticForm(simulation.system().stiffness).banded());
+  }
+}
+
 TEST(FixedConstraintSchur, ADiagonalComplementIsInvertedEntryByEntry)
 {
   // The FDM's droppers share no unknown and M is diagonal, so S = G M^-1 G^T

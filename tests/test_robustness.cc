@@ -222,16 +222,16 @@ TEST(Robustness, AStepThatDividesTheRunIsKeptBitForBit)
 }
 
 // The run's bound guard counts the entries beyond the span, NaN and infinity
-// included, with a vector loop over blocks of four and a scalar tail. The
+// included, with a vector loop over blocks of eight and a scalar tail. The
 // count must be exact for every length (a tail entry within the bound is not
-// outside): checked against the plain loop for lengths 0 to 11 and every
+// outside): checked against the plain loop for lengths 0 to 19 and every
 // position of a NaN, an infinity and a large entry.
 TEST(Robustness, TheBoundGuardCountsEntriesOutsideExactlyForEveryLength)
 {
   const double bound = 100.;
   const double specials[] = {std::numeric_limits<double>::quiet_NaN(),
                              -std::numeric_limits<double>::infinity(), -150., 100.};
-  for (unsigned int n = 0; n < 12; ++n)
+  for (unsigned int n = 0; n < 20; ++n)
     for (unsigned int where = 0; where <= n; ++where)
       for (const double special : specials)
       {

@@ -61,13 +61,36 @@ Rounding scaled_integer(const std::uint64_t m, const int s, const int k, std::ui
                           : (remainder > half ? Rounding::up : Rounding::tie);
 }
 
+/// "00", "01", ..., "99": two digits a lookup.
+constexpr std::array<char, 200> digit_pairs = []
+{
+  std::array<char, 200> d{};
+  for (int i = 0; i < 100; ++i)
+  {
+    d[2 * i] = static_cast<char>('0' + i / 10);
+    d[2 * i + 1] = static_cast<char>('0' + i % 10);
+  }
+  return d;
+}();
+
+/// The five digits of @p x < 10^5 at @p d: one digit, then two pairs.
+void five_digits(char* d, std::uint32_t x)
+{
+  d[0] = static_cast<char>('0' + x / 10000);
+  x %= 10000;
+  std::memcpy(d + 1, &digit_pairs[2 * (x / 100)], 2);
+  std::memcpy(d + 3, &digit_pairs[2 * (x % 100)], 2);
+}
+
 /// The text of ten significant digits @p n (10^9 <= n < 10^10) with decimal
 /// exponent @p e, trailing zeros removed, in %g's layout for precision 10.
-char* layout_g10(char* p, std::uint64_t n, const int e)
+char* layout_g10(char* p, const std::uint64_t n, const int e)
 {
+  // The two halves are independent chains of multiplications (division by a
+  // constant), not ten in a row.
   char digits[10];
-  for (int i = 9; i >= 0; --i, n /= 10)
-    digits[i] = static_cast<char>('0' + n % 10);
+  five_digits(digits, static_cast<std::uint32_t>(n / 100000));
+  five_digits(digits + 5, static_cast<std::uint32_t>(n % 100000));
   int length = 10;
   while (length > 1 && digits[length - 1] == '0')
     --length;

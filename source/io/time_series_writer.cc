@@ -51,9 +51,17 @@ std::vector<std::string> TimeSeriesWriter::column_names(const SimulationLayout& 
   return names;
 }
 
-void TimeSeriesWriter::start(const SimulationLayout& l)
+void TimeSeriesWriter::take_layout(const SimulationLayout& l)
 {
   layout = l;
+  contacts.clear();
+  for (const PantographLayout* c : l.contacts())
+    contacts.push_back(c->contact);
+}
+
+void TimeSeriesWriter::start(const SimulationLayout& l)
+{
+  take_layout(l);
   out.open(file_name);
   if (!out)
     throw SimulationError("cannot write " + file_name);
@@ -66,17 +74,21 @@ void TimeSeriesWriter::start(const SimulationLayout& l)
 
 namespace
 {
-/// Appends "," (unless @p first) and @p x as printf's %.10g writes it (the
-/// stream's precision 10), without the stream's locale and formatting machinery:
+/// Writes "," and @p x as printf's %.10g writes it (the stream's precision
+/// 10), without the stream's locale and formatting machinery:
 /// write_csv_number(), the same text as std::to_chars in under half its time.
-void append(std::string& line, const double x, const bool first = false)
+char* append(char* p, const double x)
 {
-  char buffer[32];
-  char* p = buffer;
-  if (!first)
-    *p++ = ',';
-  p = write_csv_number(p, x);
-  line.append(buffer, p);
+  *p++ = ',';
+  return write_csv_number(p, x);
+}
+
+/// Writes "," and the flag @p active as 1 or 0.
+char* append_flag(char* p, const bool active)
+{
+  *p++ = ',';
+  *p++ = active ? '1' : '0';
+  return p;
 }
 } // namespace
 
@@ -85,36 +97,40 @@ void TimeSeriesWriter::observe(const TimePoint& p)
   reopen_after_resume();
   if (seen++ % every != 0)
     return;
-  // One row, formatted into a reused buffer and handed to the stream's own
-  // buffer: the file is written in blocks, not row by row (flushed at a
-  // checkpoint and at the end).
-  const auto contacts = layout.contacts();
-  line.clear();
-  append(line, p.t, true);
+  // One row, formatted into a buffer of its longest length and handed to the
+  // stream's own buffer: the file is written in blocks, not row by row
+  // (flushed at a checkpoint and at the end). No allocation per row: a
+  // number takes at most 17 characters and its comma (write_csv_number()).
+  const std::size_t numbers = 3 + p.x_p.size() + p.pantograph.size() + p.probes.size() +
+                              3 * (contacts.size() + layout.dropper_indices.size()) +
+                              (layout.energy ? 1 : 0);
+  if (row.size() < 18 * numbers + 1)
+    row.resize(18 * numbers + 1);
+  char* end = write_csv_number(row.data(), p.t);
   for (const double x : p.x_p)
-    append(line, x);
-  for (const PantographLayout* c : contacts)
-    append(line, p.lambda[c->contact]);
+    end = append(end, x);
+  for (const unsigned int c : contacts)
+    end = append(end, p.lambda[c]);
   for (const unsigned int i : layout.dropper_indices)
-    append(line, p.lambda[i]);
+    end = append(end, p.lambda[i]);
   for (const double w : p.pantograph)
-    append(line, w);
-  for (const PantographLayout* c : contacts)
-    append(line, p.gap[c->contact]);
+    end = append(end, w);
+  for (const unsigned int c : contacts)
+    end = append(end, p.gap[c]);
   for (const unsigned int i : layout.dropper_indices)
-    append(line, p.gap[i]);
-  for (const PantographLayout* c : contacts)
-    line += p.active[c->contact] ? ",1" : ",0";
+    end = append(end, p.gap[i]);
+  for (const unsigned int c : contacts)
+    end = append_flag(end, p.active[c]);
   for (const unsigned int i : layout.dropper_indices)
-    line += p.active[i] ? ",1" : ",0";
-  append(line, p.position_residual);
-  append(line, p.velocity_residual);
+    end = append_flag(end, p.active[i]);
+  end = append(end, p.position_residual);
+  end = append(end, p.velocity_residual);
   for (const double w : p.probes)
-    append(line, w);
+    end = append(end, w);
   if (layout.energy)
-    append(line, p.energy);
-  line += '\n';
-  out.write(line.data(), line.size());
+    end = append(end, p.energy);
+  *end++ = '\n';
+  out.write(row.data(), end - row.data());
 }
 
 void TimeSeriesWriter::finish()
@@ -134,7 +150,7 @@ void TimeSeriesWriter::save(CheckpointOut& archive) const
 
 void TimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archive)
 {
-  layout = l;
+  take_layout(l);
   unsigned long length = 0;
   archive >> seen >> length;
   std::error_code error;

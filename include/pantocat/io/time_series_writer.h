@@ -13,9 +13,10 @@ namespace pantocat
  * time_series.csv: a header row, then one row per output step with t, x_p,
  * lambda_p, lambda_d1..n, the pantograph coordinates, the gaps of contact and
  * droppers, the active flags and the constraint residuals on position and
- * velocity level. Each row is flushed: a killed run keeps its data up to the
- * last output step. The file is opened (and an earlier one replaced) by
- * start().
+ * velocity level. Every @p every_n_points-th time point is written
+ * (Output/Time series interval). Rows go through the stream's buffer, flushed
+ * at a checkpoint and at the end. The file is opened (and an earlier one
+ * replaced) by start().
  */
 class TimeSeriesWriter : public SimulationObserver
 {
@@ -40,6 +41,8 @@ public:
 private:
   /// After resume(): cuts the file to its length at the checkpoint and opens it.
   void reopen_after_resume();
+  /// Keeps @p l, its contacts' multiplier indices and a row buffer long enough.
+  void take_layout(const SimulationLayout& l);
 
   std::optional<unsigned long> resume_length; ///< set by resume() until reopened
   std::string file_name;
@@ -47,6 +50,7 @@ private:
   SimulationLayout layout;
   unsigned int every;
   unsigned long seen = 0;
-  std::string line; ///< the row being formatted
+  std::vector<unsigned int> contacts; ///< the contacts' multiplier indices, in column order
+  std::vector<char> row;              ///< the row being formatted (its longest length)
 };
 } // namespace pantocat
