@@ -69,8 +69,8 @@ void QuadraticForm::store_as_band()
   for (std::size_t i = 0; i < n; ++i)
     for (unsigned int k = row_start[i]; k < row_start[i + 1]; ++k)
     {
-      const std::size_t o = std::lower_bound(found.begin(), found.end(),
-                                             column[k] - i) - found.begin();
+      const std::size_t o =
+          std::lower_bound(found.begin(), found.end(), column[k] - i) - found.begin();
       by_offset[o][i] += weight[k]; // a pair appears once; += keeps the sum exact
     }
   offsets = std::move(found);
@@ -120,7 +120,8 @@ double QuadraticForm::operator()(const dealii::Vector<double>& x) const
     const double* p = x.begin();
     double sum = weighted_products(diagonal.data(), p, p, diagonal.size());
     for (std::size_t k = 0; k < offsets.size(); ++k)
-      sum += weighted_products(by_offset[k].data(), p, p + offsets[k], by_offset[k].size());
+      sum +=
+          weighted_products(by_offset[k].data(), p, p + offsets[k], by_offset[k].size());
     return sum;
   }
   // Four partial sums over the rows: the additions of one chain wait on

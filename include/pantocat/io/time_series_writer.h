@@ -50,7 +50,8 @@ private:
   SimulationLayout layout;
   unsigned int every;
   unsigned long seen = 0;
-  std::vector<unsigned int> contacts; ///< the contacts' multiplier indices, in column order
-  std::vector<char> row;              ///< the row being formatted (its longest length)
+  std::vector<unsigned int>
+      contacts;          ///< the contacts' multiplier indices, in column order
+  std::vector<char> row; ///< the row being formatted (its longest length)
 };
 } // namespace pantocat

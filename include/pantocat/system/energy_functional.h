@@ -37,7 +37,7 @@ private:
   std::vector<double> diagonal;
   std::vector<unsigned int> row_start, column; ///< the pairs j > i by row i
   std::vector<double> weight;
-  std::vector<unsigned int> offsets;        ///< the band: offsets j - i of the pairs
+  std::vector<unsigned int> offsets;          ///< the band: offsets j - i of the pairs
   std::vector<std::vector<double>> by_offset; ///< weight of (i, i + offsets[k]) at [k][i]
 };
 
