@@ -9,8 +9,10 @@
 // Columns: FDM and FEM with the half-explicit method, BDF-2 and
 // generalized-alpha; the last line is one banded solve with the FEM BDF-2
 // matrix (the reference of the implicit methods' target, 2.5 solves per step).
-// Usage (from the repository root): bench_constraints [steps] [m ...]
+// Usage: bench_constraints [steps] [m ...]
 // [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
+#include "bench_error.h"
+
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
@@ -67,7 +69,7 @@ ProgramParameters span_with_droppers(const unsigned int m, const std::string& me
     overrides.push_back("Catenary/Droppers/Lengths=" + lengths.str());
   }
   dealii::ParameterHandler prm;
-  read_program_parameters(prm, "prm/benchmark-32.prm", overrides);
+  read_program_parameters(prm, PANTOCAT_SOURCE_DIR "/prm/benchmark-32.prm", overrides);
   ProgramParameters p;
   p.parse_parameters(prm);
   p.time_integration.force_step_size = true;
@@ -147,6 +149,7 @@ std::vector<double> step_times(const std::vector<ProgramParameters>& cases,
 } // namespace
 
 int main(int argc, char** argv)
+try
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
@@ -216,4 +219,8 @@ int main(int argc, char** argv)
   std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
             << std::setprecision(3)
             << banded_solve_time(span_with_droppers(0, "fem", "bdf2")) << " us\n";
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_constraints", e);
 }

@@ -10,6 +10,8 @@
 // Usage: bench_integrators [--half-explicit-only] [steps] [N+1 ...]; prints
 // Markdown tables; exit status 1 if the fused kernel's contact force differs
 // from the library's.
+#include "bench_error.h"
+
 #include "fused_half_explicit.h"
 
 #include <pantocat/app/program_parameters.h>
@@ -332,6 +334,7 @@ void bdf2_table(const std::vector<unsigned int>& grids, const unsigned int steps
 }
 
 int main(int argc, char** argv)
+try
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
@@ -358,4 +361,8 @@ int main(int argc, char** argv)
     compare_linear_solvers(grids, steps / 4);
   }
   return passed ? 0 : 1;
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_integrators", e);
 }

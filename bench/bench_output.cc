@@ -7,6 +7,8 @@
 // Usage: bench_output [rounds] (default 5); prints a table (Markdown).
 //        bench_output rounds --only=K runs only case K (0 = none, 1 = time series
 //        + run statistics, 2 = + contact-force statistics, ...) for a profile.
+#include "bench_error.h"
+
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/io/time_series_writer.h>
 #include <pantocat/io/vtu_time_series_writer.h>
@@ -81,6 +83,7 @@ double time_loop(const ProgramParameters& p, const Observers which)
 } // namespace
 
 int main(int argc, char** argv)
+try
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
@@ -121,4 +124,8 @@ int main(int argc, char** argv)
   for (std::size_t k = 0; k < std::size(cases); ++k)
     std::cout << "| " << cases[k].second << " | " << std::setprecision(3) << best[k]
               << " | " << best[k] / best[0] << " | " << best[k] / alone << " |\n";
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_output", e);
 }

@@ -8,8 +8,10 @@
 // timed, the fastest of 3 batches of about 0.1 s each), and the time per step
 // and unknown. Steps: dt = 5e-5 s, and half the explicit stability limit for
 // FEM + half-explicit (the limit does not depend on s at a fixed h).
-// Usage (from the repository root): bench_scaling [spans ...]
+// Usage: bench_scaling [spans ...]
 // (default 1 3 10 30 100); prints a Markdown table.
+#include "bench_error.h"
+
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/time_integrator.h>
@@ -49,7 +51,7 @@ ProgramParameters benchmark_spans(const unsigned int spans, const Column& c,
       "Time integration/Integrator=" + c.integrator,
       "Time integration/Time step=" + std::to_string(dt)};
   dealii::ParameterHandler prm;
-  read_program_parameters(prm, "prm/benchmark-32.prm", overrides);
+  read_program_parameters(prm, PANTOCAT_SOURCE_DIR "/prm/benchmark-32.prm", overrides);
   ProgramParameters p;
   p.parse_parameters(prm);
   p.time_integration.time_step = dt; // to_string rounds to 6 decimals
@@ -101,6 +103,7 @@ double half_stability_limit(const Column& c)
 } // namespace
 
 int main(int argc, char** argv)
+try
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
@@ -138,4 +141,8 @@ int main(int argc, char** argv)
     }
     std::cout << '\n';
   }
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_scaling", e);
 }

@@ -2,6 +2,8 @@
 // against the paper's full scene, measured in one run (fastest of 5 each,
 // no observers), for FDM + half-explicit and FEM + BDF-2.
 // Usage: bench_scenes [N+1 = 1000]; prints a Markdown table.
+#include "bench_error.h"
+
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/simulation/case_runner.h>
 
@@ -69,6 +71,7 @@ double seconds_per_step(const ProgramParameters& p, unsigned int& unknowns,
 } // namespace
 
 int main(int argc, char** argv)
+try
 {
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
   const unsigned int n = argc > 1 ? std::stoul(argv[1]) : 1000;
@@ -100,4 +103,8 @@ int main(int argc, char** argv)
                 << std::setprecision(3) << 1e6 * s << " | " << s / full << " |\n";
     }
   }
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_scenes", e);
 }

@@ -5,6 +5,8 @@
 // outcome of the run itself (completed, or the step a guard stopped it at).
 // Usage: bench_step_limit file.prm [--set Sub/Entry=value ...] [--steps K]
 //        [--run] [--limit] dt/(2/omega_max) ...
+#include "bench_error.h"
+
 #include <pantocat/analysis/half_explicit_step_map.h>
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/app/program_parameters.h>
@@ -25,6 +27,7 @@ using namespace pantocat;
 using Clock = std::chrono::steady_clock;
 
 int main(int argc, char** argv)
+try
 {
   dealii::Utilities::MPI::MPI_InitFinalize mpi(argc, argv, 1);
   if (argc < 2)
@@ -129,4 +132,8 @@ int main(int argc, char** argv)
     }
     std::cout << " |" << std::endl;
   }
+}
+catch (const std::exception& e)
+{
+  return report_bench_error("bench_step_limit", e);
 }
