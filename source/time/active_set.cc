@@ -2,6 +2,7 @@
 #include <pantocat/time/active_set.h>
 
 #include <algorithm>
+#include <cstring>
 #include <sstream>
 
 namespace pantocat
@@ -17,6 +18,10 @@ ActiveSetIteration::ActiveSetIteration(const SemiDiscreteSystem& system,
   {
     unilateral.push_back(c->is_unilateral());
     compliant.push_back(c->is_compliant());
+    // Bilateral constraints are always active (engaged if compliant).
+    held_status.push_back(c->is_compliant() ? Status::engaged : Status::active);
+    if (c->is_unilateral())
+      unilateral_indices.push_back(unilateral.size() - 1);
   }
 }
 
@@ -25,21 +30,23 @@ void ActiveSetIteration::start(const std::vector<bool>& active_at_start)
   const std::size_t m = active_at_start.size();
   at_start.resize(m);
   current.resize(m);
+  unsigned int changes = 0;
   for (std::size_t i = 0; i < m; ++i)
   {
-    at_start[i] = active_at_start[i];
-    // Bilateral constraints are always active (engaged if compliant).
-    current[i] = at_start[i] || !unilateral[i]
-                     ? (compliant[i] ? Status::engaged : Status::active)
-                     : Status::inactive;
+    const char held = active_at_start[i];
+    at_start[i] = held;
+    const bool holds_now = held || !unilateral[i];
+    current[i] = holds_now ? held_status[i] : Status::inactive;
+    changes += holds_now != static_cast<bool>(held);
   }
+  changes_at_start = changes;
   released.assign(m, false);
   visited.resize(1); // keeps the capacity: no allocation per step
   visited[0] = current;
   // Most steps start from the set the step before started from.
+  static_assert(sizeof(Status) == sizeof(char));
   if (indexed.size() != m ||
-      !std::equal(current.begin(), current.end(), indexed.begin(),
-                  [](const Status s, const char c) { return static_cast<char>(s) == c; }))
+      (m > 0 && std::memcmp(current.data(), indexed.data(), m) != 0))
     update_indices();
 }
 
@@ -109,10 +116,8 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
 {
   next = current;
   bool changed = false;
-  for (unsigned int i = 0; i < current.size(); ++i)
+  for (const unsigned int i : unilateral_indices) // bilateral ones always hold
   {
-    if (!unilateral[i])
-      continue;
     if (compliant[i])
     {
       if (gap_rates.empty())
@@ -165,6 +170,9 @@ bool ActiveSetIteration::accept(const std::vector<double>& gaps_next,
 
 unsigned int ActiveSetIteration::changes_in_step() const
 {
+  // Without a trial rejected, the set is the one start() made from J_n.
+  if (visited.size() == 1)
+    return changes_at_start;
   unsigned int n = 0;
   for (unsigned int i = 0; i < holds.size(); ++i)
     n += holds[i] != at_start[i];
@@ -173,6 +181,10 @@ unsigned int ActiveSetIteration::changes_in_step() const
 
 bool ActiveSetIteration::impact_in_step() const
 {
+  // start() holds a constraint not in J_n only if it is bilateral: an impact
+  // needs a trial rejected.
+  if (visited.size() == 1)
+    return false;
   for (unsigned int i = 0; i < holds.size(); ++i)
     if (holds[i] && !at_start[i] && unilateral[i] && !compliant[i])
       return true;

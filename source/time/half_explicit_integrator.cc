@@ -428,7 +428,7 @@ void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>&
   previous = &v_prev;
 }
 
-void HalfExplicitIntegrator::find_fixed_near(const std::vector<const SparseRow*>& rows,
+void HalfExplicitIntegrator::find_fixed_near(std::initializer_list<const SparseRow*> rows,
                                              const MassInverse& A,
                                              std::vector<unsigned int>& near)
 {

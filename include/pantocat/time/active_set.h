@@ -139,6 +139,11 @@ private:
   std::vector<char> indexed;
   /// Each constraint's kind, read once (the loops per step touch no constraint object).
   std::vector<char> unilateral, compliant;
+  std::vector<unsigned int> unilateral_indices; ///< the only ones accept() can switch
+  /// The status of each constraint when it holds: engaged if compliant, else active.
+  std::vector<Status> held_status;
+  /// Constraints that start() holds but J_n did not (bilateral ones not in J_n).
+  unsigned int changes_at_start = 0;
   std::vector<Status> current;
   std::vector<Status> next; ///< accept()'s candidate, kept: no allocation per step
   std::vector<unsigned int> indices, force, engaged;

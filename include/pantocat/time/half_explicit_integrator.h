@@ -12,6 +12,8 @@
 
 #include <deal.II/lac/full_matrix.h>
 
+#include <initializer_list>
+
 namespace pantocat
 {
 /**
@@ -319,7 +321,7 @@ private:
    * the pattern of A^-1 rows^T: those on the rows' unknowns and A's coupled
    * block when A is diagonal, all when A is factorised.
    */
-  void find_fixed_near(const std::vector<const SparseRow*>& rows, const MassInverse& A,
+  void find_fixed_near(std::initializer_list<const SparseRow*> rows, const MassInverse& A,
                        std::vector<unsigned int>& near);
   /**
    * The rows G_k and offsets z_k of the fixed constraints (constant; G_t,
