@@ -6,7 +6,7 @@
 #   scripts/plot-scaling.sh SCALING_TABLE CONSTRAINTS_TABLE
 # where the tables are the saved outputs of
 #   build/bench_scaling > doc/figures/scaling-unknowns.md
-#   build/bench_constraints 2000 2 10 40 100 200 > doc/figures/scaling-constraints.md
+#   build/bench_constraints 20000 2 10 40 100 200 > doc/figures/scaling-constraints.md
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scaling=${1:-doc/figures/scaling-unknowns.md}
