@@ -21,6 +21,7 @@
 #include <pantocat/time/iteration_matrix.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
+#include <pantocat/time/truncated_columns.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
@@ -958,6 +959,77 @@ TEST(EnergyFunctional, QuadraticFormByOffsetAndByRowAreExact)
     EXPECT_TRUE(QuadraticForm(simulation.system().mass).banded());
     EXPECT_TRUE(QuadraticForm(simulation.system().stiffness).banded());
   }
+}
+
+// TruncatedColumns stores the columns by unknown and visits only the unknowns
+// some column reaches. Its products must equal the dense sums taken in the
+// same order (columns l = 0, 1, ... within each unknown), so to the bit:
+// X c and X d in one pass as in two, g X for a sparse row g. An unknown that
+// no column reaches keeps its value, a -0 included (y_i + 0 would make it +0).
+TEST(TruncatedColumns, ProductsAreTheDenseSumsInTheSameOrder)
+{
+  const unsigned int n = 60, m = 7;
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  std::vector<SparseRow> columns(m);
+  std::vector<std::vector<double>> dense(m, std::vector<double>(n, 0.));
+  for (unsigned int l = 0; l < m; ++l)
+    for (unsigned int i = 5 * l; i < 5 * l + 9; ++i) // unknowns 39 .. 59 unreached
+    {
+      const double x = value(random);
+      columns[l].add(i, x);
+      dense[l][i] = x;
+    }
+  TruncatedColumns X;
+  X.initialize(columns, n);
+  std::vector<double> c(m), d(m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    c[l] = value(random);
+    d[l] = value(random);
+  }
+  dealii::Vector<double> y(n), z(n), y2(n), z2(n);
+  for (unsigned int i = 0; i < n; ++i)
+    y[i] = z[i] = y2[i] = z2[i] = value(random);
+  y[50] = y2[50] = -0.;
+  dealii::Vector<double> expected_y(y), expected_z(z);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    double s = 0., t = 0.;
+    bool reached = false;
+    for (unsigned int l = 0; l < m; ++l)
+      if (dense[l][i] != 0.)
+      {
+        s += dense[l][i] * c[l];
+        t += dense[l][i] * d[l];
+        reached = true;
+      }
+    if (reached)
+    {
+      expected_y[i] += s;
+      expected_z[i] += t;
+    }
+  }
+  X.add(c, y);
+  X.add(d, z);
+  X.add(c, y2, d, z2);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    EXPECT_EQ(y[i], expected_y[i]) << i;
+    EXPECT_EQ(z[i], expected_z[i]) << i;
+    EXPECT_EQ(y2[i], y[i]) << i;
+    EXPECT_EQ(z2[i], z[i]) << i;
+  }
+  EXPECT_TRUE(std::signbit(y[50]));
+  SparseRow g;
+  g.add(3, 2.);
+  g.add(12, -1.5);
+  g.add(55, 4.);
+  std::vector<double> products;
+  X.row_products(g, products);
+  ASSERT_EQ(products.size(), m);
+  for (unsigned int l = 0; l < m; ++l)
+    EXPECT_EQ(products[l], 0. + 2. * dense[l][3] + -1.5 * dense[l][12]) << l;
 }
 
 TEST(FixedConstraintSchur, ADiagonalComplementIsInvertedEntryByEntry)

@@ -95,8 +95,7 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
   {
     X_lambda.add(lambda_plus_eta, q);
     X_mu.add(mu, q);
-    Y.add(mu, u1);
-    Y.add(eta, u2);
+    Y.add(mu, u1, eta, u2);
     return;
   }
   const unsigned int n = q.size();

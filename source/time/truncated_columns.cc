@@ -22,8 +22,13 @@ void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
   for (const SparseRow& c : columns)
     for (const unsigned int i : c.index)
       ++start[i + 1];
+  reached.clear();
   for (unsigned int i = 0; i < n_dofs; ++i)
+  {
+    if (start[i + 1] > 0)
+      reached.push_back(i);
     start[i + 1] += start[i];
+  }
   column.resize(start.back());
   value.resize(start.back());
   std::vector<std::size_t> next(start.begin(), start.end() - 1);
@@ -49,13 +54,30 @@ void TruncatedColumns::row_products(const SparseRow& g, std::vector<double>& out
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y) const
 {
-  const unsigned int n = start.size() - 1;
-  for (unsigned int i = 0; i < n; ++i)
+  // An unknown no column reaches would take y_i += 0: skipped (the same
+  // value; y_i = -0 stays -0 instead of becoming +0).
+  for (const unsigned int i : reached)
   {
     double s = 0.;
     for (std::size_t e = start[i]; e < start[i + 1]; ++e)
       s += value[e] * c[column[e]];
     y[i] += s;
+  }
+}
+
+void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
+                           const std::vector<double>& d, dealii::Vector<double>& z) const
+{
+  for (const unsigned int i : reached)
+  {
+    double s = 0., t = 0.;
+    for (std::size_t e = start[i]; e < start[i + 1]; ++e)
+    {
+      s += value[e] * c[column[e]];
+      t += value[e] * d[column[e]];
+    }
+    y[i] += s;
+    z[i] += t;
   }
 }
 } // namespace pantocat

@@ -31,12 +31,19 @@ public:
 
   /// out[l] = g . X_l for every column l (out is resized to m).
   void row_products(const SparseRow& g, std::vector<double>& out) const;
-  /// y += sum_l c[l] X_l.
+  /// y += sum_l c[l] X_l, on the unknowns that some column reaches only.
   void add(const std::vector<double>& c, dealii::Vector<double>& y) const;
+  /// y += sum_l c[l] X_l and z += sum_l d[l] X_l in one pass (each sum as add() makes
+  /// it).
+  void add(const std::vector<double>& c, dealii::Vector<double>& y,
+           const std::vector<double>& d, dealii::Vector<double>& z) const;
 
 private:
   unsigned int m = 0;
   std::vector<std::size_t> start; ///< entries of unknown i: [start[i], start[i+1])
+  /// The unknowns with entries, in order: a lumped mass's columns reach two
+  /// unknowns per dropper of thousands, and add() skips the others.
+  std::vector<unsigned int> reached;
   std::vector<unsigned int> column;
   std::vector<double> value;
 };
