@@ -26,6 +26,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -89,9 +90,8 @@ try
   dealii::MultithreadInfo::set_thread_limit(1); // as pantocat-fem does
   const unsigned int rounds = argc > 1 ? std::max(1, std::atoi(argv[1])) : 5;
   const std::string only_flag = "--only=";
-  const int only = argc > 2 && std::string(argv[2]).rfind(only_flag, 0) == 0
-                       ? std::atoi(argv[2] + only_flag.size())
-                       : -1;
+  const bool only_given = argc > 2 && std::string(argv[2]).rfind(only_flag, 0) == 0;
+  const int only = only_given ? std::atoi(argv[2] + only_flag.size()) : -1;
   ProgramParameters p;
   p.discretisation.method = SpaceMethod::fdm;
   const std::pair<Observers, const char*> cases[] = {
@@ -100,6 +100,10 @@ try
       {Observers::every_run, "+ contact-force statistics and uplift (every run)"},
       {Observers::vtu_50ms, "+ VTU every 50 ms (11 frames)"},
       {Observers::vtu_5ms, "+ VTU every 5 ms (101 frames)"}};
+  if (only_given && (only < 0 || only >= static_cast<int>(std::size(cases))))
+    throw std::invalid_argument("--only=" + std::to_string(only) +
+                                ": no such case (0 to " +
+                                std::to_string(std::size(cases) - 1) + ")");
   // Rounds over all cases, the fastest of the rounds per case: a busy spell of the
   // machine hits every case alike, so the ratios hold.
   double alone = 1e300;
