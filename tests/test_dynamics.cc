@@ -1032,6 +1032,78 @@ TEST(TruncatedColumns, ProductsAreTheDenseSumsInTheSameOrder)
     EXPECT_EQ(products[l], 0. + 2. * dense[l][3] + -1.5 * dense[l][12]) << l;
 }
 
+// Partner columns X'_l share the pattern of X_l (the union of both, a
+// missing entry stored as 0), so that one pass adds X c and then X' d. That
+// must be what two separate stores add, to the bit: the sums see the same
+// products in the same order (a stored 0 adds nothing), and an unknown that
+// only one set reaches is left alone by the other, a -0 included. The partner
+// products g X' are the dense sums as well.
+TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
+{
+  const unsigned int n = 70, m = 6;
+  std::mt19937 random(23);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  std::vector<SparseRow> columns(m), partners(m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    for (unsigned int i = 6 * l; i < 6 * l + 10; ++i) // X: unknowns 0 .. 39
+      columns[l].add(i, value(random));
+    for (unsigned int i = 6 * l + 3; i < 6 * l + 12 + l; i += (l % 2 ? 2 : 1))
+      partners[l].add(i, value(random)); // X': 3 .. 46, with gaps
+  }
+  TruncatedColumns X, X1, X2;
+  X.initialize(columns, n, partners);
+  X1.initialize(columns, n);
+  X2.initialize(partners, n);
+  EXPECT_LT(X.n_entries(), X1.n_entries() + X2.n_entries()); // shared entries once
+  std::vector<double> c(m), d(m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    c[l] = value(random);
+    d[l] = value(random);
+  }
+  dealii::Vector<double> y(n), expected(n);
+  for (unsigned int i = 0; i < n; ++i)
+    y[i] = expected[i] = value(random);
+  y[1] = expected[1] = -0.;   // reached by X only
+  y[45] = expected[45] = -0.; // reached by X' only
+  X1.add(c, expected);
+  X2.add(d, expected);
+  X.add_with_partners(c, d, y);
+  for (unsigned int i = 0; i < n; ++i)
+    EXPECT_EQ(y[i], expected[i]) << i;
+  EXPECT_TRUE(std::signbit(y[45]));
+  // X alone (set 0) leaves X''s unknowns alone.
+  dealii::Vector<double> z(n), z1(n);
+  z[45] = z1[45] = -0.;
+  X.add(c, z);
+  X1.add(c, z1);
+  for (unsigned int i = 0; i < n; ++i)
+    EXPECT_EQ(z[i], z1[i]) << i;
+  EXPECT_TRUE(std::signbit(z[45]));
+  SparseRow g;
+  g.add(4, 2.);
+  g.add(33, -1.5);
+  g.add(44, 3.);
+  std::vector<double> products, expected_products;
+  for (const bool partner : {false, true})
+  {
+    if (partner)
+    {
+      X.partner_row_products(g, products);
+      X2.row_products(g, expected_products);
+    }
+    else
+    {
+      X.row_products(g, products);
+      X1.row_products(g, expected_products);
+    }
+    ASSERT_EQ(products.size(), m);
+    for (unsigned int l = 0; l < m; ++l)
+      EXPECT_EQ(products[l], expected_products[l]) << partner << " " << l;
+  }
+}
+
 TEST(FixedConstraintSchur, ADiagonalComplementIsInvertedEntryByEntry)
 {
   // The FDM's droppers share no unknown and M is diagonal, so S = G M^-1 G^T

@@ -382,12 +382,13 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     const ConstraintState& row = rows[eq.constraint];
     if (products_of != eq.constraint)
     {
-      block.lambda_columns().row_products(row.G, X0);
-      block.lambda_columns().row_products(row.G_t, X1);
-      block.lambda_columns().row_products(row.G_tt, X2);
-      block.mu_columns().row_products(row.G, V0);
-      block.mu_columns().row_products(row.G_t, V1);
-      block.mu_columns().row_products(row.G_tt, V2);
+      const TruncatedColumns& X = block.stiffness_columns();
+      X.row_products(row.G, X0);
+      X.row_products(row.G_t, X1);
+      X.row_products(row.G_tt, X2);
+      X.partner_row_products(row.G, V0);
+      X.partner_row_products(row.G_t, V1);
+      X.partner_row_products(row.G_tt, V2);
       block.mass_columns().row_products(row.G, Y0);
       block.mass_columns().row_products(row.G_t, Y1);
       products_of = eq.constraint;
@@ -435,32 +436,101 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   x.q.reinit(n, true);
   x.v.reinit(n);
   x.a.reinit(n);
-  for (unsigned int i = 0; i < n; ++i)
-    x.q[i] = s.base_batch()(i, base);
+  {
+    const double* B = s.base_batch().data();
+    for (unsigned int i = 0; i < n; ++i)
+      x.q[i] = B[InterleavedColumns::width * i + base];
+  }
   block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
-  constexpr unsigned int w = InterleavedColumns::width;
+  // The border columns, then v and a, in one pass; on each unknown the
+  // border unknowns add in their order.
+  border_terms.clear();
   for (unsigned int u = 0; u < p; ++u)
   {
     const auto [X, U] = s.batches(unknowns[u].constraint);
-    const double f = y(u);
     const unsigned int kind = unknowns[u].kind;
-    const double *Xd = X->data(), *Ud = U->data();
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      x.q[i] += f * Xd[w * i + kind];
-      if (kind == mu)
-        x.v[i] += f * Ud[w * i + Y];
-      else if (kind == eta)
-      {
-        x.v[i] += f * Ud[w * i + Z];
-        x.a[i] += f * Ud[w * i + Y];
-      }
-    }
+    const double f = y(u);
+    border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
+                            kind == eta ? f : 0., kind == eta ? f : 0.});
+  }
+  combine_trial(border_terms, c, rho_q, rho_v, x);
+}
+
+namespace
+{
+/**
+ * q, v, a += P border terms (Bdf2Integrator::BorderTerm) in one pass; in the
+ * last pass also v = c q - rho_q - v, a = c v - rho_v - a. Without branches:
+ * a term's mass columns enter with factors that are 0 where its kind has
+ * none; v and a are never -0 (they start at +0 and take sums that start at
+ * +0), so adding 0 U leaves them as they are.
+ */
+template <unsigned int P, bool last, typename Term>
+void combine_pass(const Term* terms, const double c, const double* __restrict rq,
+                  const double* __restrict rv, const unsigned int n, double* __restrict q,
+                  double* __restrict v, double* __restrict a)
+{
+  constexpr unsigned int w = InterleavedColumns::width;
+  const double* X[P > 0 ? P : 1];
+  const double* U[P > 0 ? P : 1];
+  double f[P > 0 ? P : 1], vY[P > 0 ? P : 1], vZ[P > 0 ? P : 1], aY[P > 0 ? P : 1];
+  for (unsigned int k = 0; k < P; ++k)
+  {
+    X[k] = terms[k].X;
+    U[k] = terms[k].U;
+    f[k] = terms[k].f;
+    vY[k] = terms[k].v_Y;
+    vZ[k] = terms[k].v_Z;
+    aY[k] = terms[k].a_Y;
   }
   for (unsigned int i = 0; i < n; ++i)
   {
-    x.v[i] = c * x.q[i] - rho_q[i] - x.v[i];
-    x.a[i] = c * x.v[i] - rho_v[i] - x.a[i];
+    double qi = q[i], vi = v[i], ai = a[i];
+    for (unsigned int k = 0; k < P; ++k)
+    {
+      qi += f[k] * X[k][w * i];
+      vi += vY[k] * U[k][w * i + Y];
+      vi += vZ[k] * U[k][w * i + Z];
+      ai += aY[k] * U[k][w * i + Y];
+    }
+    q[i] = qi;
+    if (last)
+    {
+      vi = c * qi - rq[i] - vi;
+      ai = c * vi - rv[i] - ai;
+    }
+    v[i] = vi;
+    a[i] = ai;
+  }
+}
+} // namespace
+
+void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms, const double c,
+                                   const dealii::Vector<double>& rho_q,
+                                   const dealii::Vector<double>& rho_v, DynamicState& x)
+{
+  const unsigned int n = x.q.size();
+  double *q = x.q.begin(), *v = x.v.begin(), *a = x.a.begin();
+  const double *rq = rho_q.begin(), *rv = rho_v.begin();
+  // Passes of three terms (a contact with force: lambda, eta, mu), the last
+  // with the rest; on each unknown the terms add in their order.
+  std::size_t k = 0;
+  for (; terms.size() - k > 3; k += 3)
+    combine_pass<3, false>(terms.data() + k, c, rq, rv, n, q, v, a);
+  const BorderTerm* rest = terms.data() + k;
+  switch (terms.size() - k)
+  {
+  case 0:
+    combine_pass<0, true>(rest, c, rq, rv, n, q, v, a);
+    break;
+  case 1:
+    combine_pass<1, true>(rest, c, rq, rv, n, q, v, a);
+    break;
+  case 2:
+    combine_pass<2, true>(rest, c, rq, rv, n, q, v, a);
+    break;
+  default:
+    combine_pass<3, true>(rest, c, rq, rv, n, q, v, a);
   }
 }
 

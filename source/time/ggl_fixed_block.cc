@@ -26,7 +26,6 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
                "matrix G S^-1 G^T + C of the fixed constraints (BDF)", compliance);
   N.initialize(G, FixedConstraintSchur::column_solver(M, true), n_dofs,
                "matrix G M^-1 G^T of the fixed constraints (BDF)", {});
-  X_lambda.initialize(P.truncated_columns(), n_dofs);
   Y.initialize(N.truncated_columns(), n_dofs);
 
   // Q_kl = G_k S^-1 (c G_l^T + D M^-1 G_l^T), and those columns.
@@ -53,7 +52,7 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
       if (std::abs(column[k]) > 1e-15 * largest)
         Q_rows[k].add(l, column[k]);
   }
-  X_mu.initialize(mu_columns, n_dofs);
+  X.initialize(P.truncated_columns(), n_dofs, mu_columns);
   Q.clear();
   for (const SparseRow& row : Q_rows)
     Q.push_back(row);
@@ -69,14 +68,14 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   S_inverse = &S;
   M_inverse = &M;
   damping = &D;
-  // Columns: three passes over their entries (X^lambda, X^mu, Y twice);
+  // Columns: a pass over their entries (X^lambda and X^mu side by side, Y twice);
   // solves: S once, M once for two right-hand sides, D once.
   const SparseDirectSolver* M_factor = M.factorised();
   const double solve_cost = S.solve_cost() +
                             (M_factor ? M_factor->solve_cost() : n_dofs) +
                             D.n_nonzero_elements();
-  solves_are_cheaper = static_cast<double>(X_lambda.n_entries() + X_mu.n_entries() +
-                                           2 * Y.n_entries()) > solve_cost;
+  solves_are_cheaper =
+      static_cast<double>(2 * X.n_entries() + 2 * Y.n_entries()) > solve_cost;
   if (solves_are_cheaper)
   {
     mass_batch.reinit(n_dofs);
@@ -93,8 +92,7 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
 {
   if (!solves_are_cheaper)
   {
-    X_lambda.add(lambda_plus_eta, q);
-    X_mu.add(mu, q);
+    X.add_with_partners(lambda_plus_eta, mu, q);
     Y.add(mu, u1, eta, u2);
     return;
   }

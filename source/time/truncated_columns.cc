@@ -1,6 +1,11 @@
 #include <pantocat/time/truncated_columns.h>
 
+#include <deal.II/base/exceptions.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstring>
 
 namespace pantocat
 {
@@ -14,41 +19,210 @@ SparseRow truncated(const dealii::Vector<double>& column)
   return row;
 }
 
-void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
-                                  const unsigned int n_dofs)
+namespace
 {
-  m = columns.size();
-  start.assign(n_dofs + 1, 0);
-  for (const SparseRow& c : columns)
-    for (const unsigned int i : c.index)
-      ++start[i + 1];
-  reached.clear();
-  for (unsigned int i = 0; i < n_dofs; ++i)
+/// A reached unknown's entries, by column: (l, value of X, value of X').
+struct UnknownEntries
+{
+  unsigned int i;
+  unsigned char reached_by = 0;
+  std::vector<unsigned int> l;
+  std::vector<std::array<double, 2>> v;
+  unsigned int first() const { return l.front(); }
+  unsigned int end() const { return l.back() + 1; }
+};
+
+/// The reached unknowns in order, each with its entries in the order of columns.
+std::vector<UnknownEntries> entries_by_unknown(const std::vector<SparseRow>& columns,
+                                               const std::vector<SparseRow>& partners)
+{
+  struct Entry
   {
-    if (start[i + 1] > 0)
-      reached.push_back(i);
-    start[i + 1] += start[i];
-  }
-  column.resize(start.back());
-  value.resize(start.back());
-  std::vector<std::size_t> next(start.begin(), start.end() - 1);
-  for (unsigned int l = 0; l < m; ++l)
-    for (std::size_t k = 0; k < columns[l].size(); ++k)
+    unsigned int i, l, set;
+    double value;
+  };
+  std::vector<Entry> entries;
+  for (unsigned int set = 0; set < (partners.empty() ? 1u : 2u); ++set)
+    for (unsigned int l = 0; l < columns.size(); ++l)
     {
-      const std::size_t e = next[columns[l].index[k]]++;
-      column[e] = l;
-      value[e] = columns[l].value[k];
+      const SparseRow& c = set == 0 ? columns[l] : partners[l];
+      for (std::size_t k = 0; k < c.size(); ++k)
+        entries.push_back({c.index[k], l, set, c.value[k]});
     }
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const Entry& a, const Entry& b)
+                   { return a.i != b.i ? a.i < b.i : a.l < b.l; });
+  std::vector<UnknownEntries> by_unknown;
+  for (std::size_t e = 0; e < entries.size(); ++e)
+  {
+    const Entry& x = entries[e];
+    if (by_unknown.empty() || by_unknown.back().i != x.i)
+      by_unknown.push_back({x.i, 0, {}, {}});
+    UnknownEntries& u = by_unknown.back();
+    u.reached_by |= static_cast<unsigned char>(1u << x.set);
+    if (e == 0 || entries[e - 1].i != x.i || entries[e - 1].l != x.l)
+    {
+      u.l.push_back(x.l);
+      u.v.push_back({{0., 0.}});
+    }
+    u.v.back()[x.set] = x.value;
+  }
+  return by_unknown;
+}
+
+using Quad = double __attribute__((vector_size(32)));
+
+/// What the slices' sums s (of c) and t (of d) add to: y += s (set 0 reaches),
+/// y += s and z += t (set 0), or y += s (set 0), then y += t (set 1).
+enum class Target : int
+{
+  y,
+  y_and_z,
+  y_then_partners
+};
+
+/**
+ * The sums of every slice, four unknowns at once, and their additions
+ * (Target). The sum of lane j: its products in the order of the columns,
+ * zeros included (a zero product leaves a sum that starts at +0 as it is:
+ * it is never -0), so each unknown's sum is that over its entries alone.
+ */
+__attribute__((target_clones("avx2", "default"))) void
+add_slices(const TruncatedColumns::Slice* slices, const std::size_t count,
+           const double* __restrict value, const unsigned int sets,
+           const unsigned int set_d, const double* __restrict c,
+           const double* __restrict d, const Target target, double* __restrict y,
+           double* __restrict z)
+{
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const TruncatedColumns::Slice& slice = slices[k];
+    const double* v = value + slice.offset;
+    const double* cc = c + slice.first;
+    Quad s = {0., 0., 0., 0.}, t = {0., 0., 0., 0.};
+    if (d)
+    {
+      const double* dd = d + slice.first;
+      for (unsigned int e = 0; e < slice.length; ++e)
+      {
+        Quad a, b;
+        std::memcpy(&a, v + 4 * sets * e, sizeof a);
+        std::memcpy(&b, v + 4 * (sets * e + set_d), sizeof b);
+        s += a * cc[e];
+        t += b * dd[e];
+      }
+    }
+    else
+      for (unsigned int e = 0; e < slice.length; ++e)
+      {
+        Quad a;
+        std::memcpy(&a, v + 4 * sets * e, sizeof a);
+        s += a * cc[e];
+      }
+    for (unsigned int j = 0; j < 4; ++j)
+    {
+      const int i = slice.unknown[j];
+      const unsigned char reached = slice.reached_by[j];
+      if (i < 0)
+        break;
+      if (target == Target::y_then_partners)
+      {
+        if (reached & 1u)
+          y[i] += s[j];
+        if (reached & 2u)
+          y[i] += t[j];
+      }
+      else if (reached & 1u)
+      {
+        y[i] += s[j];
+        if (target == Target::y_and_z)
+          z[i] += t[j];
+      }
+    }
+  }
+}
+} // namespace
+
+void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
+                                  const unsigned int n_dofs,
+                                  const std::vector<SparseRow>& partners)
+{
+  AssertThrow(partners.empty() || partners.size() == columns.size(),
+              dealii::ExcDimensionMismatch(partners.size(), columns.size()));
+  m = columns.size();
+  sets = partners.empty() ? 1 : 2;
+  const std::vector<UnknownEntries> unknowns = entries_by_unknown(columns, partners);
+  pattern_entries = 0;
+  for (const UnknownEntries& u : unknowns)
+    pattern_entries += u.l.size();
+  // Slices: consecutive reached unknowns, four at most, while the slice's
+  // range holds no more than about twice their entries (an unknown of the
+  // other wire, whose columns lie elsewhere, starts a new slice).
+  slices.clear();
+  value.clear();
+  slot.assign(n_dofs, -1);
+  std::size_t u = 0;
+  while (u < unknowns.size())
+  {
+    std::size_t end = u + 1;
+    unsigned int first = unknowns[u].first(), last = unknowns[u].end();
+    std::size_t entries = unknowns[u].l.size();
+    while (end < unknowns.size() && end - u < 4)
+    {
+      const unsigned int f = std::min(first, unknowns[end].first()),
+                         e = std::max(last, unknowns[end].end());
+      const std::size_t with = entries + unknowns[end].l.size();
+      if ((e - f) * (end - u + 1) > 2 * with + 12)
+        break;
+      first = f, last = e, entries = with;
+      ++end;
+    }
+    Slice slice;
+    slice.first = first;
+    slice.length = last - first;
+    slice.offset = value.size();
+    value.resize(value.size() + 4 * sets * slice.length, 0.);
+    for (std::size_t j = 0; j < end - u; ++j)
+    {
+      const UnknownEntries& x = unknowns[u + j];
+      slice.unknown[j] = static_cast<int>(x.i);
+      slice.reached_by[j] = x.reached_by;
+      slot[x.i] = static_cast<int>(4 * slices.size() + j);
+      for (std::size_t k = 0; k < x.l.size(); ++k)
+        for (unsigned int set = 0; set < sets; ++set)
+          value[slice.offset + 4 * (sets * (x.l[k] - first) + set) + j] = x.v[k][set];
+    }
+    slices.push_back(slice);
+    u = end;
+  }
 }
 
 void TruncatedColumns::row_products(const SparseRow& g, std::vector<double>& out) const
 {
+  row_products(g, 0, out);
+}
+
+void TruncatedColumns::partner_row_products(const SparseRow& g,
+                                            std::vector<double>& out) const
+{
+  Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
+  row_products(g, 1, out);
+}
+
+void TruncatedColumns::row_products(const SparseRow& g, const unsigned int set,
+                                    std::vector<double>& out) const
+{
+  // The slice's zeros add +-0 to sums that are never -0: no change.
   out.assign(m, 0.);
   for (std::size_t k = 0; k < g.size(); ++k)
   {
     const unsigned int i = g.index[k];
-    for (std::size_t e = start[i]; e < start[i + 1]; ++e)
-      out[column[e]] += g.value[k] * value[e];
+    if (i >= slot.size() || slot[i] < 0)
+      continue;
+    const Slice& slice = slices[slot[i] / 4];
+    const double* v = value.data() + slice.offset + 4 * set + slot[i] % 4;
+    for (unsigned int e = 0; e < slice.length; ++e)
+      out[slice.first + e] += g.value[k] * v[4 * sets * e];
   }
 }
 
@@ -56,28 +230,23 @@ void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>&
 {
   // An unknown no column reaches would take y_i += 0: skipped (the same
   // value; y_i = -0 stays -0 instead of becoming +0).
-  for (const unsigned int i : reached)
-  {
-    double s = 0.;
-    for (std::size_t e = start[i]; e < start[i + 1]; ++e)
-      s += value[e] * c[column[e]];
-    y[i] += s;
-  }
+  add_slices(slices.data(), slices.size(), value.data(), sets, 0, c.data(), nullptr,
+             Target::y, y.begin(), nullptr);
 }
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
                            const std::vector<double>& d, dealii::Vector<double>& z) const
 {
-  for (const unsigned int i : reached)
-  {
-    double s = 0., t = 0.;
-    for (std::size_t e = start[i]; e < start[i + 1]; ++e)
-    {
-      s += value[e] * c[column[e]];
-      t += value[e] * d[column[e]];
-    }
-    y[i] += s;
-    z[i] += t;
-  }
+  add_slices(slices.data(), slices.size(), value.data(), sets, 0, c.data(), d.data(),
+             Target::y_and_z, y.begin(), z.begin());
+}
+
+void TruncatedColumns::add_with_partners(const std::vector<double>& c,
+                                         const std::vector<double>& d,
+                                         dealii::Vector<double>& y) const
+{
+  Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
+  add_slices(slices.data(), slices.size(), value.data(), sets, 1, c.data(), d.data(),
+             Target::y_then_partners, y.begin(), nullptr);
 }
 } // namespace pantocat

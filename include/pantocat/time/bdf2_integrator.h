@@ -104,6 +104,23 @@ private:
   void solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                    const dealii::Vector<double>& rho_q,
                    const dealii::Vector<double>& rho_v, DynamicState& x);
+  /// A border unknown's share of q, v, a: f times its column X (stride
+  /// InterleavedColumns::width), and its mass columns U (Y, Z) with the
+  /// factors its kind gives them in v (Y for mu, Z for eta) and a (Y for eta).
+  struct BorderTerm
+  {
+    const double* X;
+    const double* U;
+    double f, v_Y, v_Z, a_Y;
+  };
+  /**
+   * q += sum of the border terms, then v = c q - rho_q - (v + their mass
+   * columns), a = c v - rho_v - (a + theirs), in one pass over the unknowns
+   * (v and a hold u1, u2 of (38)'s BDF form on entry).
+   */
+  static void combine_trial(const std::vector<BorderTerm>& terms, double c,
+                            const dealii::Vector<double>& rho_q,
+                            const dealii::Vector<double>& rho_v, DynamicState& x);
 
   double dt;
   LinearSolverType linear_solver;
@@ -120,5 +137,6 @@ private:
   DynamicState previous, current;
   unsigned long step_number = 0;
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
+  std::vector<BorderTerm> border_terms;           ///< workspace of solve_trial()
 };
 } // namespace pantocat

@@ -79,10 +79,9 @@ public:
                   dealii::Vector<double>& q, dealii::Vector<double>& u1,
                   dealii::Vector<double>& u2) const;
 
-  /// Columns S^-1 G^T (of lambda and eta), S^-1 (c G^T + D M^-1 G^T) (of mu),
-  /// M^-1 G^T.
-  const TruncatedColumns& lambda_columns() const { return X_lambda; }
-  const TruncatedColumns& mu_columns() const { return X_mu; }
+  /// Columns S^-1 G^T (of lambda and eta) with their partners S^-1 (c G^T +
+  /// D M^-1 G^T) (of mu); M^-1 G^T.
+  const TruncatedColumns& stiffness_columns() const { return X; }
   const TruncatedColumns& mass_columns() const { return Y; }
 
 private:
@@ -90,7 +89,7 @@ private:
   double c = 0.;
   FixedConstraintSchur P, N; ///< P + C on F + E, N on F
   CompressedRows Q;          ///< Q by rows
-  TruncatedColumns X_lambda, X_mu, Y;
+  TruncatedColumns X, Y;     ///< X: X^lambda with X^mu as partners
   std::vector<double> ratio;
   std::vector<SparseRow> rows; ///< G of the constraints
   const SparseDirectSolver* S_inverse = nullptr;
