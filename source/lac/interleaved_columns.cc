@@ -30,6 +30,19 @@ double InterleavedColumns::dot(const SparseRow& row, const unsigned int k) const
   return s;
 }
 
+std::array<double, InterleavedColumns::width>
+InterleavedColumns::dots(const SparseRow& row) const
+{
+  std::array<double, width> s{};
+  for (std::size_t e = 0; e < row.size(); ++e)
+  {
+    const double* x = values.data() + row.index[e] * width;
+    for (unsigned int k = 0; k < width; ++k)
+      s[k] += row.value[e] * x[k];
+  }
+  return s;
+}
+
 void InterleavedColumns::add_combination(const std::array<double, width>& c,
                                          dealii::Vector<double>& out) const
 {

@@ -134,7 +134,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
   std::pair<const InterleavedColumns*, const InterleavedColumns*>
   batches(const unsigned int i) const
   {
-    if (system.constraints[i]->depends_on_time())
+    if (moves[i])
       return {&S_columns[position[i]], &M_columns[position[i]]};
     const auto& [X, U] = touching_columns.at(i);
     return {&X, &U};
@@ -294,9 +294,9 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   std::vector<unsigned int> border;
   for (unsigned int i = 0; i < m_all; ++i)
   {
-    const bool moving = system.constraints[i]->depends_on_time();
     if (role[i] == Role::none)
       continue;
+    const bool moving = s.moves[i];
     if (!moving && role[i] != Role::touching)
     {
       (role[i] == Role::force ? force : engaged)[s.position[i]] = true;
@@ -368,10 +368,33 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(3 * mF)),
       Cr(p, dealii::Vector<double>(3 * mF));
   dealii::FullMatrix<double> D(p, p);
-  for (unsigned int u = 0; u < p; ++u)
+  // Fixed rows against the border columns: G_t = G_tt = 0 on them, and the
+  // unknowns of one border constraint share its batches, so each fixed row
+  // takes its products with them once (the values border_levels() gives).
+  for (unsigned int u0 = 0, u1 = 0; u0 < p; u0 = u1)
+  {
+    while (u1 < p && unknowns[u1].constraint == unknowns[u0].constraint)
+      ++u1;
+    const auto [X, U] = s.batches(unknowns[u0].constraint);
     for (unsigned int k = 0; k < mF; ++k)
-      if (force[k] || engaged[k])
-        fixed_slots(k, border_levels(s.fixed[k], unknowns[u]), Bc[u]);
+    {
+      if (!force[k] && !engaged[k])
+        continue;
+      const SparseRow& G = rows[s.fixed[k]].G;
+      const std::array<double, InterleavedColumns::width> GX = X->dots(G), GU = U->dots(G);
+      for (unsigned int u = u0; u < u1; ++u)
+      {
+        const unsigned int kind = unknowns[u].kind;
+        fixed_slots(k,
+                    functionals(c, GX[kind], 0., 0.,
+                                kind == eta  ? GU[Z]
+                                : kind == mu ? GU[Y]
+                                             : 0.,
+                                0., kind == eta ? GU[Y] : 0.),
+                    Bc[u]);
+      }
+    }
+  }
   // Border rows against the fixed unknowns, from the truncated columns.
   const GglFixedBlock& block = s.block;
   std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;

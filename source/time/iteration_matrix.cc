@@ -15,14 +15,15 @@ void assemble_iteration_matrix(const SemiDiscreteSystem& system,
 IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
                                  const double damping_factor, const double mass_factor,
                                  const std::string& what, const LinearSolverType solver)
-    : position(system.n_constraints())
+    : position(system.n_constraints()), moves(system.n_constraints())
 {
   dealii::SparseMatrix<double> S;
   assemble_iteration_matrix(system, damping_factor, mass_factor, S);
   inverse.factorize(S, what, solver);
   for (unsigned int i = 0; i < system.n_constraints(); ++i)
   {
-    auto& list = system.constraints[i]->depends_on_time() ? moving : fixed;
+    moves[i] = system.constraints[i]->depends_on_time();
+    auto& list = moves[i] ? moving : fixed;
     position[i] = list.size();
     list.push_back(i);
   }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 namespace pantocat
 {
@@ -28,8 +29,6 @@ struct UnknownEntries
   unsigned char reached_by = 0;
   std::vector<unsigned int> l;
   std::vector<std::array<double, 2>> v;
-  unsigned int first() const { return l.front(); }
-  unsigned int end() const { return l.back() + 1; }
 };
 
 /// The reached unknowns in order, each with its entries in the order of columns.
@@ -89,8 +88,8 @@ enum class Target : int
  */
 __attribute__((target_clones("avx2", "default"))) void
 add_slices(const TruncatedColumns::Slice* slices, const std::size_t count,
-           const double* __restrict value, const unsigned int sets,
-           const unsigned int set_d, const double* __restrict c,
+           const unsigned int* __restrict column, const double* __restrict value,
+           const unsigned int sets, const unsigned int set_d, const double* __restrict c,
            const double* __restrict d, const Target target, double* __restrict y,
            double* __restrict z)
 {
@@ -98,26 +97,23 @@ add_slices(const TruncatedColumns::Slice* slices, const std::size_t count,
   {
     const TruncatedColumns::Slice& slice = slices[k];
     const double* v = value + slice.offset;
-    const double* cc = c + slice.first;
+    const unsigned int* l = column + slice.first;
     Quad s = {0., 0., 0., 0.}, t = {0., 0., 0., 0.};
     if (d)
-    {
-      const double* dd = d + slice.first;
       for (unsigned int e = 0; e < slice.length; ++e)
       {
         Quad a, b;
         std::memcpy(&a, v + 4 * sets * e, sizeof a);
         std::memcpy(&b, v + 4 * (sets * e + set_d), sizeof b);
-        s += a * cc[e];
-        t += b * dd[e];
+        s += a * c[l[e]];
+        t += b * d[l[e]];
       }
-    }
     else
       for (unsigned int e = 0; e < slice.length; ++e)
       {
         Quad a;
         std::memcpy(&a, v + 4 * sets * e, sizeof a);
-        s += a * cc[e];
+        s += a * c[l[e]];
       }
     for (unsigned int j = 0; j < 4; ++j)
     {
@@ -156,31 +152,36 @@ void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
   for (const UnknownEntries& u : unknowns)
     pattern_entries += u.l.size();
   // Slices: consecutive reached unknowns, four at most, while the slice's
-  // range holds no more than about twice their entries (an unknown of the
-  // other wire, whose columns lie elsewhere, starts a new slice).
+  // columns are no more than about twice their entries (an unknown of the
+  // other wire, reached by other columns, starts a new slice).
   slices.clear();
+  column.clear();
   value.clear();
   slot.assign(n_dofs, -1);
+  std::vector<unsigned int> together, with;
   std::size_t u = 0;
   while (u < unknowns.size())
   {
     std::size_t end = u + 1;
-    unsigned int first = unknowns[u].first(), last = unknowns[u].end();
+    together = unknowns[u].l;
     std::size_t entries = unknowns[u].l.size();
     while (end < unknowns.size() && end - u < 4)
     {
-      const unsigned int f = std::min(first, unknowns[end].first()),
-                         e = std::max(last, unknowns[end].end());
-      const std::size_t with = entries + unknowns[end].l.size();
-      if ((e - f) * (end - u + 1) > 2 * with + 12)
+      const std::vector<unsigned int>& l = unknowns[end].l;
+      with.clear();
+      std::set_union(together.begin(), together.end(), l.begin(), l.end(),
+                     std::back_inserter(with));
+      if (with.size() * (end - u + 1) > 2 * (entries + l.size()) + 12)
         break;
-      first = f, last = e, entries = with;
+      together.swap(with);
+      entries += l.size();
       ++end;
     }
     Slice slice;
-    slice.first = first;
-    slice.length = last - first;
+    slice.first = column.size();
+    slice.length = together.size();
     slice.offset = value.size();
+    column.insert(column.end(), together.begin(), together.end());
     value.resize(value.size() + 4 * sets * slice.length, 0.);
     for (std::size_t j = 0; j < end - u; ++j)
     {
@@ -188,13 +189,22 @@ void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
       slice.unknown[j] = static_cast<int>(x.i);
       slice.reached_by[j] = x.reached_by;
       slot[x.i] = static_cast<int>(4 * slices.size() + j);
-      for (std::size_t k = 0; k < x.l.size(); ++k)
+      for (std::size_t k = 0, e = 0; k < x.l.size(); ++k)
+      {
+        while (together[e] != x.l[k])
+          ++e;
         for (unsigned int set = 0; set < sets; ++set)
-          value[slice.offset + 4 * (sets * (x.l[k] - first) + set) + j] = x.v[k][set];
+          value[slice.offset + 4 * (sets * e + set) + j] = x.v[k][set];
+      }
     }
     slices.push_back(slice);
     u = end;
   }
+}
+
+std::size_t TruncatedColumns::n_slice_operations() const
+{
+  return sets * column.size();
 }
 
 void TruncatedColumns::row_products(const SparseRow& g, std::vector<double>& out) const
@@ -221,8 +231,9 @@ void TruncatedColumns::row_products(const SparseRow& g, const unsigned int set,
       continue;
     const Slice& slice = slices[slot[i] / 4];
     const double* v = value.data() + slice.offset + 4 * set + slot[i] % 4;
+    const unsigned int* l = column.data() + slice.first;
     for (unsigned int e = 0; e < slice.length; ++e)
-      out[slice.first + e] += g.value[k] * v[4 * sets * e];
+      out[l[e]] += g.value[k] * v[4 * sets * e];
   }
 }
 
@@ -230,15 +241,15 @@ void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>&
 {
   // An unknown no column reaches would take y_i += 0: skipped (the same
   // value; y_i = -0 stays -0 instead of becoming +0).
-  add_slices(slices.data(), slices.size(), value.data(), sets, 0, c.data(), nullptr,
-             Target::y, y.begin(), nullptr);
+  add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 0, c.data(),
+             nullptr, Target::y, y.begin(), nullptr);
 }
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
                            const std::vector<double>& d, dealii::Vector<double>& z) const
 {
-  add_slices(slices.data(), slices.size(), value.data(), sets, 0, c.data(), d.data(),
-             Target::y_and_z, y.begin(), z.begin());
+  add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 0, c.data(),
+             d.data(), Target::y_and_z, y.begin(), z.begin());
 }
 
 void TruncatedColumns::add_with_partners(const std::vector<double>& c,
@@ -246,7 +257,7 @@ void TruncatedColumns::add_with_partners(const std::vector<double>& c,
                                          dealii::Vector<double>& y) const
 {
   Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
-  add_slices(slices.data(), slices.size(), value.data(), sets, 1, c.data(), d.data(),
-             Target::y_then_partners, y.begin(), nullptr);
+  add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 1, c.data(),
+             d.data(), Target::y_then_partners, y.begin(), nullptr);
 }
 } // namespace pantocat

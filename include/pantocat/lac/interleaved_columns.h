@@ -41,6 +41,8 @@ public:
   void add_row(unsigned int k, const SparseRow& row, double factor);
   /// row . column k
   double dot(const SparseRow& row, unsigned int k) const;
+  /// row . column k for every k in one pass (each as dot(row, k) sums it).
+  std::array<double, width> dots(const SparseRow& row) const;
 
   /// out += sum_k coefficient[k] * column k (one pass).
   void add_combination(const std::array<double, width>& coefficient,

@@ -44,6 +44,7 @@ public:
   std::vector<unsigned int> fixed, moving; ///< constraints with constant / moving rows
   /// position[i]: the index of constraint i in `fixed` or in `moving`.
   std::vector<unsigned int> position;
+  std::vector<char> moves; ///< moves[i]: constraint i is in `moving`
   std::vector<InterleavedColumns> S_columns, M_columns; ///< per moving constraint
   InterleavedColumns base_only; ///< the base solution when no constraint moves
 };

@@ -23,13 +23,12 @@ SparseRow truncated(const dealii::Vector<double>& column);
  *  - X c for coefficients c (the forces of all fixed constraints at once).
  *
  * The rows of X are kept in slices of four reached unknowns (the lanes of a
- * four-double vector), each with the range of columns that reach any of
- * them (the columns of constraints in the order of x reach an unknown in a
- * contiguous range: a dropper's column decays away from it). X c then runs
- * down a slice's range with c read in order, four unknowns at once, and each
- * unknown's sum takes its products in the order of the columns, a zero
- * where a column misses it: the value of the sum over its entries alone, to
- * the bit.
+ * four-double vector), each with the columns that reach any of them, in
+ * order (a dropper's column decays away from it, so neighbouring unknowns
+ * are reached by nearly the same columns). X c then runs down a slice's
+ * columns, four unknowns at once, and each unknown's sum takes its products
+ * in the order of the columns, a zero where a column misses it: the value
+ * of the sum over its entries alone, to the bit.
  */
 class TruncatedColumns
 {
@@ -45,6 +44,9 @@ public:
 
   /// Entries of the pattern (shared by the partners; without the slices' zeros).
   std::size_t n_entries() const { return pattern_entries; }
+  /// Four-double multiply-adds of a pass over the slices with one sum per
+  /// stored set: their columns times the sets.
+  std::size_t n_slice_operations() const;
 
   /// out[l] = g . X_l for every column l (out is resized to m).
   void row_products(const SparseRow& g, std::vector<double>& out) const;
@@ -66,15 +68,16 @@ public:
                          dealii::Vector<double>& y) const;
 
   /**
-   * Four reached unknowns (-1: an unused lane) and the columns [first, first
-   * + length) that reach any of them; the value of lane j, column first + k,
-   * set s (0: X, 1: X') at value[offset + 4 (sets k + s) + j], 0 where that
-   * column misses the unknown. Bit s of reached_by[j]: set s reaches lane j.
+   * Four reached unknowns (-1: an unused lane) and the `length` columns that
+   * reach any of them, ascending, at column[first ...]; the value of lane j,
+   * the slice's k-th column, set s (0: X, 1: X') at value[offset + 4 (sets
+   * k + s) + j], 0 where that column misses the unknown. Bit s of
+   * reached_by[j]: set s reaches lane j.
    */
   struct Slice
   {
-    unsigned int first = 0, length = 0;
-    std::size_t offset = 0;
+    std::size_t first = 0, offset = 0;
+    unsigned int length = 0;
     std::array<int, 4> unknown{{-1, -1, -1, -1}};
     std::array<unsigned char, 4> reached_by{{0, 0, 0, 0}};
   };
@@ -87,7 +90,8 @@ private:
   unsigned int sets = 1; ///< 2 with partners
   std::size_t pattern_entries = 0;
   std::vector<Slice> slices;
-  std::vector<int> slot;     ///< unknown i: 4 slice + lane, or -1 (no column reaches it)
-  std::vector<double> value; ///< the slices' values (Slice)
+  std::vector<int> slot; ///< unknown i: 4 slice + lane, or -1 (no column reaches it)
+  std::vector<unsigned int> column; ///< the slices' columns (Slice)
+  std::vector<double> value;        ///< the slices' values (Slice)
 };
 } // namespace pantocat
