@@ -165,10 +165,13 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
   // E.
   batch.clear();
+  const bool any_engaged =
+      std::find(engaged_set.begin(), engaged_set.end(), true) != engaged_set.end();
   for (std::size_t j = 0; j < count; ++j)
   {
     P.vmult(P_eta, eta[j]);
-    N.vmult(N_mu, mu[j]);
+    if (any_engaged) // N mu enters the laws of the engaged ones only
+      N.vmult(N_mu, mu[j]);
     for (unsigned int k = 0; k < m; ++k)
       Q_mu[k] = Q.dot(k, mu[j].begin());
     const dealii::Vector<double>& x = *xs[j];
