@@ -12,6 +12,7 @@
 #include <pantocat/simulation/run_statistics.h>
 #include <pantocat/simulation/switch_episodes.h>
 #include <pantocat/system/energy_functional.h>
+#include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/disjoint_fixed_constraints.h>
@@ -1107,6 +1108,54 @@ TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
     ASSERT_EQ(products.size(), m);
     for (unsigned int l = 0; l < m; ++l)
       EXPECT_EQ(products[l], expected_products[l]) << partner << " " << l;
+  }
+}
+
+// PatternOperators keeps the rows in runs with the same offsets (stride 1 for
+// the FDM's and the strings' nodes, 2 for a Hermite beam's values and
+// slopes) and sums down a run offset by offset, several rows at once. Each
+// row's sum must still be the loop over its entries in the pattern's order,
+// to the bit: f + M h + D r and IDA's M (qp - v), M vp + D v + K q - f,
+// computed here by that loop from the matrices, on random vectors. A sum that
+// dropped an entry or took them in another order would differ in the last
+// bits. The FEM grid must form runs of stride 2 (few runs, not one per row).
+TEST(PatternOperators, RunsGiveTheRowLoopsSumsToTheBit)
+{
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  for (const SpaceMethod method : {SpaceMethod::fdm, SpaceMethod::fem})
+  {
+    ProgramParameters p = benchmark(32., method, "bdf2");
+    CaseRunner simulation(p.make_case(), {});
+    const SemiDiscreteSystem& sys = simulation.system();
+    const unsigned int n = sys.n_dofs();
+    PatternOperators operators(sys);
+    EXPECT_LT(operators.n_runs(), 40u) << "rows not grouped, n = " << n;
+    dealii::Vector<double> h(n), r(n), q(n), v(n), qp(n), vp(n), r_q(n), r_v(n);
+    for (auto* x : {&h, &r, &q, &v, &qp, &vp})
+      for (unsigned int i = 0; i < n; ++i)
+        (*x)[i] = value(random);
+    InterleavedColumns out;
+    out.reinit(n);
+    operators.history(h, r, out, 2);
+    operators.motion(q.begin(), v.begin(), qp.begin(), vp.begin(), r_q.begin(),
+                     r_v.begin());
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      double s = sys.load[i], fq = 0., fv = -sys.load[i];
+      auto d = sys.damping.begin(i);
+      auto k = sys.stiffness.begin(i);
+      for (auto m = sys.mass.begin(i); m != sys.mass.end(i); ++m, ++d, ++k)
+      {
+        const unsigned int j = m->column();
+        s += m->value() * h[j] + d->value() * r[j];
+        fq += m->value() * (qp[j] - v[j]);
+        fv += m->value() * vp[j] + d->value() * v[j] + k->value() * q[j];
+      }
+      EXPECT_EQ(out(i, 2), s) << i;
+      EXPECT_EQ(r_q[i], fq) << i;
+      EXPECT_EQ(r_v[i], fv) << i;
+    }
   }
 }
 
