@@ -260,9 +260,10 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     for (unsigned int k = 0; k < mF; ++k)
       if (keep[k])
       {
-        const SparseRow& G_k = rows[S.fixed[k]].G;
-        Bc[c](k) = X.dot(G_k, lambda_column);
-        Cr[c](k) = (1. + d * c_v) * Bc[c](k) + d * X.dot(G_k, rate_column);
+        const std::array<double, InterleavedColumns::width> GX =
+            X.dots(rows[S.fixed[k]].G); // both columns in one pass
+        Bc[c](k) = GX[lambda_column];
+        Cr[c](k) = (1. + d * c_v) * Bc[c](k) + d * GX[rate_column];
       }
     y(c) = -(base_gap[i] + d * base_rate[i]);
     for (unsigned int r = 0; r < p; ++r)
