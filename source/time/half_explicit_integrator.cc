@@ -298,22 +298,17 @@ void banded_forces(const int n, const double* __restrict f,
     row(i, false);
 }
 /**
- * predict_unconstrained() on the unknowns 0 .. n-1, written as one loop over
- * the arrays so that it runs in four-double vectors (AVX2 clone): the same
- * operations in the same order on each unknown, so the same bits.
+ * predict_unconstrained() on the unknowns 0 .. n-1 in one loop with a signed
+ * index, so that it runs in four-double vectors (AVX2 clone).
  */
 __attribute__((target_clones("avx2", "default"))) void
-predict_all(const std::size_t n, const double* __restrict a, const double two_dt,
+predict_all(const int n, const double* __restrict a, const double two_dt,
             const double half_dt, const double* __restrict q, const double* __restrict v,
             const double* __restrict vp, double* __restrict q_new,
             double* __restrict v_new)
 {
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    const double vn = vp[i] + two_dt * a[i];
-    v_new[i] = vn;
-    q_new[i] = q[i] + half_dt * (v[i] + vn);
-  }
+  for (int i = 0; i < n; ++i)
+    predict_unconstrained(i, a[i], two_dt, half_dt, q, v, vp, q_new, v_new);
 }
 } // namespace
 
@@ -1004,8 +999,8 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   // Unconstrained part: v* = v_{n-1} + 2 dt a_n, q* = q_n + dt (v_n + v*)/2
   // (already there when compute_forces() predicted it).
   if (!predicted)
-    predict_all(q.size(), a.begin(), 2. * dt, 0.5 * dt, q.begin(), v.begin(),
-                previous->begin(), q_new.begin(), v_new.begin());
+    predict_all(static_cast<int>(q.size()), a.begin(), 2. * dt, 0.5 * dt, q.begin(),
+                v.begin(), previous->begin(), q_new.begin(), v_new.begin());
   split(A, keep, moving_active);
   const unsigned int mF = fixed.size(), p = moving_active.size();
   if (disjoint.used())
