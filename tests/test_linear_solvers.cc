@@ -3,6 +3,7 @@
 // same solutions and the same BDF-2 steps.
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/local_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/bdf2_integrator.h>
@@ -270,4 +271,83 @@ TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth
       worst = std::max({worst, std::abs(X[4 * i + k] - reference[k](i)),
                         std::abs(2. * X2[4 * i + k] - reference[k](i))});
   EXPECT_LT(worst, 1e-13 * reference[0].linfty_norm());
+}
+
+TEST(LinearSolvers, LocalSolvesAreTheFullSolvesWhereTheColumnsAreNotNegligible)
+{
+  // The columns S^-1 G^T of a contact (BDF-2 matrix of FEM, N+1 = 500, 1501
+  // unknowns) decay exponentially away from it (the mass term c^2 M
+  // dominates S), so solve_local() substitutes a few dozen rows around the
+  // right-hand side's rows. Its columns must be the full solve's to 1e-18 of
+  // each column's largest entry on every row, inside its reach (dropped tails
+  // below 1e-20 change them by less) and outside it (where it leaves zeros
+  // and the full solution is that small): the four columns differ by 1e6 in
+  // size, so the tolerance must be each column's own. The reach must be
+  // local (under a fifth of the rows, for a contact in one block and a row in another),
+  // also at a block's ends.
+  CaseRunner simulation(fem_bdf2(500).make_case());
+  const SemiDiscreteSystem& sys = simulation.system();
+  const double c = 1.5 / 5e-5;
+  dealii::SparseMatrix<double> S;
+  assemble_iteration_matrix(sys, c, c * c, S);
+  const int n = sys.n_dofs();
+  SparseDirectSolver banded, umfpack;
+  banded.factorize(S, "S");
+  umfpack.factorize(S, "S", LinearSolverType::umfpack);
+  ASSERT_TRUE(banded.is_banded());
+  // The longest block (the contact wire): rows in its middle, at its first
+  // and at its last rows, each with a row of another block.
+  const auto& blocks = banded.blocks();
+  const auto longest = *std::max_element(blocks.begin(), blocks.end(),
+                                         [](const auto& a, const auto& b)
+                                         { return a.last - a.first < b.last - b.first; });
+  const int other = longest.first > 0 ? 0 : n - 1;
+  for (const int centre :
+       {(longest.first + longest.last) / 2, longest.first + 1, longest.last - 2})
+  {
+    SparseRow row;
+    for (int i = std::max(longest.first, centre - 3);
+         i < std::min(longest.last, centre + 4); ++i)
+      row.add(i, 1. + 0.1 * (i % 3));
+    row.add(other, 0.5);
+    for (const SparseDirectSolver* solver : {&banded, &umfpack})
+    {
+      LocalColumns local;
+      local.reinit(n);
+      InterleavedColumns full;
+      full.reinit(n);
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        local.add_row(k, row, std::pow(10., 2. * k));
+        full.add_row(k, row, std::pow(10., 2. * k));
+      }
+      local.solve(*solver);
+      solver->solve_interleaved(full.data(), 4);
+      int reached = 0;
+      for (const RowRange& r : local.reach())
+        reached += r.last - r.first;
+      if (solver == &banded)
+        EXPECT_LT(reached, n / 5) << "centre " << centre;
+      else
+        EXPECT_EQ(reached, n);
+      for (unsigned int k = 0; k < 4; ++k)
+      {
+        double peak = 0., worst = 0.;
+        for (int i = 0; i < n; ++i)
+        {
+          peak = std::max(peak, std::abs(full(i, k)));
+          worst = std::max(worst, std::abs(local(i, k) - full(i, k)));
+        }
+        EXPECT_LE(worst, 1e-18 * peak) << "centre " << centre << ", column " << k;
+      }
+      // clear() resets every entry it reached.
+      local.clear();
+      double left = 0.;
+      for (int i = 0; i < n; ++i)
+        for (unsigned int k = 0; k < 4; ++k)
+          left = std::max(left, std::abs(local(i, k)));
+      EXPECT_EQ(left, 0.);
+      EXPECT_TRUE(local.reach().empty());
+    }
+  }
 }

@@ -384,6 +384,110 @@ void substitute_block(const ScaledBand& f, double* X, const SparseDirectSolver::
     return substitute<-1, K>(f, X, b.first, b.last, b.bandwidth);
   }
 }
+
+/// The largest |X| of each of the K interleaved columns over the rows [a, b).
+template <int K>
+void column_peaks(const double* X, const int a, const int b, double* peak)
+{
+  for (int r = 0; r < K; ++r)
+    peak[r] = 0.;
+  for (int i = a; i < b; ++i)
+    for (int r = 0; r < K; ++r)
+      peak[r] = std::max(peak[r], std::abs(X[i * K + r]));
+}
+
+/// True if every column's largest entry on a run is negligible against its peak.
+template <int K>
+bool negligible(const double* run_peak, const double* peak)
+{
+  for (int r = 0; r < K; ++r)
+    if (run_peak[r] > SparseDirectSolver::local_tolerance * peak[r])
+      return false;
+  return true;
+}
+
+/// peak = max(peak, run_peak) column by column.
+template <int K>
+void raise_peaks(double* peak, const double* run_peak)
+{
+  for (int r = 0; r < K; ++r)
+    peak[r] = std::max(peak[r], run_peak[r]);
+}
+
+/**
+ * SparseDirectSolver::solve_local() on block @p b with half bandwidth KD
+ * (1 to 4) for right-hand sides on its rows [s0, s1): the chains of
+ * substitute(), started at s0 and stopped where a run of rows is negligible.
+ * Returns the rows computed.
+ */
+template <int KD, int K>
+RowRange substitute_local(const ScaledBand& f, double* __restrict X,
+                          const SparseDirectSolver::Block& b, const int s0, const int s1)
+{
+  constexpr int run = SparseDirectSolver::local_run;
+  double peak[K], run_peak[K];
+  int end = b.last;
+  ForwardChain<KD, K> forward{f, X, s0, b.last, {}};
+  forward.start();
+  column_peaks<K>(X, s0, std::min(b.last, s0 + KD), peak);
+  for (int j = s0 + KD; j < b.last;)
+  {
+    const int from = j, stop = std::min(b.last, j + run);
+    for (; j < stop; ++j)
+      forward.step(j);
+    column_peaks<K>(X, from, stop, run_peak);
+    if (from >= s1 && stop - from == run && negligible<K>(run_peak, peak))
+    {
+      end = stop;
+      break;
+    }
+    raise_peaks<K>(peak, run_peak);
+  }
+  BackwardChain<KD, K> backward{f, X, b.first, end, {}};
+  backward.start();
+  column_peaks<K>(X, std::max(b.first, end - KD), end, peak);
+  int begin = b.first;
+  for (int i = end - 1 - KD; i >= b.first;)
+  {
+    const int from = i, stop = std::max(b.first - 1, i - run);
+    for (; i > stop; --i)
+      backward.step(i);
+    column_peaks<K>(X, stop + 1, from + 1, run_peak);
+    if (from < s0 && from - stop == run && negligible<K>(run_peak, peak))
+    {
+      begin = stop + 1;
+      break;
+    }
+    raise_peaks<K>(peak, run_peak);
+  }
+  return {begin, end};
+}
+
+/// substitute_local() for the block's bandwidth; a diagonal block on [s0, s1)
+/// only, a wide one whole.
+template <int K>
+RowRange substitute_block_local(const ScaledBand& f, double* X,
+                                const SparseDirectSolver::Block& b, const int s0,
+                                const int s1)
+{
+  switch (b.bandwidth)
+  {
+  case 0:
+    substitute<0, K>(f, X, s0, s1);
+    return {s0, s1};
+  case 1:
+    return substitute_local<1, K>(f, X, b, s0, s1);
+  case 2:
+    return substitute_local<2, K>(f, X, b, s0, s1);
+  case 3:
+    return substitute_local<3, K>(f, X, b, s0, s1);
+  case 4:
+    return substitute_local<4, K>(f, X, b, s0, s1);
+  default:
+    substitute_block<K>(f, X, b);
+    return {b.first, b.last};
+  }
+}
 } // namespace
 
 void SparseDirectSolver::find_blocks(const dealii::SparseMatrix<double>& A)
@@ -667,5 +771,47 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
                   dealii::ExcMessage("solve_interleaved: 1 to 4 right-hand sides"));
     }
   }
+}
+
+void SparseDirectSolver::solve_local(double* X, const unsigned int k,
+                                     RowRanges& reach) const
+{
+  AssertThrow(k >= 1 && k <= 4,
+              dealii::ExcMessage("solve_local: 1 to 4 right-hand sides"));
+  if (!banded)
+  {
+    solve_interleaved(X, k);
+    reach = {{0, n}};
+    return;
+  }
+  const ScaledBand f = scaled_band();
+  RowRanges computed;
+  for (const Block& b : independent_blocks)
+  {
+    int s0 = b.last, s1 = b.first; // the rows of reach in b
+    for (const RowRange& r : reach)
+      if (r.first < b.last && r.last > b.first)
+      {
+        s0 = std::min(s0, std::max(r.first, b.first));
+        s1 = std::max(s1, std::min(r.last, b.last));
+      }
+    if (s0 >= s1)
+      continue;
+    switch (k)
+    {
+    case 1:
+      computed.push_back(substitute_block_local<1>(f, X, b, s0, s1));
+      break;
+    case 2:
+      computed.push_back(substitute_block_local<2>(f, X, b, s0, s1));
+      break;
+    case 3:
+      computed.push_back(substitute_block_local<3>(f, X, b, s0, s1));
+      break;
+    default:
+      computed.push_back(substitute_block_local<4>(f, X, b, s0, s1));
+    }
+  }
+  reach.swap(computed);
 }
 } // namespace pantocat

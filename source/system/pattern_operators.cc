@@ -117,8 +117,8 @@ void with_stride(const unsigned int stride, const F& f)
 } // namespace
 
 void PatternOperators::history(const dealii::Vector<double>& h,
-                               const dealii::Vector<double>& r, InterleavedColumns& out,
-                               const unsigned int k) const
+                               const dealii::Vector<double>& r,
+                               dealii::Vector<double>& out) const
 {
   double s[block];
   for (const Run& run : runs)
@@ -143,7 +143,7 @@ void PatternOperators::history(const dealii::Vector<double>& h,
                       { add_entry<decltype(S)::value>(rows, m, d, hh, rr, s); });
       }
       for (unsigned int j = 0; j < rows; ++j)
-        out(i0 + j * run.stride, k) = s[j];
+        out[i0 + j * run.stride] = s[j];
     }
 }
 

@@ -26,13 +26,12 @@ Levels functionals(const double c, const double GX, const double GtX, const doub
 }
 
 /// Multiplier kinds: the columns of one constraint in its S batch, in the
-/// order of the multiplier system; the fourth column holds the base solution.
+/// order of the multiplier system (the fourth column is not used).
 enum Column : unsigned int
 {
   lambda = 0,
   eta = 1,
-  mu = 2,
-  base = IterationMatrix::base_column
+  mu = 2
 };
 /// Columns of the M batch: Y = M^-1 G^T, Z = M^-1 G_t^T.
 enum MassColumn : unsigned int
@@ -55,15 +54,12 @@ struct Bdf2Integrator::Stage : IterationMatrix
 
   /**
    * The columns of a constraint with rows @p r: the S batch @p X
-   * (X^lambda, X^eta, X^mu, and the base solution if it holds it; its
-   * right-hand side must already be in column `base`) and the M batch @p U (Y, Z).
+   * (X^lambda, X^eta, X^mu) and the M batch @p U (Y, Z), on the rows they
+   * reach (LocalColumns).
    */
-  void compute_columns(InterleavedColumns& X, InterleavedColumns& U,
-                       const ConstraintState& r)
+  void compute_columns(LocalColumns& X, LocalColumns& U, const ConstraintState& r)
   {
-    const unsigned int n = system.n_dofs();
-    for (unsigned int i = 0; i < n; ++i) // keep the base column
-      X(i, lambda) = X(i, eta) = X(i, mu) = 0.;
+    X.clear();
     U.clear();
     U.add_row(Y, r.G, 1.);
     U.add_row(Z, r.G_t, 1.);
@@ -83,31 +79,28 @@ struct Bdf2Integrator::Stage : IterationMatrix
     X.add_row(eta, r.G, 1.);
     X.add_row(eta, r.G_t, c);
     X.add_row(mu, r.G, c);
-    // Independent right-hand sides: S and M substitute side by side.
-    const SparseDirectSolver* M = mass_inverse.factorised();
-    if (sparse_damping && M)
-      inverse.solve_interleaved_with(X.data(), *M, U.data());
-    else
-    {
-      inverse.solve_interleaved(X.data(), InterleavedColumns::width);
-      if (sparse_damping)
-        mass_inverse.apply(U);
-    }
+    X.solve(inverse);
+    if (sparse_damping)
+      mass_inverse.apply(U);
   }
 
-  /// X^mu += D M^-1 G^T and X^eta += D M^-1 G_t^T on full vectors (U <- M^-1 U).
-  void add_damping_of_mass_columns(InterleavedColumns& X, InterleavedColumns& U) const
+  /// X^mu += D M^-1 G^T and X^eta += D M^-1 G_t^T from full vectors (U <- M^-1 U).
+  void add_damping_of_mass_columns(LocalColumns& X, LocalColumns& U) const
   {
     const unsigned int n = system.n_dofs();
     mass_inverse.apply(U);
     dealii::Vector<double> u(n), Du(n);
+    SparseRow entries;
     for (const unsigned int k : {Y, Z})
     {
       for (unsigned int i = 0; i < n; ++i)
         u[i] = U(i, k);
       system.damping.vmult(Du, u);
+      entries.clear();
       for (unsigned int i = 0; i < n; ++i)
-        X(i, k == Y ? mu : eta) += Du[i];
+        if (Du[i] != 0.)
+          entries.add(i, Du[i]);
+      X.add_row(k == Y ? mu : eta, entries, 1.);
     }
   }
 
@@ -131,8 +124,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
 
   /// The S and M batches of border constraint @p i (a moving one, or a
   /// touching fixed one: its columns computed on demand).
-  std::pair<const InterleavedColumns*, const InterleavedColumns*>
-  batches(const unsigned int i) const
+  std::pair<const LocalColumns*, const LocalColumns*> batches(const unsigned int i) const
   {
     if (moves[i])
       return {&S_columns[position[i]], &M_columns[position[i]]};
@@ -148,8 +140,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
   GglFixedBlock block;
   bool block_ready = false;
   /// Columns of the touching fixed constraints of the current step.
-  std::map<unsigned int, std::pair<InterleavedColumns, InterleavedColumns>>
-      touching_columns;
+  std::map<unsigned int, std::pair<LocalColumns, LocalColumns>> touching_columns;
 };
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
@@ -195,27 +186,25 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   const auto& rows = at_next.at(t1);
   if (!s.block_ready)
     s.initialize_block(rows);
-  // Base solution S^-1 (f + M (rho_v + c rho_q) + D rho_q), solved in one
-  // batch with the columns of the first moving constraint.
+  // Base solution S^-1 (f + M (rho_v + c rho_q) + D rho_q); the moving
+  // constraints' columns on the rows they reach.
   dealii::Vector<double> history(rho_v);
   history.add(c, rho_q);
   operators.set_time(t1);
-  operators.history(history, rho_q, s.base_batch(), IterationMatrix::base_column);
-  if (s.moving.empty())
-    s.inverse.solve_interleaved(s.base_only.data(), InterleavedColumns::width);
+  operators.history(history, rho_q, s.base);
+  s.inverse.solve(s.base);
   for (unsigned int k = 0; k < s.moving.size(); ++k)
     s.compute_columns(s.S_columns[k], s.M_columns[k], rows[s.moving[k]]);
   s.touching_columns.clear();
-  const InterleavedColumns& B = s.base_batch();
+  const dealii::Vector<double>& B = s.base;
 
   // The levels g, dg/dt, d2g/dt2 of the base solution on every row.
   base_levels.resize(m_all);
   for (unsigned int k = 0; k < m_all; ++k)
   {
     const ConstraintState& r = rows[k];
-    base_levels[k] =
-        functionals(c, B.dot(r.G, base), B.dot(r.G_t, base), B.dot(r.G_tt, base),
-                    r.G.dot(rho_q), r.G_t.dot(rho_q), r.G.dot(rho_v));
+    base_levels[k] = functionals(c, r.G.dot(B), r.G_t.dot(B), r.G_tt.dot(B),
+                                 r.G.dot(rho_q), r.G_t.dot(rho_q), r.G.dot(rho_v));
     base_levels[k][0] += r.z;
     base_levels[k][1] += r.z_t;
     base_levels[k][2] += r.z_tt;
@@ -381,7 +370,8 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       if (!force[k] && !engaged[k])
         continue;
       const SparseRow& G = rows[s.fixed[k]].G;
-      const std::array<double, InterleavedColumns::width> GX = X->dots(G), GU = U->dots(G);
+      const std::array<double, InterleavedColumns::width> GX = X->dots(G),
+                                                          GU = U->dots(G);
       for (unsigned int u = u0; u < u1; ++u)
       {
         const unsigned int kind = unknowns[u].kind;
@@ -456,27 +446,25 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     if (unknowns[u].kind == lambda)
       x.lambda[unknowns[u].constraint] = y(u);
 
-  x.q.reinit(n, true);
+  x.q = s.base;
   x.v.reinit(n);
   x.a.reinit(n);
-  {
-    const double* B = s.base_batch().data();
-    for (unsigned int i = 0; i < n; ++i)
-      x.q[i] = B[InterleavedColumns::width * i + base];
-  }
   block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
   // The border columns, then v and a, in one pass; on each unknown the
   // border unknowns add in their order.
   border_terms.clear();
+  RowRanges reach;
   for (unsigned int u = 0; u < p; ++u)
   {
     const auto [X, U] = s.batches(unknowns[u].constraint);
+    if (u == 0 || unknowns[u].constraint != unknowns[u - 1].constraint)
+      reach = union_of(reach, union_of(X->reach(), U->reach()));
     const unsigned int kind = unknowns[u].kind;
     const double f = y(u);
     border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
-  combine_trial(border_terms, c, rho_q, rho_v, x);
+  combine_trial(border_terms, reach, c, rho_q, rho_v, x);
 }
 
 namespace
@@ -490,7 +478,7 @@ namespace
  */
 template <unsigned int P, bool last, typename Term>
 void combine_pass(const Term* terms, const double c, const double* __restrict rq,
-                  const double* __restrict rv, const unsigned int n, double* __restrict q,
+                  const double* __restrict rv, const RowRange rows, double* __restrict q,
                   double* __restrict v, double* __restrict a)
 {
   constexpr unsigned int w = InterleavedColumns::width;
@@ -506,7 +494,7 @@ void combine_pass(const Term* terms, const double c, const double* __restrict rq
     vZ[k] = terms[k].v_Z;
     aY[k] = terms[k].a_Y;
   }
-  for (unsigned int i = 0; i < n; ++i)
+  for (int i = rows.first; i < rows.last; ++i)
   {
     double qi = q[i], vi = v[i], ai = a[i];
     for (unsigned int k = 0; k < P; ++k)
@@ -528,33 +516,31 @@ void combine_pass(const Term* terms, const double c, const double* __restrict rq
 }
 } // namespace
 
-void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms, const double c,
+void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
+                                   const RowRanges& reach, const double c,
                                    const dealii::Vector<double>& rho_q,
                                    const dealii::Vector<double>& rho_v, DynamicState& x)
 {
-  const unsigned int n = x.q.size();
+  const int n = x.q.size();
   double *q = x.q.begin(), *v = x.v.begin(), *a = x.a.begin();
   const double *rq = rho_q.begin(), *rv = rho_v.begin();
-  // Passes of three terms (a contact with force: lambda, eta, mu), the last
-  // with the rest; on each unknown the terms add in their order.
-  std::size_t k = 0;
-  for (; terms.size() - k > 3; k += 3)
-    combine_pass<3, false>(terms.data() + k, c, rq, rv, n, q, v, a);
-  const BorderTerm* rest = terms.data() + k;
-  switch (terms.size() - k)
-  {
-  case 0:
-    combine_pass<0, true>(rest, c, rq, rv, n, q, v, a);
-    break;
-  case 1:
-    combine_pass<1, true>(rest, c, rq, rv, n, q, v, a);
-    break;
-  case 2:
-    combine_pass<2, true>(rest, c, rq, rv, n, q, v, a);
-    break;
-  default:
-    combine_pass<3, true>(rest, c, rq, rv, n, q, v, a);
-  }
+  // On the rows the terms reach, passes of three terms (a contact with
+  // force: lambda, eta, mu); then v and a on all rows. On each unknown the
+  // terms add in their order (off the reach they are zero).
+  for (const RowRange& rows : reach)
+    for (std::size_t k = 0; k < terms.size(); k += 3)
+      switch (std::min<std::size_t>(3, terms.size() - k))
+      {
+      case 1:
+        combine_pass<1, false>(terms.data() + k, c, rq, rv, rows, q, v, a);
+        break;
+      case 2:
+        combine_pass<2, false>(terms.data() + k, c, rq, rv, rows, q, v, a);
+        break;
+      default:
+        combine_pass<3, false>(terms.data() + k, c, rq, rv, rows, q, v, a);
+      }
+  combine_pass<0, true>(terms.data(), c, rq, rv, RowRange{0, n}, q, v, a);
 }
 
 void Bdf2Integrator::initialize(const DynamicState& initial)

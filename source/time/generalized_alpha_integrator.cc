@@ -7,10 +7,8 @@ namespace pantocat
 {
 namespace
 {
-/// Columns of the S batch: S^-1 G^T, S^-1 G_t^T and, for the first moving
-/// constraint, the base solution.
-constexpr unsigned int lambda_column = 0, rate_column = 1,
-                       base_column = IterationMatrix::base_column;
+/// Columns of the S batch: S^-1 G^T, S^-1 G_t^T.
+constexpr unsigned int lambda_column = 0, rate_column = 1;
 } // namespace
 
 GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
@@ -47,20 +45,14 @@ void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
 void GeneralizedAlphaIntegrator::compute_moving_columns(const unsigned int c,
                                                         const ConstraintState& r)
 {
-  InterleavedColumns &X = S.S_columns[c], &U = S.M_columns[c];
-  for (unsigned int i = 0; i < X.size(); ++i) // keep the base column
-    X(i, lambda_column) = X(i, rate_column) = 0.;
+  LocalColumns &X = S.S_columns[c], &U = S.M_columns[c];
+  X.clear();
   U.clear();
   X.add_row(lambda_column, r.G, 1.);
   X.add_row(rate_column, r.G_t, 1.);
   U.add_row(0, r.G, 1.);
-  if (const SparseDirectSolver* M = mass_inverse.factorised())
-    S.inverse.solve_interleaved_with(X.data(), *M, U.data());
-  else
-  {
-    S.inverse.solve_interleaved(X.data(), InterleavedColumns::width);
-    mass_inverse.apply(U);
-  }
+  X.solve(S.inverse);
+  mass_inverse.apply(U);
 }
 
 void GeneralizedAlphaIntegrator::initialize_fixed(
@@ -116,16 +108,12 @@ void GeneralizedAlphaIntegrator::advance()
   mass_part -= w;
   damping_part.equ(c_v, q_hat);
   damping_part -= v_hat;
-  InterleavedColumns& B = S.base_batch();
   operators.set_time(t1);
-  operators.history(mass_part, damping_part, B, base_column);
-  if (S.moving.empty())
-    S.inverse.solve_interleaved(B.data(), InterleavedColumns::width);
+  operators.history(mass_part, damping_part, S.base);
+  S.inverse.solve(S.base);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     compute_moving_columns(c, rows[S.moving[c]]);
-  q0.reinit(n, true);
-  for (unsigned int i = 0; i < n; ++i)
-    q0[i] = B(i, base_column);
+  q0 = S.base;
 
   // g and dg/dt of every constraint at q0, with v = v^ + c_v (q - q^) (Newmark).
   base_gap.resize(m_all);
@@ -253,7 +241,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int i = moving_in[c];
-    const InterleavedColumns& X = S.S_columns[S.position[i]];
+    const LocalColumns& X = S.S_columns[S.position[i]];
     const double d = damping_ratio(*system.constraints[i]);
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
     // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric).
@@ -327,7 +315,7 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   dealii::FullMatrix<double> D(p, p);
   for (unsigned int c = 0; c < p; ++c)
   {
-    const InterleavedColumns& U = S.M_columns[S.position[moving_in[c]]];
+    const LocalColumns& U = S.M_columns[S.position[moving_in[c]]];
     for (unsigned int k = 0; k < mF; ++k)
       if (keep[k])
         Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);

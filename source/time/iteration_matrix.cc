@@ -32,12 +32,6 @@ IterationMatrix::IterationMatrix(const SemiDiscreteSystem& system,
   for (auto* batches : {&S_columns, &M_columns})
     for (auto& X : *batches)
       X.reinit(system.n_dofs());
-  if (moving.empty())
-    base_only.reinit(system.n_dofs());
-}
-
-InterleavedColumns& IterationMatrix::base_batch()
-{
-  return moving.empty() ? base_only : S_columns.front();
+  base.reinit(system.n_dofs());
 }
 } // namespace pantocat

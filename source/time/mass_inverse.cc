@@ -114,6 +114,29 @@ void MassInverse::apply(InterleavedColumns& X) const
     }
 }
 
+void MassInverse::apply(LocalColumns& X) const
+{
+  if (!diagonal)
+  {
+    X.solve(factorization);
+    return;
+  }
+  const unsigned int c = coupled_rows.size(), w = InterleavedColumns::width;
+  std::vector<double> coupled(c * w);
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+      coupled[k * w + r] = X(coupled_rows[k], r);
+  X.scale_rows(inverse_diagonal);
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+    {
+      double s = 0.;
+      for (unsigned int l = 0; l < c; ++l)
+        s += coupled_inverse(k, l) * coupled[l * w + r];
+      X.set(coupled_rows[k], r, s);
+    }
+}
+
 void MassInverse::apply_coupled_rows(dealii::Vector<double>& x) const
 {
   const unsigned int c = coupled_rows.size();

@@ -19,6 +19,14 @@ enum class LinearSolverType
 };
 
 const char* to_string(LinearSolverType type);
+
+/// The rows [first, last) of a vector.
+struct RowRange
+{
+  int first = 0, last = 0;
+};
+/// Disjoint row ranges in increasing order.
+using RowRanges = std::vector<RowRange>;
 /**
  * A factorised sparse matrix: factorise once, solve many times. The implicit
  * integrators use it for their constant iteration matrices.
@@ -69,6 +77,31 @@ public:
    */
   void solve_interleaved_with(double* X, const SparseDirectSolver& other,
                               double* X_other) const;
+  /**
+   * solve_interleaved() for @p k right-hand sides that vanish outside the rows
+   * @p reach, and whose solutions are negligible far from them: the
+   * columns A^-1 G^T of a contact's row, which decay exponentially away from
+   * it (the mass term of an implicit step's matrix dominates).
+   *
+   * In each uncoupled block of the band that @p reach meets, the forward
+   * substitution starts at the block's first row of @p reach (the rows before
+   * it are zero) and stops, past its last one, at the end of a run of
+   * `local_run` rows on which every column is below `local_tolerance` times
+   * its largest entry so far; the backward substitution starts there (the
+   * rows after it taken as zero) and stops likewise before the first row.
+   * Each computed row takes the operations of solve_interleaved() in its
+   * order; what is dropped is below 1e-20 of the column's largest entry and,
+   * in the rows kept, changes them by about 1e-20 times the decay over the
+   * run (see doc/dynamics.md). @p reach is replaced by the rows computed;
+   * entries of @p X outside them must be zero on entry and stay zero.
+   * Without the banded path: solve_interleaved() and @p reach = all rows.
+   */
+  void solve_local(double* X, unsigned int k, RowRanges& reach) const;
+  /// Rows per convergence check of solve_local().
+  static constexpr int local_run = 16;
+  /// Relative size below which solve_local() stops substituting.
+  static constexpr double local_tolerance = 1e-20;
+
   /// True if the banded Cholesky path is used.
   bool is_banded() const { return banded; }
   /// Entries of the factor read by one solve (n (2 kd + 1) when banded; an

@@ -15,7 +15,7 @@ namespace pantocat
  * sparsity pattern they share, for the passes of the implicit integrators
  * that need two or three of them at once, in one sweep over the rows:
  *  - history(): f + M h + D r, the known part of the right-hand side of a
- *    BDF-2 or generalized-alpha step, written into one column of a batch;
+ *    BDF-2 or generalized-alpha step;
  *  - motion(): M (q' - v) and M v' + D v + K q - f, the equations of motion
  *    in IDA's residual.
  *
@@ -35,9 +35,9 @@ public:
   /// Uses f(@p t) from now on; nothing to do if the system's load is constant.
   void set_time(double t) const;
 
-  /// Column k of @p out = f + M h + D r.
+  /// @p out = f + M h + D r.
   void history(const dealii::Vector<double>& h, const dealii::Vector<double>& r,
-               InterleavedColumns& out, unsigned int k) const;
+               dealii::Vector<double>& out) const;
 
   /// r_q = M (qp - v), r_v = M vp + D v + K q - f (arrays of length n).
   void motion(const double* q, const double* v, const double* qp, const double* vp,

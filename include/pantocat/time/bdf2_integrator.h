@@ -114,12 +114,13 @@ private:
     double f, v_Y, v_Z, a_Y;
   };
   /**
-   * q += sum of the border terms, then v = c q - rho_q - (v + their mass
-   * columns), a = c v - rho_v - (a + theirs), in one pass over the unknowns
-   * (v and a hold u1, u2 of (38)'s BDF form on entry).
+   * q += sum of the border terms on the rows @p reach that their columns
+   * reach, then v = c q - rho_q - (v + their mass columns), a = c v - rho_v -
+   * (a + theirs) in one pass over the unknowns (v and a hold u1, u2 of (38)'s
+   * BDF form on entry).
    */
-  static void combine_trial(const std::vector<BorderTerm>& terms, double c,
-                            const dealii::Vector<double>& rho_q,
+  static void combine_trial(const std::vector<BorderTerm>& terms, const RowRanges& reach,
+                            double c, const dealii::Vector<double>& rho_q,
                             const dealii::Vector<double>& rho_v, DynamicState& x);
 
   double dt;

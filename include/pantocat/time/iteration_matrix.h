@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/local_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/semi_discrete_system.h>
 
@@ -23,8 +24,9 @@ void assemble_iteration_matrix(const SemiDiscreteSystem& system, double damping_
  * c_M = (1 - alpha_m)/((1 - alpha_f) beta h^2)), factorised once, with the
  * batches of right-hand sides that the integrators solve with it for the
  * moving constraints (the contacts, whose rows change every step): per moving
- * constraint an S batch (its columns and, for the first one, the base
- * solution in the last column) and an M batch (M^-1 G^T, ...). The
+ * constraint an S batch (its columns) and an M batch (M^-1 G^T, ...), both
+ * LocalColumns (they reach a few dozen rows around the contact), and the
+ * base solution, a full vector solved on its own. The
  * constraints with constant rows (droppers, supports) have no batch: their
  * columns are computed once, truncated, by FixedConstraintSchur (or
  * FixedConstraintBlock).
@@ -35,17 +37,12 @@ public:
   IterationMatrix(const SemiDiscreteSystem& system, double damping_factor,
                   double mass_factor, const std::string& what, LinearSolverType solver);
 
-  /// The batch whose last column holds the base solution.
-  InterleavedColumns& base_batch();
-  /// Column of the base solution in base_batch().
-  static constexpr unsigned int base_column = InterleavedColumns::width - 1;
-
   SparseDirectSolver inverse;
   std::vector<unsigned int> fixed, moving; ///< constraints with constant / moving rows
   /// position[i]: the index of constraint i in `fixed` or in `moving`.
   std::vector<unsigned int> position;
   std::vector<char> moves; ///< moves[i]: constraint i is in `moving`
-  std::vector<InterleavedColumns> S_columns, M_columns; ///< per moving constraint
-  InterleavedColumns base_only; ///< the base solution when no constraint moves
+  std::vector<LocalColumns> S_columns, M_columns; ///< per moving constraint
+  dealii::Vector<double> base;                    ///< the base solution
 };
 } // namespace pantocat

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/local_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
 
@@ -34,6 +35,9 @@ public:
   void apply(dealii::Vector<double>& x) const;
   /// Every column of @p X <- A^{-1} column (one batched substitution when factorised).
   void apply(InterleavedColumns& X) const;
+  /// The same for columns with a reach (SparseDirectSolver::solve_local() when
+  /// factorised).
+  void apply(LocalColumns& X) const;
   /**
    * In the diagonal forms: the scaling 1/A_ii, with 1 on the coupled rows, so
    * that A^{-1} x = apply_coupled_rows(row_scaling() .* x); null otherwise.

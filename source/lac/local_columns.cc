@@ -1,0 +1,88 @@
+#include <pantocat/lac/local_columns.h>
+
+#include <algorithm>
+
+namespace pantocat
+{
+RowRanges union_of(const RowRanges& a, const RowRanges& b)
+{
+  RowRanges all(a);
+  all.insert(all.end(), b.begin(), b.end());
+  std::sort(all.begin(), all.end(),
+            [](const RowRange& x, const RowRange& y) { return x.first < y.first; });
+  RowRanges merged;
+  for (const RowRange& r : all)
+    if (!merged.empty() && r.first <= merged.back().last)
+      merged.back().last = std::max(merged.back().last, r.last);
+    else
+      merged.push_back(r);
+  return merged;
+}
+
+void LocalColumns::reinit(const unsigned int n)
+{
+  InterleavedColumns::reinit(n);
+  rows.clear();
+}
+
+void LocalColumns::clear()
+{
+  double* x = InterleavedColumns::data();
+  for (const RowRange& r : rows)
+    std::fill(x + static_cast<std::size_t>(r.first) * width,
+              x + static_cast<std::size_t>(r.last) * width, 0.);
+  rows.clear();
+}
+
+void LocalColumns::take_in(const std::vector<unsigned int>& sorted)
+{
+  RowRanges added;
+  for (const unsigned int i : sorted)
+    if (!added.empty() && static_cast<int>(i) <= added.back().last)
+      added.back().last = std::max<int>(added.back().last, i + 1);
+    else
+      added.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
+  rows = union_of(rows, added);
+}
+
+void LocalColumns::add_row(const unsigned int k, const SparseRow& row,
+                           const double factor)
+{
+  InterleavedColumns::add_row(k, row, factor);
+  scratch = row.index;
+  std::sort(scratch.begin(), scratch.end());
+  take_in(scratch);
+}
+
+void LocalColumns::set(const unsigned int i, const unsigned int k, const double value)
+{
+  InterleavedColumns::operator()(i, k) = value;
+  take_in({i});
+}
+
+void LocalColumns::solve(const SparseDirectSolver& A)
+{
+  A.solve_local(InterleavedColumns::data(), width, rows);
+}
+
+void LocalColumns::scale_rows(const dealii::Vector<double>& scaling)
+{
+  double* __restrict x = InterleavedColumns::data();
+  const double* __restrict d = scaling.begin();
+  for (const RowRange& r : rows)
+    for (int i = r.first; i < r.last; ++i)
+      for (unsigned int k = 0; k < width; ++k)
+        x[i * width + k] *= d[i];
+}
+
+void LocalColumns::add_combination(const std::array<double, width>& c,
+                                   dealii::Vector<double>& out) const
+{
+  const double* __restrict x = data();
+  double* __restrict y = out.begin();
+  for (const RowRange& r : rows)
+    for (int i = r.first; i < r.last; ++i)
+      y[i] += c[0] * x[width * i] + c[1] * x[width * i + 1] + c[2] * x[width * i + 2] +
+              c[3] * x[width * i + 3];
+}
+} // namespace pantocat
