@@ -526,54 +526,86 @@ void HalfExplicitIntegrator::compute_moving_columns()
   }
 }
 
+namespace
+{
+/// @p column = 0 on the rows @p reach.
+void zero_on(const RowRanges& reach, dealii::Vector<double>& column)
+{
+  for (const RowRange& r : reach)
+    std::fill(column.begin() + r.first, column.begin() + r.last, 0.);
+}
+
+/// @p column = column k of @p X on the rows X reaches (zero elsewhere already).
+void copy_out(const LocalColumns& X, const unsigned int k, dealii::Vector<double>& column)
+{
+  for (const RowRange& r : X.reach())
+    for (int i = r.first; i < r.last; ++i)
+      column[i] = X(i, k);
+}
+} // namespace
+
 void HalfExplicitIntegrator::compute_factorised_columns(
     const SparseDirectSolver& W, const SparseDirectSolver& M, const ConstraintState& sn,
     const ConstraintState& sh, const ConstraintState& s1, MovingColumns& x,
     dealii::Vector<double>* free_rhs)
 {
   const unsigned int n = system.n_dofs();
-  if (batch_W.size() != n)
-  {
-    batch_W.reinit(n);
-    batch_M.reinit(n);
-  }
-  else
-  {
-    batch_W.clear();
-    batch_M.clear();
-  }
-  batch_W.add_row(0, sn.G, 1.);
+  if (local_W.size() != n)
+    for (LocalColumns* X : {&local_W, &local_M, &local_V})
+      X->reinit(n);
+  // a* = W^-1 (forces) on all rows; the columns on the rows they reach
+  // (SparseDirectSolver::solve_local()), the previous step's reset there.
   if (free_rhs)
-    for (unsigned int k = 0; k < n; ++k)
-      batch_W(k, 1) = (*free_rhs)[k];
-  batch_M.add_row(0, sn.G, 1.);
-  batch_M.add_row(1, sh.G_t, 1.);
-  batch_M.add_row(2, sh.G, 1.);
+    W.solve(*free_rhs);
+  zero_on(x.reach_Y, x.Y);
+  for (auto* column : {&x.P, &x.Q, &x.R, &x.U, &x.V})
+    zero_on(x.reach_M, *column);
+  x.local = true;
+  local_W.clear();
+  local_W.add_row(0, sn.G, 1.);
+  local_W.solve(W);
+  copy_out(local_W, 0, x.Y);
+  x.reach_Y = local_W.reach();
+  local_M.clear();
+  local_M.add_row(0, sn.G, 1.);
+  local_M.add_row(1, sh.G_t, 1.);
+  local_M.add_row(2, sh.G, 1.);
   if (!fixed.empty())
-    batch_M.add_row(3, s1.G, 1.);
-  W.solve_interleaved_with(batch_W.data(), M, batch_M.data());
-  if (free_rhs)
-    for (unsigned int k = 0; k < n; ++k)
-      (*free_rhs)[k] = batch_W(k, 1);
-  for (unsigned int k = 0; k < n; ++k)
-  {
-    x.Y[k] = batch_W(k, 0);
-    x.P[k] = batch_M(k, 0);
-    x.Q[k] = batch_M(k, 1);
-    x.R[k] = batch_M(k, 2);
-    x.U[k] = batch_M(k, 3);
-  }
+    local_M.add_row(3, s1.G, 1.);
+  local_M.solve(M);
+  x.reach_M = local_M.reach();
+  for (const auto& [k, column] : {std::pair{0u, &x.P}, std::pair{1u, &x.Q},
+                                  std::pair{2u, &x.R}, std::pair{3u, &x.U}})
+    copy_out(local_M, k, *column);
   if (fixed.empty())
     return;
-  x.V = 0.;
-  s1.G_t.add_transpose_to(x.V, 1.);
-  M.solve(x.V);
+  local_V.clear();
+  local_V.add_row(0, s1.G_t, 1.);
+  local_V.solve(M);
+  copy_out(local_V, 0, x.V);
+  x.reach_M = union_of(x.reach_M, local_V.reach());
+}
+
+void HalfExplicitIntegrator::add_moving_column(const MassInverse& A, const SparseRow& row,
+                                               const dealii::Vector<double>& column,
+                                               const bool local, const RowRanges& reach,
+                                               const double factor,
+                                               dealii::Vector<double>& y)
+{
+  if (!local)
+  {
+    A.add_column(row, column, factor, y);
+    return;
+  }
+  for (const RowRange& r : reach)
+    for (int i = r.first; i < r.last; ++i)
+      y[i] += factor * column[i];
 }
 
 void HalfExplicitIntegrator::reset_moving_columns()
 {
   if (smoothed_mass_inverse.factorised() && mass_inverse.factorised())
-    return; // compute_factorised_columns() overwrites every entry
+    return; // compute_factorised_columns() resets the rows it reached
   const auto& sn = at_n.states();
   const auto& sh = at_half.states();
   const auto& s1 = at_next.states();
@@ -764,7 +796,8 @@ void HalfExplicitIntegrator::add_moving_acceleration_forces()
   {
     const unsigned int i = moving_active[c];
     lambda[i] = y(c);
-    smoothed_mass_inverse.add_column(sn[i].G, columns[position[i]].Y, y(c), a);
+    const MovingColumns& X = columns[position[i]];
+    add_moving_column(smoothed_mass_inverse, sn[i].G, X.Y, X.local, X.reach_Y, y(c), a);
   }
 }
 
@@ -1110,10 +1143,11 @@ void HalfExplicitIntegrator::add_moving_position_corrections(
     const unsigned int j = moving_active[c];
     const MovingColumns& X = columns[position[j]];
     const double eta = y(c), mu = y(p + c);
-    mass_inverse.add_column(sn[j].G, X.P, h * h * eta, q_new);
-    mass_inverse.add_column(sh[j].G_t, X.Q, h * eta, q_new);
-    mass_inverse.add_column(sh[j].G, X.R, h * mu, q_new);
-    mass_inverse.add_column(sn[j].G, X.P, 2. * h * eta, v_new);
+    const RowRanges& reach = X.reach_M;
+    add_moving_column(mass_inverse, sn[j].G, X.P, X.local, reach, h * h * eta, q_new);
+    add_moving_column(mass_inverse, sh[j].G_t, X.Q, X.local, reach, h * eta, q_new);
+    add_moving_column(mass_inverse, sh[j].G, X.R, X.local, reach, h * mu, q_new);
+    add_moving_column(mass_inverse, sn[j].G, X.P, X.local, reach, 2. * h * eta, v_new);
   }
 }
 
