@@ -179,7 +179,8 @@ enum class Role : char
 DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                                            const dealii::Vector<double>& rho_v,
                                            const double t1,
-                                           const std::vector<bool>& active_at_start)
+                                           const std::vector<bool>& active_at_start,
+                                           DynamicState storage)
 {
   const unsigned int m_all = system.n_constraints();
   const double c = s.c;
@@ -188,8 +189,10 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     s.initialize_block(rows);
   // Base solution S^-1 (f + M (rho_v + c rho_q) + D rho_q); the moving
   // constraints' columns on the rows they reach.
-  dealii::Vector<double> history(rho_v);
-  history.add(c, rho_q);
+  const unsigned int n = system.n_dofs();
+  history.reinit(n, true);
+  for (unsigned int i = 0; i < n; ++i)
+    history[i] = rho_v[i] + c * rho_q[i];
   operators.set_time(t1);
   operators.history(history, rho_q, s.base);
   s.inverse.solve(s.base);
@@ -213,8 +216,9 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // Active-set iteration (Sec. 5.3): each trial solves the multiplier system
   // (the fixed block bordered by the moving and touching constraints) and
   // assembles q, v, a; its gaps and rates decide.
-  DynamicState x;
+  DynamicState x = std::move(storage); // its vectors' memory, if any
   x.t = t1;
+  x.impulse.clear();
   std::vector<double> gaps(m_all), rates(m_all);
   active_set.start(active_at_start);
   for (;;)
@@ -605,12 +609,19 @@ void Bdf2Integrator::advance()
     if (!bdf2)
       bdf2 = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1.5 / dt,
                                      linear_solver);
-    // rho = (4 x_n - x_{n-1}) / (2 dt)
-    dealii::Vector<double> rho_q(current.q), rho_v(current.v);
-    rho_q.sadd(2. / dt, -0.5 / dt, previous.q);
-    rho_v.sadd(2. / dt, -0.5 / dt, previous.v);
-    DynamicState next =
-        implicit_step(*bdf2, rho_q, rho_v, current.t + dt, current.active);
+    // rho = (4 x_n - x_{n-1}) / (2 dt), in one pass
+    const unsigned int n = system.n_dofs();
+    const double f = 2. / dt, fp = -0.5 / dt;
+    step_rho_q.reinit(n, true);
+    step_rho_v.reinit(n, true);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      step_rho_q[i] = f * current.q[i] + fp * previous.q[i];
+      step_rho_v[i] = f * current.v[i] + fp * previous.v[i];
+    }
+    DynamicState next = implicit_step(*bdf2, step_rho_q, step_rho_v, current.t + dt,
+                                      current.active, std::move(spare));
+    spare = std::move(previous);
     previous = std::move(current);
     current = std::move(next);
   }

@@ -96,18 +96,23 @@ void GeneralizedAlphaIntegrator::advance()
   // Predictors: q^ = q_n + h v_n + h^2 (1/2 - beta) a_n, v^ = v_n + h (1 - gamma) a_n,
   // w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f). Then
   // S q0 = f + M (c_q q^ - w) + D (c_v q^ - v^).
+  // In one pass (each entry as deal.II's add(), equ() and -= make it).
   const dealii::Vector<double>& a_n = pseudo_acceleration;
-  q_hat = current.q;
-  v_hat = current.v;
-  dealii::Vector<double> w(n), mass_part(n), damping_part(n);
-  q_hat.add(h, current.v, h * h * (0.5 - k.beta), a_n);
-  v_hat.add(h * (1. - k.gamma), a_n);
-  w.equ(k.alpha_m / (1. - k.alpha_f), a_n);
-  w.add(-k.alpha_f / (1. - k.alpha_f), current.a);
-  mass_part.equ(c_q, q_hat);
-  mass_part -= w;
-  damping_part.equ(c_v, q_hat);
-  damping_part -= v_hat;
+  for (auto* x : {&q_hat, &v_hat, &w, &mass_part, &damping_part})
+    x->reinit(n, true);
+  const double hq = h * h * (0.5 - k.beta), hv = h * (1. - k.gamma),
+               wm = k.alpha_m / (1. - k.alpha_f), wf = -k.alpha_f / (1. - k.alpha_f);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double qh = current.q[i] + h * current.v[i] + hq * a_n[i];
+    const double vh = current.v[i] + hv * a_n[i];
+    const double wi = wm * a_n[i] + wf * current.a[i];
+    q_hat[i] = qh;
+    v_hat[i] = vh;
+    w[i] = wi;
+    mass_part[i] = c_q * qh - wi;
+    damping_part[i] = c_v * qh - vh;
+  }
   operators.set_time(t1);
   operators.history(mass_part, damping_part, S.base);
   S.inverse.solve(S.base);

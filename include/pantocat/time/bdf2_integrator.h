@@ -91,10 +91,12 @@ public:
 private:
   struct Stage; ///< factorisation and constant columns for one value of c
 
-  /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s.
+  /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s
+  /// (into @p storage's vectors, if it has them).
   DynamicState implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                              const dealii::Vector<double>& rho_v, double t1,
-                             const std::vector<bool>& active_at_start);
+                             const std::vector<bool>& active_at_start,
+                             DynamicState storage = {});
   void richardson_start();
   /**
    * One trial of the active-set iteration: the multipliers of the current
@@ -136,6 +138,9 @@ private:
   /// The last step had an impact: the next one is a Richardson start.
   bool restart = false;
   DynamicState previous, current;
+  DynamicState spare; ///< x_{n-2}: its vectors' memory for the next step
+  /// Workspace of a step: rho_q, rho_v of the BDF-2 step, rho_v + c rho_q.
+  dealii::Vector<double> step_rho_q, step_rho_v, history;
   unsigned long step_number = 0;
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
   std::vector<BorderTerm> border_terms;           ///< workspace of solve_trial()

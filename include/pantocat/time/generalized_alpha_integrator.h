@@ -144,6 +144,9 @@ private:
   FixedConstraintSchur fixed_S, fixed_M;
   bool fixed_ready = false;
   dealii::Vector<double> q0, q_hat, v_hat; ///< base solution and predictors
+  /// w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f), and the parts
+  /// c_q q^ - w, c_v q^ - v^ of the right-hand side (workspace of a step).
+  dealii::Vector<double> w, mass_part, damping_part;
   /// Per constraint at t_{n+1} for q = q0, v = v^ + c_v (q0 - q^): g and dg/dt.
   std::vector<double> base_gap, base_rate;
   std::vector<bool> keep;      ///< fixed constraints in the current system
