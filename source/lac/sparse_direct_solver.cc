@@ -345,26 +345,6 @@ void substitute_two(const ScaledBand& f, double* __restrict X,
       [&](const int t) { return b.last - 1 - t; });
 }
 
-/**
- * substitute() for two factors with the same blocks, side by side (row j of
- * the one and row j of the other in the same iteration), with the larger
- * half bandwidth KD of the two.
- */
-template <int KD, int K>
-void substitute_pair(const ScaledBand& f, double* __restrict X, const ScaledBand& g,
-                     double* __restrict X2, const int first, const int last)
-{
-  const int length = last - first;
-  ForwardChain<KD, K> ff{f, X, first, last, {}}, fg{g, X2, first, last, {}};
-  side_by_side<KD>(
-      ff, fg, length, length, [&](const int t) { return first + t; },
-      [&](const int t) { return first + t; });
-  BackwardChain<KD, K> bf{f, X, first, last, {}}, bg{g, X2, first, last, {}};
-  side_by_side<KD>(
-      bf, bg, length, length, [&](const int t) { return last - 1 - t; },
-      [&](const int t) { return last - 1 - t; });
-}
-
 template <int K>
 void substitute_block(const ScaledBand& f, double* X, const SparseDirectSolver::Block& b)
 {
@@ -671,46 +651,6 @@ void SparseDirectSolver::solve(dealii::Vector<double>& x) const
     solve_general(x);
   else
     solve_interleaved(x.begin(), 1);
-}
-
-void SparseDirectSolver::solve_interleaved_with(double* X,
-                                                const SparseDirectSolver& other,
-                                                double* X_other) const
-{
-  const bool same_structure =
-      banded && other.banded && n == other.n && kd == other.kd &&
-      independent_blocks.size() == other.independent_blocks.size();
-  bool same_blocks = same_structure;
-  for (std::size_t b = 0; same_blocks && b < independent_blocks.size(); ++b)
-    same_blocks = independent_blocks[b].first == other.independent_blocks[b].first &&
-                  independent_blocks[b].last == other.independent_blocks[b].last;
-  if (!same_blocks)
-  {
-    solve_interleaved(X, 4);
-    other.solve_interleaved(X_other, 4);
-    return;
-  }
-  const ScaledBand f = scaled_band(), g = other.scaled_band();
-  for (std::size_t k = 0; k < independent_blocks.size(); ++k)
-  {
-    const Block& b = independent_blocks[k];
-    const int width = std::max(b.bandwidth, other.independent_blocks[k].bandwidth);
-    switch (width)
-    {
-    case 1:
-      substitute_pair<1, 4>(f, X, g, X_other, b.first, b.last);
-      break;
-    case 2:
-      substitute_pair<2, 4>(f, X, g, X_other, b.first, b.last);
-      break;
-    case 3:
-      substitute_pair<3, 4>(f, X, g, X_other, b.first, b.last);
-      break;
-    default: // rare: separate substitutions of this block
-      substitute_block<4>(f, X, b);
-      substitute_block<4>(g, X_other, other.independent_blocks[k]);
-    }
-  }
 }
 
 void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) const

@@ -70,14 +70,6 @@ public:
    */
   void solve_interleaved(double* X, unsigned int k) const;
   /**
-   * Solves with this matrix for X and with @p other for @p X_other (four
-   * interleaved right-hand sides each) in one sweep, when both factors are
-   * banded with the same blocks: the two sets of recurrences then overlap,
-   * and both cost about as much as one. Otherwise two solves.
-   */
-  void solve_interleaved_with(double* X, const SparseDirectSolver& other,
-                              double* X_other) const;
-  /**
    * solve_interleaved() for @p k right-hand sides that vanish outside the rows
    * @p reach, and whose solutions are negligible far from them: the
    * columns A^-1 G^T of a contact's row, which decay exponentially away from
