@@ -496,23 +496,13 @@ void HalfExplicitIntegrator::compute_moving_columns()
       compute_factorised_columns(*W, *M, sn[i], sh[i], s1[i], x, free_rhs);
       continue;
     }
-    if (free_rhs)
+    if (W)
     {
-      // Y = W^-1 G^T and a* in one sweep (M diagonal: the FDM with Rayleigh damping).
-      const unsigned int n = system.n_dofs();
-      if (batch_W.size() != n)
-        batch_W.reinit(n);
-      else
-        batch_W.clear();
-      batch_W.add_row(0, sn[i].G, 1.);
-      for (unsigned int k = 0; k < n; ++k)
-        batch_W(k, 1) = (*free_rhs)[k];
-      W->solve_interleaved(batch_W.data(), InterleavedColumns::width);
-      for (unsigned int k = 0; k < n; ++k)
-      {
-        x.Y[k] = batch_W(k, 0);
-        (*free_rhs)[k] = batch_W(k, 1);
-      }
+      // M diagonal, M + dt/2 D banded (the FDM with Rayleigh damping): a* =
+      // W^-1 (forces) on all rows, Y on the rows it reaches.
+      if (free_rhs)
+        W->solve(*free_rhs);
+      compute_local_column(*W, sn[i].G, x);
     }
     else
       smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
@@ -549,23 +539,14 @@ void HalfExplicitIntegrator::compute_factorised_columns(
     const ConstraintState& sh, const ConstraintState& s1, MovingColumns& x,
     dealii::Vector<double>* free_rhs)
 {
-  const unsigned int n = system.n_dofs();
-  if (local_W.size() != n)
-    for (LocalColumns* X : {&local_W, &local_M, &local_V})
-      X->reinit(n);
   // a* = W^-1 (forces) on all rows; the columns on the rows they reach
   // (SparseDirectSolver::solve_local()), the previous step's reset there.
   if (free_rhs)
     W.solve(*free_rhs);
-  zero_on(x.reach_Y, x.Y);
+  compute_local_column(W, sn.G, x);
   for (auto* column : {&x.P, &x.Q, &x.R, &x.U, &x.V})
     zero_on(x.reach_M, *column);
-  x.local = true;
-  local_W.clear();
-  local_W.add_row(0, sn.G, 1.);
-  local_W.solve(W);
-  copy_out(local_W, 0, x.Y);
-  x.reach_Y = local_W.reach();
+  x.local_M = true;
   local_M.clear();
   local_M.add_row(0, sn.G, 1.);
   local_M.add_row(1, sh.G_t, 1.);
@@ -584,6 +565,22 @@ void HalfExplicitIntegrator::compute_factorised_columns(
   local_V.solve(M);
   copy_out(local_V, 0, x.V);
   x.reach_M = union_of(x.reach_M, local_V.reach());
+}
+
+void HalfExplicitIntegrator::compute_local_column(const SparseDirectSolver& W,
+                                                  const SparseRow& G, MovingColumns& x)
+{
+  const unsigned int n = system.n_dofs();
+  if (local_W.size() != n)
+    for (LocalColumns* X : {&local_W, &local_M, &local_V})
+      X->reinit(n);
+  zero_on(x.reach_Y, x.Y);
+  x.local_Y = true;
+  local_W.clear();
+  local_W.add_row(0, G, 1.);
+  local_W.solve(W);
+  copy_out(local_W, 0, x.Y);
+  x.reach_Y = local_W.reach();
 }
 
 void HalfExplicitIntegrator::add_moving_column(const MassInverse& A, const SparseRow& row,
@@ -613,7 +610,8 @@ void HalfExplicitIntegrator::reset_moving_columns()
   {
     const unsigned int i = moving[c];
     MovingColumns& x = columns[c];
-    smoothed_mass_inverse.reset_column(sn[i].G, x.Y);
+    if (!x.local_Y) // else compute_local_column() resets the rows it reached
+      smoothed_mass_inverse.reset_column(sn[i].G, x.Y);
     mass_inverse.reset_column(sn[i].G, x.P);
     mass_inverse.reset_column(sh[i].G_t, x.Q);
     mass_inverse.reset_column(sh[i].G, x.R);
@@ -797,7 +795,7 @@ void HalfExplicitIntegrator::add_moving_acceleration_forces()
     const unsigned int i = moving_active[c];
     lambda[i] = y(c);
     const MovingColumns& X = columns[position[i]];
-    add_moving_column(smoothed_mass_inverse, sn[i].G, X.Y, X.local, X.reach_Y, y(c), a);
+    add_moving_column(smoothed_mass_inverse, sn[i].G, X.Y, X.local_Y, X.reach_Y, y(c), a);
   }
 }
 
@@ -1144,10 +1142,10 @@ void HalfExplicitIntegrator::add_moving_position_corrections(
     const MovingColumns& X = columns[position[j]];
     const double eta = y(c), mu = y(p + c);
     const RowRanges& reach = X.reach_M;
-    add_moving_column(mass_inverse, sn[j].G, X.P, X.local, reach, h * h * eta, q_new);
-    add_moving_column(mass_inverse, sh[j].G_t, X.Q, X.local, reach, h * eta, q_new);
-    add_moving_column(mass_inverse, sh[j].G, X.R, X.local, reach, h * mu, q_new);
-    add_moving_column(mass_inverse, sn[j].G, X.P, X.local, reach, 2. * h * eta, v_new);
+    add_moving_column(mass_inverse, sn[j].G, X.P, X.local_M, reach, h * h * eta, q_new);
+    add_moving_column(mass_inverse, sh[j].G_t, X.Q, X.local_M, reach, h * eta, q_new);
+    add_moving_column(mass_inverse, sh[j].G, X.R, X.local_M, reach, h * mu, q_new);
+    add_moving_column(mass_inverse, sn[j].G, X.P, X.local_M, reach, 2. * h * eta, v_new);
   }
 }
 

@@ -315,11 +315,14 @@ private:
     /// The fixed constraints whose rows can meet Y, respectively P to V
     /// (all of them when the columns are dense).
     std::vector<unsigned int> near_Y, near_M;
-    /// Factorised (FEM): the columns were solved locally and are zero off
-    /// the rows reach_Y (Y), respectively reach_M (P to V).
-    bool local = false;
+    /// Y (when M + dt/2 D is factorised), P to V (when M is) were solved
+    /// locally and are zero off the rows reach_Y, respectively reach_M.
+    bool local_Y = false, local_M = false;
     RowRanges reach_Y, reach_M;
   };
+  /// x.Y = W^-1 G^T on the rows it reaches (the previous ones reset).
+  void compute_local_column(const SparseDirectSolver& W, const SparseRow& G,
+                            MovingColumns& x);
   /// y += factor * column, a moving column with the rows @p reach when @p local.
   static void add_moving_column(const MassInverse& A, const SparseRow& row,
                                 const dealii::Vector<double>& column, bool local,
@@ -347,8 +350,8 @@ private:
   std::vector<unsigned int> fixed_at_start, fixed_at;
   std::vector<bool> near_mark; ///< workspace of find_fixed_near()
   std::vector<MovingColumns> columns;
-  InterleavedColumns batch_W, batch_M;    ///< workspace of compute_moving_columns()
-  LocalColumns local_W, local_M, local_V; ///< workspace of compute_factorised_columns()
+  /// Workspace of compute_moving_columns().
+  LocalColumns local_W, local_M, local_V;
   std::vector<double> lambda, gaps;
   /// The impulses of the impact at t_{n+1} (reported with t_{n+1}), or empty.
   std::vector<double> pending_impulse;
