@@ -87,6 +87,36 @@ void MassInverse::apply(dealii::Vector<double>& x) const
     x(coupled_rows[k]) = block_out(k);
 }
 
+namespace
+{
+/**
+ * The diagonal forms of MassInverse on four interleaved columns @p X: every
+ * row scaled (@p scale_rows, 0 on the coupled rows), then the coupled rows
+ * = the block's inverse times their values before (@p store(i, r, value)).
+ */
+template <typename Columns, typename ScaleRows, typename Store>
+void scale_and_solve_block(const std::vector<unsigned int>& coupled_rows,
+                           const dealii::FullMatrix<double>& block_inverse,
+                           const Columns& X, const ScaleRows& scale_rows,
+                           const Store& store)
+{
+  const unsigned int c = coupled_rows.size(), w = InterleavedColumns::width;
+  std::vector<double> coupled(c * w);
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+      coupled[k * w + r] = X(coupled_rows[k], r);
+  scale_rows();
+  for (unsigned int k = 0; k < c; ++k)
+    for (unsigned int r = 0; r < w; ++r)
+    {
+      double s = 0.;
+      for (unsigned int l = 0; l < c; ++l)
+        s += block_inverse(k, l) * coupled[l * w + r];
+      store(coupled_rows[k], r, s);
+    }
+}
+} // namespace
+
 void MassInverse::apply(InterleavedColumns& X) const
 {
   if (!diagonal)
@@ -94,24 +124,18 @@ void MassInverse::apply(InterleavedColumns& X) const
     factorization.solve_interleaved(X.data(), InterleavedColumns::width);
     return;
   }
-  const unsigned int c = coupled_rows.size(), w = InterleavedColumns::width;
-  std::vector<double> coupled(c * w);
-  for (unsigned int k = 0; k < c; ++k)
-    for (unsigned int r = 0; r < w; ++r)
-      coupled[k * w + r] = X(coupled_rows[k], r);
-  double* __restrict y = X.data();
-  const double* __restrict d = inverse_diagonal.begin();
-  for (unsigned int i = 0, n = X.size(); i < n; ++i)
-    for (unsigned int r = 0; r < w; ++r)
-      y[i * w + r] *= d[i];
-  for (unsigned int k = 0; k < c; ++k)
-    for (unsigned int r = 0; r < w; ++r)
-    {
-      double s = 0.;
-      for (unsigned int l = 0; l < c; ++l)
-        s += coupled_inverse(k, l) * coupled[l * w + r];
-      X(coupled_rows[k], r) = s;
-    }
+  constexpr unsigned int w = InterleavedColumns::width;
+  const auto scale_rows = [&]()
+  {
+    double* __restrict y = X.data();
+    const double* __restrict d = inverse_diagonal.begin();
+    for (unsigned int i = 0, n = X.size(); i < n; ++i)
+      for (unsigned int r = 0; r < w; ++r)
+        y[i * w + r] *= d[i];
+  };
+  scale_and_solve_block(coupled_rows, coupled_inverse, X, scale_rows,
+                        [&](const unsigned int i, const unsigned int r,
+                            const double value) { X(i, r) = value; });
 }
 
 void MassInverse::apply(LocalColumns& X) const
@@ -121,20 +145,10 @@ void MassInverse::apply(LocalColumns& X) const
     X.solve(factorization);
     return;
   }
-  const unsigned int c = coupled_rows.size(), w = InterleavedColumns::width;
-  std::vector<double> coupled(c * w);
-  for (unsigned int k = 0; k < c; ++k)
-    for (unsigned int r = 0; r < w; ++r)
-      coupled[k * w + r] = X(coupled_rows[k], r);
-  X.scale_rows(inverse_diagonal);
-  for (unsigned int k = 0; k < c; ++k)
-    for (unsigned int r = 0; r < w; ++r)
-    {
-      double s = 0.;
-      for (unsigned int l = 0; l < c; ++l)
-        s += coupled_inverse(k, l) * coupled[l * w + r];
-      X.set(coupled_rows[k], r, s);
-    }
+  scale_and_solve_block(
+      coupled_rows, coupled_inverse, X, [&]() { X.scale_rows(inverse_diagonal); },
+      [&](const unsigned int i, const unsigned int r, const double value)
+      { X.set(i, r, value); });
 }
 
 void MassInverse::apply_coupled_rows(dealii::Vector<double>& x) const
