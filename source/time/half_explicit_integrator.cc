@@ -442,16 +442,11 @@ void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>&
 }
 
 void HalfExplicitIntegrator::find_fixed_near(std::initializer_list<const SparseRow*> rows,
-                                             const MassInverse& A,
+                                             const MassInverse& A, const bool local,
+                                             const RowRanges& reach,
                                              std::vector<unsigned int>& near)
 {
   near.clear();
-  if (A.factorised())
-  {
-    for (unsigned int k = 0; k < fixed.size(); ++k)
-      near.push_back(k);
-    return;
-  }
   const auto visit = [&](const unsigned int j)
   {
     for (unsigned int e = fixed_at_start[j]; e < fixed_at_start[j + 1]; ++e)
@@ -461,11 +456,26 @@ void HalfExplicitIntegrator::find_fixed_near(std::initializer_list<const SparseR
         near.push_back(fixed_at[e]);
       }
   };
-  for (const SparseRow* row : rows)
-    for (const unsigned int j : row->index)
+  if (local) // the column is zero off its reach
+  {
+    for (const RowRange& r : reach)
+      for (int j = r.first; j < r.last; ++j)
+        visit(j);
+  }
+  else if (A.factorised())
+  {
+    for (unsigned int k = 0; k < fixed.size(); ++k)
+      near.push_back(k);
+    return;
+  }
+  else
+  {
+    for (const SparseRow* row : rows)
+      for (const unsigned int j : row->index)
+        visit(j);
+    for (const unsigned int j : A.coupled())
       visit(j);
-  for (const unsigned int j : A.coupled())
-    visit(j);
+  }
   for (const unsigned int k : near)
     near_mark[k] = false;
 }
@@ -481,38 +491,36 @@ void HalfExplicitIntegrator::compute_moving_columns()
   {
     const unsigned int i = moving[c];
     MovingColumns& x = columns[c];
-    if (!fixed.empty())
-    {
-      find_fixed_near({&sn[i].G}, smoothed_mass_inverse, x.near_Y);
-      find_fixed_near({&sn[i].G, &sh[i].G_t, &sh[i].G, &s1[i].G, &s1[i].G_t},
-                      mass_inverse, x.near_M);
-    }
-    // The first column Y takes a* along (see free_acceleration).
+    // a* = W^-1 (forces) once, with the first moving constraint (see free_acceleration).
     dealii::Vector<double>* free_rhs = c == 0 && W ? &free_acceleration : nullptr;
-    if (W && M)
-    {
-      // Factorised (FEM): the six columns in two sweeps over the band, Y with
-      // (M + dt/2 D) side by side with P, Q, R, U with M, then V.
+    if (W && M) // factorised (FEM): every column on the rows it reaches
       compute_factorised_columns(*W, *M, sn[i], sh[i], s1[i], x, free_rhs);
-      continue;
-    }
-    if (W)
-    {
-      // M diagonal, M + dt/2 D banded (the FDM with Rayleigh damping): a* =
-      // W^-1 (forces) on all rows, Y on the rows it reaches.
-      if (free_rhs)
-        W->solve(*free_rhs);
-      compute_local_column(*W, sn[i].G, x);
-    }
     else
-      smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
-    mass_inverse.apply_to_row(sn[i].G, x.P);
-    mass_inverse.apply_to_row(sh[i].G_t, x.Q);
-    mass_inverse.apply_to_row(sh[i].G, x.R);
+    {
+      if (W)
+      {
+        // M diagonal, M + dt/2 D banded (the FDM with Rayleigh damping): a* on
+        // all rows, Y on the rows it reaches.
+        if (free_rhs)
+          W->solve(*free_rhs);
+        compute_local_column(*W, sn[i].G, x);
+      }
+      else
+        smoothed_mass_inverse.apply_to_row(sn[i].G, x.Y);
+      mass_inverse.apply_to_row(sn[i].G, x.P);
+      mass_inverse.apply_to_row(sh[i].G_t, x.Q);
+      mass_inverse.apply_to_row(sh[i].G, x.R);
+      if (!fixed.empty())
+      {
+        mass_inverse.apply_to_row(s1[i].G, x.U);
+        mass_inverse.apply_to_row(s1[i].G_t, x.V);
+      }
+    }
     if (fixed.empty())
       continue;
-    mass_inverse.apply_to_row(s1[i].G, x.U);
-    mass_inverse.apply_to_row(s1[i].G_t, x.V);
+    find_fixed_near({&sn[i].G}, smoothed_mass_inverse, x.local_Y, x.reach_Y, x.near_Y);
+    find_fixed_near({&sn[i].G, &sh[i].G_t, &sh[i].G, &s1[i].G, &s1[i].G_t}, mass_inverse,
+                    x.local_M, x.reach_M, x.near_M);
   }
 }
 

@@ -330,10 +330,12 @@ private:
                                 dealii::Vector<double>& y);
   /**
    * @p near <- the fixed constraints (their positions in fixed) whose rows meet
-   * the pattern of A^-1 rows^T: those on the rows' unknowns and A's coupled
-   * block when A is diagonal, all when A is factorised.
+   * a moving column A^-1 rows^T: those on the rows of its reach when it was
+   * solved locally (@p local), else those on the rows' unknowns and A's
+   * coupled block when A is diagonal, all when A is factorised.
    */
   void find_fixed_near(std::initializer_list<const SparseRow*> rows, const MassInverse& A,
+                       bool local, const RowRanges& reach,
                        std::vector<unsigned int>& near);
   /**
    * The rows G_k and offsets z_k of the fixed constraints (constant; G_t,
