@@ -15,12 +15,9 @@ ContactConstraint::ContactConstraint(std::string name, WirePointMarker wire,
 void ContactConstraint::evaluate(const double t, ConstraintState& s,
                                  const unsigned int max_order) const
 {
-  wire.row(t, s.G);
+  wire.rows(t, s.G, s.G_t, s.G_tt, max_order);
   for (std::size_t k = 0; k < minus_head.size(); ++k)
     s.G.add(minus_head.index[k], minus_head.value[k]);
   s.z = s.z_t = s.z_tt = 0.;
-  if (max_order == 0)
-    return;
-  wire.time_derivatives(t, s.G_t, s.G_tt, max_order >= 2);
 }
 } // namespace pantocat

@@ -1,5 +1,7 @@
 #include <pantocat/coupling/wire_point_marker.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
 WirePointMarker::WirePointMarker(const CatenaryDiscretisation& discretisation,
@@ -15,17 +17,19 @@ void WirePointMarker::row(const double t, SparseRow& r) const
   r.shift(wire_offset);
 }
 
-void WirePointMarker::time_derivatives(const double t, SparseRow& first,
-                                       SparseRow& second,
-                                       const bool second_derivative) const
+void WirePointMarker::rows(const double t, SparseRow& row, SparseRow& first,
+                           SparseRow& second, const unsigned int max_order) const
 {
-  const double x = motion_.position(t), xd = motion_.velocity(t),
-               xdd = motion_.acceleration(t);
-  discretisation.load_row(x, 1, first);
-  if (second_derivative)
+  const double x = motion_.position(t);
+  SparseRow* const load[3] = {&row, &first, &second};
+  discretisation.load_rows(x, 0, std::min(max_order, 2u) + 1, load);
+  row.shift(wire_offset);
+  if (max_order == 0)
+    return;
+  const double xd = motion_.velocity(t), xdd = motion_.acceleration(t);
+  if (max_order >= 2)
   {
     // x'^2 r_2 - x'' r_1 (r_1 and r_2 share their pattern).
-    discretisation.load_row(x, 2, second);
     for (std::size_t k = 0; k < second.size(); ++k)
       second.value[k] = xd * xd * second.value[k] - xdd * first.value[k];
     second.shift(wire_offset);
@@ -34,4 +38,5 @@ void WirePointMarker::time_derivatives(const double t, SparseRow& first,
     value *= -xd;
   first.shift(wire_offset);
 }
+
 } // namespace pantocat

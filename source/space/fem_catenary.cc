@@ -265,32 +265,46 @@ SparseRow FemCatenary::point_row(const Wire wire, const double x) const
 void FemCatenary::full_load_row(const double x_c, const unsigned int k,
                                 SparseRow& row) const
 {
-  row.clear();
+  full_load_rows(x_c, k, 1, &row);
+}
+
+void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
+                                 const unsigned int count, SparseRow* rows) const
+{
+  AssertThrow(count >= 1 && count <= 3, dealii::ExcMessage("one to three load rows"));
+  for (unsigned int r = 0; r < count; ++r)
+    rows[r].clear();
   if (discretisation.load_shape == LoadShape::point)
   {
     // int delta^{(k)}(x - x_c) v(x) dx = (-1)^k v^{(k)}(x_c)
     const unsigned int c = cell_index(x_c);
     const auto& dofs = local_dofs(Wire::contact_wire, c);
-    for (unsigned int i = 0; i < dofs.size(); ++i)
-      row.add(dofs[i], (k % 2 ? -1. : 1.) * shape(Wire::contact_wire, c, i, k, x_c));
+    for (unsigned int r = 0; r < count; ++r)
+    {
+      const unsigned int k = first_k + r;
+      for (unsigned int i = 0; i < dofs.size(); ++i)
+        rows[r].add(dofs[i],
+                    (k % 2 ? -1. : 1.) * shape(Wire::contact_wire, c, i, k, x_c));
+    }
     return;
   }
   const double eps = delta.epsilon();
   const unsigned int first = cell_index(std::max(0., x_c - eps));
   const unsigned int last = cell_index(std::min(catenary.length(), x_c + eps));
-  std::vector<double> local(4);
   for (unsigned int c = first; c <= last; ++c)
   {
     const double x0 = cells[c]->vertex(0)[0], x1 = cells[c]->vertex(1)[0];
     // Break points: cell ends and the spline knots x_c - eps, x_c, x_c + eps inside the
     // cell.
-    std::vector<double> breaks = {std::max(x0, x_c - eps), std::min(x1, x_c + eps)};
+    std::array<double, 5> breaks{{std::max(x0, x_c - eps), std::min(x1, x_c + eps)}};
+    unsigned int n_breaks = 2;
     for (const double knot : delta.knots())
-      if (x_c + knot > breaks.front() && x_c + knot < breaks.back())
-        breaks.push_back(x_c + knot);
-    std::sort(breaks.begin(), breaks.end());
-    std::fill(local.begin(), local.end(), 0.);
-    for (unsigned int p = 0; p + 1 < breaks.size(); ++p)
+      if (x_c + knot > breaks[0] && x_c + knot < breaks[1])
+        breaks[n_breaks++] = x_c + knot;
+    std::sort(breaks.begin(), breaks.begin() + n_breaks);
+    // The shape values at each quadrature point serve every row.
+    double local[3][4] = {};
+    for (unsigned int p = 0; p + 1 < n_breaks; ++p)
     {
       const double a = breaks[p], length = breaks[p + 1] - breaks[p];
       if (length <= 0.)
@@ -298,34 +312,53 @@ void FemCatenary::full_load_row(const double x_c, const unsigned int k,
       for (unsigned int q = 0; q < gauss.size(); ++q)
       {
         const double x = a + length * gauss.point(q)[0];
-        const double weight = length * gauss.weight(q) * delta.derivative(x - x_c, k);
+        double v[4];
         for (unsigned int i = 0; i < 4; ++i)
-          local[i] += weight * shape(Wire::contact_wire, c, i, 0, x);
+          v[i] = shape(Wire::contact_wire, c, i, 0, x);
+        for (unsigned int r = 0; r < count; ++r)
+        {
+          const double weight =
+              length * gauss.weight(q) * delta.derivative(x - x_c, first_k + r);
+          for (unsigned int i = 0; i < 4; ++i)
+            local[r][i] += weight * v[i];
+        }
       }
     }
     const auto& dofs = local_dofs(Wire::contact_wire, c);
-    for (unsigned int i = 0; i < 4; ++i)
-      row.add(dofs[i], local[i]);
+    for (unsigned int r = 0; r < count; ++r)
+      for (unsigned int i = 0; i < 4; ++i)
+        rows[r].add(dofs[i], local[r][i]);
   }
 }
 
 void FemCatenary::load_row(const double x_c, const unsigned int k, SparseRow& row) const
 {
-  SparseRow full;
-  full_load_row(x_c, k, full);
+  SparseRow* const rows[1] = {&row};
+  load_rows(x_c, k, 1, rows);
+}
+
+void FemCatenary::load_rows(const double x_c, const unsigned int first_k,
+                            const unsigned int count, SparseRow* const* rows) const
+{
+  std::array<SparseRow, 3> full;
+  full_load_rows(x_c, first_k, count, full.data());
   // Sum duplicates of shared vertex dofs and drop the eliminated ones.
-  row.clear();
   const auto& free = wire_space.free;
-  for (std::size_t m = 0; m < full.size(); ++m)
+  for (unsigned int r = 0; r < count; ++r)
   {
-    const unsigned int I = free[full.index[m]];
-    if (I == invalid)
-      continue;
-    auto it = std::find(row.index.begin(), row.index.end(), I);
-    if (it == row.index.end())
-      row.add(I, full.value[m]);
-    else
-      row.value[it - row.index.begin()] += full.value[m];
+    SparseRow& row = *rows[r];
+    row.clear();
+    for (std::size_t m = 0; m < full[r].size(); ++m)
+    {
+      const unsigned int I = free[full[r].index[m]];
+      if (I == invalid)
+        continue;
+      auto it = std::find(row.index.begin(), row.index.end(), I);
+      if (it == row.index.end())
+        row.add(I, full[r].value[m]);
+      else
+        row.value[it - row.index.begin()] += full[r].value[m];
+    }
   }
 }
 } // namespace pantocat

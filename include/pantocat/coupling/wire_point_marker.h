@@ -25,9 +25,14 @@ public:
 
   /// F_w(t) into @p row (global numbering).
   void row(double t, SparseRow& row) const;
-  /// dF_w/dt and d2F_w/dt2 (the latter only if @p second_derivative).
-  void time_derivatives(double t, SparseRow& first, SparseRow& second,
-                        bool second_derivative) const;
+
+  /**
+   * F_w(t) into @p row and, for @p max_order >= 1, dF_w/dt into @p first,
+   * for max_order >= 2 also d2F_w/dt2 into @p second: one call for the load
+   * rows.
+   */
+  void rows(double t, SparseRow& row, SparseRow& first, SparseRow& second,
+            unsigned int max_order) const;
 
   const ContactPointMotion& motion() const { return motion_; }
 

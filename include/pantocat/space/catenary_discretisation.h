@@ -109,6 +109,14 @@ public:
    * dF_w/dt = -x_p' r_1, d^2F_w/dt^2 = x_p'^2 r_2 - x_p'' r_1.
    */
   virtual void load_row(double x_c, unsigned int k, SparseRow& row) const = 0;
+  /// The rows r_k, k = @p first_k .. first_k + count - 1, into *rows[0] ..
+  /// (one load_row() each unless a discretisation shares their work).
+  virtual void load_rows(double x_c, unsigned int first_k, unsigned int count,
+                         SparseRow* const* rows) const
+  {
+    for (unsigned int r = 0; r < count; ++r)
+      load_row(x_c, first_k + r, *rows[r]);
+  }
 
   /// The displacement w(x) of @p wire (with l_c for the carrier) for the unknowns @p q of
   /// that wire.

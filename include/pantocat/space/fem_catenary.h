@@ -49,6 +49,9 @@ public:
                    dealii::Vector<double>& q) const override;
   SparseRow point_row(Wire wire, double x) const override;
   void load_row(double x_c, unsigned int k, SparseRow& row) const override;
+  /// The rows from one pass over the quadrature points (1 to 3 rows).
+  void load_rows(double x_c, unsigned int first_k, unsigned int count,
+                 SparseRow* const* rows) const override;
 
   const dealii::DoFHandler<1>& dof_handler(Wire wire) const;
   /// Global dof number -> free unknown, or numbers::invalid_unsigned_int for eliminated
@@ -60,6 +63,10 @@ public:
    * those that (3) eliminates: r_k(i) = int delta^{(k)}(x - x_c) v_i dx.
    */
   void full_load_row(double x_c, unsigned int k, SparseRow& row) const;
+  /// full_load_row() for k = @p first_k .. first_k + count - 1 (1 to 3 rows),
+  /// each shape value computed once for all.
+  void full_load_rows(double x_c, unsigned int first_k, unsigned int count,
+                      SparseRow* rows) const;
 
 private:
   struct WireSpace
