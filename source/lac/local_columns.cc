@@ -57,7 +57,10 @@ void LocalColumns::add_row(const unsigned int k, const SparseRow& row,
 void LocalColumns::set(const unsigned int i, const unsigned int k, const double value)
 {
   InterleavedColumns::operator()(i, k) = value;
-  take_in({i});
+  const auto in = [i](const RowRange& r)
+  { return r.first <= static_cast<int>(i) && static_cast<int>(i) < r.last; };
+  if (std::none_of(rows.begin(), rows.end(), in)) // else the reach holds row i
+    take_in({i});
 }
 
 void LocalColumns::solve(const SparseDirectSolver& A)
