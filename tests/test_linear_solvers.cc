@@ -32,6 +32,13 @@ ProgramParameters fem_bdf2(unsigned int n_intervals)
   return p;
 }
 
+/// The BDF-2 iteration matrix S = K + c D + c^2 M of @p sys for dt = 5e-5 s (c = 1.5/dt).
+void bdf2_matrix(const SemiDiscreteSystem& sys, dealii::SparseMatrix<double>& S)
+{
+  const double c = 1.5 / 5e-5;
+  assemble_iteration_matrix(sys, c, c * c, S);
+}
+
 double relative_difference(const dealii::Vector<double>& a,
                            const dealii::Vector<double>& b)
 {
@@ -49,9 +56,8 @@ TEST(LinearSolvers, AllBackendsSolveTheBdfIterationMatrix)
   // its single solves to round-off as well.
   CaseRunner simulation(fem_bdf2(100).make_case());
   const SemiDiscreteSystem& sys = simulation.system();
-  const double c = 1.5 / 5e-5;
   dealii::SparseMatrix<double> S;
-  assemble_iteration_matrix(sys, c, c * c, S);
+  bdf2_matrix(sys, S);
   const unsigned int n = sys.n_dofs();
   dealii::Vector<double> b(n);
   for (unsigned int i = 0; i < n; ++i)
@@ -308,9 +314,8 @@ TEST(LinearSolvers, LocalSolvesAreTheFullSolvesWhereTheColumnsAreNotNegligible)
   // also at a block's ends.
   CaseRunner simulation(fem_bdf2(500).make_case());
   const SemiDiscreteSystem& sys = simulation.system();
-  const double c = 1.5 / 5e-5;
   dealii::SparseMatrix<double> S;
-  assemble_iteration_matrix(sys, c, c * c, S);
+  bdf2_matrix(sys, S);
   const int n = sys.n_dofs();
   SparseDirectSolver banded, umfpack;
   banded.factorize(S, "S");
