@@ -440,14 +440,16 @@ private:
   /**
    * Nodes [first, last) of both wires: a0, v* = v_{n-1} + 2 dt a0, q* = q_n +
    * dt (v_n + v*)/2, with the wire's diagonal @p kw0 (the arrays have ghosts).
+   * Compiled for AVX2 beside the baseline, as the library's sweep
+   * (uniform_run_forces()): the speed of light of this machine, not of SSE2.
    */
-  static void sweep_nodes(const int first, const int last, const SweepCoefficients k,
-                          const double kw0, const double* __restrict qc,
-                          const double* __restrict qw, const double* __restrict vc,
-                          const double* __restrict vw, const double* __restrict pc,
-                          const double* __restrict pw, double* __restrict nqc,
-                          double* __restrict nqw, double* __restrict nvc,
-                          double* __restrict nvw)
+  __attribute__((target_clones("avx2", "default"))) static void
+  sweep_nodes(const int first, const int last, const SweepCoefficients k,
+              const double kw0, const double* __restrict qc, const double* __restrict qw,
+              const double* __restrict vc, const double* __restrict vw,
+              const double* __restrict pc, const double* __restrict pw,
+              double* __restrict nqc, double* __restrict nqw, double* __restrict nvc,
+              double* __restrict nvw)
   {
     for (int i = first; i < last; ++i)
     {

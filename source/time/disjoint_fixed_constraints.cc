@@ -65,6 +65,15 @@ bool DisjointFixedConstraints::initialize(const CompressedRows& rows,
       sm += row.value[e] * m_col[e];
     }
     start.push_back(entries.size());
+    const bool pair = row.size() == 2;
+    pairs.j0.push_back(pair ? row.index[0] : 0);
+    pairs.j1.push_back(pair ? row.index[1] : 0);
+    pairs.g0.push_back(pair ? row.value[0] : 0.);
+    pairs.g1.push_back(pair ? row.value[1] : 0.);
+    pairs.w0.push_back(pair ? w_col[0] : 0.);
+    pairs.w1.push_back(pair ? w_col[1] : 0.);
+    pairs.m0.push_back(pair ? m_col[0] : 0.);
+    pairs.m1.push_back(pair ? m_col[1] : 0.);
     schur_w.push_back(sw);
     schur_m.push_back(sm);
   }
@@ -102,82 +111,127 @@ void DisjointFixedConstraints::select_position(const std::vector<bool>& keep,
   select(keep, version, schur_m, selected_m, inverse_m);
 }
 
-void DisjointFixedConstraints::accelerate_and_project(
-    const unsigned int* ks, const unsigned int count, double* __restrict a,
-    std::vector<double>& lambda, const Prediction& p, std::vector<double>& gaps) const
+namespace
 {
-  // Constraints ks[0 .. count) with two unknowns each, their values
-  // in registers and each phase over all of them: each value is loaded and
-  // stored once, and the constraints' chains of dependent operations (two
-  // divisions among them) overlap instead of following one another. The
-  // operations and their order per constraint are those of accelerate() and
-  // project_one(): the same bits.
-  constexpr unsigned int B = batch;
-  const Entry* x[B];
-  for (unsigned int b = 0; b < count; ++b)
-    x[b] = entries.data() + start[ks[b]];
-  unsigned int j0[B], j1[B];
-  double a0[B], a1[B], q0[B], q1[B], v0[B], v1[B], l[B];
+/// The coefficients of the constraints [first, first + count) with two unknowns.
+struct PairChunk
+{
+  const unsigned int *j0, *j1;
+  const double *g0, *g1, *w0, *w1, *m0, *m1, *inverse_w, *inverse_m, *offset;
+};
+
+/// The state a chunk reads and writes (DisjointFixedConstraints::Prediction and a).
+struct PairState
+{
+  double* a;
+  const double *q, *v, *v_previous;
+  double *q_new, *v_new;
+  double dt;
+};
+
+/**
+ * accelerate() and project_one() of the @p count <= B constraints of @p c
+ * (indexed from 0), each with two unknowns, phase by phase: the state's
+ * entries are gathered into arrays, the arithmetic runs over all of them (in
+ * four-double vectors in the AVX2 clone: the coefficients of consecutive
+ * constraints are consecutive, the unknowns of two constraints never the same),
+ * then the results are scattered. Per constraint the operations and their
+ * order are those of accelerate() and project_one(), without fused
+ * multiply-adds: the same bits. @p lambda_out, @p gap_out: lambda_k (where
+ * selected for (39)) and the gap at t_{n+1}.
+ */
+template <unsigned int B>
+__attribute__((target_clones("avx2", "default"))) void
+accelerate_and_project_pairs(const PairChunk& c, const unsigned int count,
+                             const PairState& p, double* __restrict lambda_out,
+                             double* __restrict gap_out)
+{
+  double a0[B], a1[B], vp0[B], vp1[B], qn0[B], qn1[B], vn0[B], vn1[B];
+  double q0[B], q1[B], v0[B], v1[B];
   for (unsigned int b = 0; b < count; ++b)
   {
-    j0[b] = x[b][0].unknown;
-    j1[b] = x[b][1].unknown;
-    a0[b] = a[j0[b]];
-    a1[b] = a[j1[b]];
-  }
-  // (39)
-  for (unsigned int b = 0; b < count; ++b)
-  {
-    const double inverse = inverse_w[ks[b]];
-    const Entry& e0 = x[b][0];
-    const Entry& e1 = x[b][1];
-    const double s = 0. + e0.g * a0[b] + e1.g * a1[b];
-    l[b] = inverse != 0. ? -s * inverse : 0.;
-    a0[b] = inverse != 0. ? a0[b] + l[b] * e0.w_col : a0[b];
-    a1[b] = inverse != 0. ? a1[b] + l[b] * e1.w_col : a1[b];
+    const unsigned int i0 = c.j0[b], i1 = c.j1[b];
+    a0[b] = p.a[i0];
+    a1[b] = p.a[i1];
+    vp0[b] = p.v_previous[i0];
+    vp1[b] = p.v_previous[i1];
+    qn0[b] = p.q[i0];
+    qn1[b] = p.q[i1];
+    vn0[b] = p.v[i0];
+    vn1[b] = p.v[i1];
   }
   const double two_dt = 2. * p.dt, half_dt = 0.5 * p.dt, h = p.dt;
+  // The coefficients as local restrict pointers: loaded once, not per row.
+  const double* __restrict g0 = c.g0, * __restrict g1 = c.g1, * __restrict w0 = c.w0, * __restrict w1 = c.w1, * __restrict m0 = c.m0, * __restrict m1 = c.m1, * __restrict inverse_w = c.inverse_w, * __restrict inverse_m = c.inverse_m, * __restrict offset = c.offset;
   for (unsigned int b = 0; b < count; ++b)
   {
-    v0[b] = p.v_previous[j0[b]] + two_dt * a0[b];
-    v1[b] = p.v_previous[j1[b]] + two_dt * a1[b];
-    q0[b] = p.q[j0[b]] + half_dt * (p.v[j0[b]] + v0[b]);
-    q1[b] = p.q[j1[b]] + half_dt * (p.v[j1[b]] + v1[b]);
-  }
-  // (40)
-  for (unsigned int b = 0; b < count; ++b)
-  {
-    const double inverse = inverse_m[ks[b]];
-    const Entry& e0 = x[b][0];
-    const Entry& e1 = x[b][1];
-    const double sq = 0. + e0.g * q0[b] + e1.g * q1[b];
-    const double sv = 0. + e0.g * v0[b] + e1.g * v1[b];
-    const double r_g = -(sq + offset[ks[b]]), r_v = -sv;
-    const double eta = r_v * inverse / (2. * h);
-    const double mu = r_g * inverse / h - h * eta;
+    // (39)
+    // Both branches computed, then selected: no operation under a condition
+    // (the loop then vectorises with -ftrapping-math).
+    const double inverse = inverse_w[b];
+    const bool selected = inverse != 0.;
+    const double s = 0. + g0[b] * a0[b] + g1[b] * a1[b];
+    const double product = -s * inverse;
+    const double l = selected ? product : 0.;
+    const double moved0 = a0[b] + l * w0[b], moved1 = a1[b] + l * w1[b];
+    a0[b] = selected ? moved0 : a0[b];
+    a1[b] = selected ? moved1 : a1[b];
+    lambda_out[b] = l;
+    // The prediction from the final a.
+    double x0 = vp0[b] + two_dt * a0[b], x1 = vp1[b] + two_dt * a1[b];
+    double y0 = qn0[b] + half_dt * (vn0[b] + x0), y1 = qn1[b] + half_dt * (vn1[b] + x1);
+    // (40)
+    const double inverse_mb = inverse_m[b];
+    const double sq = 0. + g0[b] * y0 + g1[b] * y1;
+    const double sv = 0. + g0[b] * x0 + g1[b] * x1;
+    const double r_g = -(sq + offset[b]), r_v = -sv;
+    const double eta = r_v * inverse_mb / (2. * h);
+    const double mu = r_g * inverse_mb / h - h * eta;
     const double fq = h * h * eta + h * mu, fv = 2. * h * eta;
-    if (inverse != 0.)
-    {
-      q0[b] += fq * e0.m_col;
-      v0[b] += fv * e0.m_col;
-      q1[b] += fq * e1.m_col;
-      v1[b] += fv * e1.m_col;
-    }
+    const bool projected = inverse_mb != 0.;
+    const double yp0 = y0 + fq * m0[b], xp0 = x0 + fv * m0[b];
+    const double yp1 = y1 + fq * m1[b], xp1 = x1 + fv * m1[b];
+    y0 = projected ? yp0 : y0;
+    x0 = projected ? xp0 : x0;
+    y1 = projected ? yp1 : y1;
+    x1 = projected ? xp1 : x1;
+    q0[b] = y0;
+    q1[b] = y1;
+    v0[b] = x0;
+    v1[b] = x1;
+    gap_out[b] = 0. + g0[b] * y0 + g1[b] * y1 + offset[b];
   }
   for (unsigned int b = 0; b < count; ++b)
   {
-    const unsigned int k = ks[b];
+    const unsigned int i0 = c.j0[b], i1 = c.j1[b];
+    p.a[i0] = a0[b]; // unchanged where not selected
+    p.a[i1] = a1[b];
+    p.q_new[i0] = q0[b];
+    p.q_new[i1] = q1[b];
+    p.v_new[i0] = v0[b];
+    p.v_new[i1] = v1[b];
+  }
+}
+} // namespace
+
+void DisjointFixedConstraints::accelerate_and_project(
+    const unsigned int first, const unsigned int count, double* __restrict a,
+    std::vector<double>& lambda, const Prediction& p, std::vector<double>& gaps) const
+{
+  const PairChunk c{
+      pairs.j0.data() + first,  pairs.j1.data() + first, pairs.g0.data() + first,
+      pairs.g1.data() + first,  pairs.w0.data() + first, pairs.w1.data() + first,
+      pairs.m0.data() + first,  pairs.m1.data() + first, inverse_w.data() + first,
+      inverse_m.data() + first, offset.data() + first};
+  double l[batch], g[batch];
+  accelerate_and_project_pairs<batch>(
+      c, count, PairState{a, p.q, p.v, p.v_previous, p.q_new, p.v_new, p.dt}, l, g);
+  for (unsigned int b = 0; b < count; ++b)
+  {
+    const unsigned int k = first + b;
     if (inverse_w[k] != 0.)
-    {
       lambda[id[k]] = l[b];
-      a[j0[b]] = a0[b];
-      a[j1[b]] = a1[b];
-    }
-    p.q_new[j0[b]] = q0[b];
-    p.q_new[j1[b]] = q1[b];
-    p.v_new[j0[b]] = v0[b];
-    p.v_new[j1[b]] = v1[b];
-    gaps[id[k]] = 0. + x[b][0].g * q0[b] + x[b][1].g * q1[b] + offset[k];
+    gaps[id[k]] = g[b];
   }
 }
 
@@ -197,24 +251,24 @@ void DisjointFixedConstraints::accelerate(const unsigned int* which,
                                           std::vector<double>* gaps) const
 {
   const Entry* __restrict x = entries.data();
-  unsigned int ks[batch];
   for (unsigned int i = 0; i < count; ++i)
   {
     const unsigned int k = which ? which[i] : i;
     if (predict && project_now)
     {
-      // Droppers (two unknowns each) that no moving constraint borders, in batches.
+      // Consecutive droppers (two unknowns each) that no moving constraint
+      // borders, in batches.
       unsigned int n_batch = 0;
       for (unsigned int next = i; n_batch < batch && next < count; ++next)
       {
         const unsigned int l = which ? which[next] : next;
-        if (!(*project_now)[l] || start[l + 1] - start[l] != 2)
+        if (l != k + n_batch || !(*project_now)[l] || start[l + 1] - start[l] != 2)
           break;
-        ks[n_batch++] = l;
+        ++n_batch;
       }
       if (n_batch > 0)
       {
-        accelerate_and_project(ks, n_batch, a, lambda, *predict, *gaps);
+        accelerate_and_project(k, n_batch, a, lambda, *predict, *gaps);
         i += n_batch - 1;
         continue;
       }

@@ -90,10 +90,23 @@ public:
                   std::vector<double>* gaps = nullptr) const;
 
 private:
-  /// accelerate() and project() of the @p count <= batch constraints @p ks,
-  /// each with two unknowns, phase by phase.
-  static constexpr unsigned int batch = 8;
-  void accelerate_and_project(const unsigned int* ks, unsigned int count, double* a,
+  /**
+   * The constraints with two unknowns each, by field, indexed by constraint
+   * (the entries of the others are not used): consecutive constraints'
+   * coefficients are consecutive in memory, so that accelerate_and_project()
+   * reads them four at a time.
+   */
+  struct Pairs
+  {
+    std::vector<unsigned int> j0, j1; ///< the unknowns
+    std::vector<double> g0, g1;       ///< G_k there
+    std::vector<double> w0, w1;       ///< (W^-1 G_k^T) there
+    std::vector<double> m0, m1;       ///< (M^-1 G_k^T) there
+  };
+  /// accelerate() and project() of the @p count <= batch consecutive constraints
+  /// from @p first, each with two unknowns, phase by phase.
+  static constexpr unsigned int batch = 16;
+  void accelerate_and_project(unsigned int first, unsigned int count, double* a,
                               std::vector<double>& lambda, const Prediction& predict,
                               std::vector<double>& gaps) const;
   /// (40) and the gap for constraint @p k.
@@ -109,6 +122,7 @@ private:
   bool in_use = false;
   std::vector<unsigned int> start{0}; ///< constraint k: entries [start[k], start[k+1])
   std::vector<Entry> entries;
+  Pairs pairs;
   std::vector<double> offset;
   std::vector<unsigned int> id;
   std::vector<double> schur_w, schur_m;     ///< G_k W^-1 G_k^T, G_k M^-1 G_k^T
