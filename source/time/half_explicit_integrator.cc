@@ -182,6 +182,26 @@ inline double run_acceleration(const RunCoefficients& c, const int i,
   return s * c.scale;
 }
 
+/// The acceleration (and prediction) of one exception @p x of a uniform run.
+template <int B, bool damped, bool predict, bool symmetric>
+inline void exception_force(const RunCoefficients& c, const ForceException& x,
+                            const double* __restrict q, const double* __restrict vp,
+                            const double* __restrict v, double* __restrict out,
+                            const double two_dt, const double half_dt,
+                            double* __restrict q_new, double* __restrict v_new)
+{
+  RunCoefficients own = c;
+  own.f = x.f;
+  own.d0 = x.d0;
+  own.scale = x.scale;
+  const double acceleration =
+      run_acceleration<B, damped, symmetric>(own, x.row, q, vp, v);
+  out[x.row] = acceleration;
+  if constexpr (predict)
+    if (x.predict)
+      predict_unconstrained(x.row, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
+}
+
 /**
  * banded_forces() on the rows of one uniform run: its coefficients as local
  * scalars, every pointer restrict, so that the loop vectorises. The
@@ -203,27 +223,23 @@ uniform_run_forces(const UniformForceRun& run, const ForceException* exceptions,
 {
   const RunCoefficients c = coefficients_of(run);
   const double two_dt = 2. * dt, half_dt = 0.5 * dt;
-  for (int i = run.first; i < run.last; ++i)
+  // Blocks of rows, each followed by its exceptions (in row order) while
+  // the block's rows are in the first-level cache.
+  constexpr int block = 256;
+  int e = run.first_exception;
+  for (int first = run.first; first < run.last; first += block)
   {
-    const double acceleration = run_acceleration<B, damped, symmetric>(c, i, q, vp, v);
-    out[i] = acceleration;
-    if constexpr (predict)
-      predict_unconstrained(i, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
-  }
-  for (int e = run.first_exception; e < run.last_exception; ++e)
-  {
-    const ForceException& x = exceptions[e];
-    RunCoefficients own = c;
-    own.f = x.f;
-    own.d0 = x.d0;
-    own.scale = x.scale;
-    const double acceleration =
-        run_acceleration<B, damped, symmetric>(own, x.row, q, vp, v);
-    out[x.row] = acceleration;
-    if constexpr (predict)
-      if (x.predict)
-        predict_unconstrained(x.row, acceleration, two_dt, half_dt, q, v, vp, q_new,
-                              v_new);
+    const int last = std::min(run.last, first + block);
+    for (int i = first; i < last; ++i)
+    {
+      const double acceleration = run_acceleration<B, damped, symmetric>(c, i, q, vp, v);
+      out[i] = acceleration;
+      if constexpr (predict)
+        predict_unconstrained(i, acceleration, two_dt, half_dt, q, v, vp, q_new, v_new);
+    }
+    for (; e < run.last_exception && exceptions[e].row < last; ++e)
+      exception_force<B, damped, predict, symmetric>(c, exceptions[e], q, vp, v, out,
+                                                     two_dt, half_dt, q_new, v_new);
   }
 }
 
