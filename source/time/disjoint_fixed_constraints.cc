@@ -162,12 +162,20 @@ accelerate_and_project_pairs(const PairChunk& c, const unsigned int count,
   }
   const double two_dt = 2. * p.dt, half_dt = 0.5 * p.dt, h = p.dt;
   // The coefficients as local restrict pointers: loaded once, not per row.
-  const double* __restrict g0 = c.g0, * __restrict g1 = c.g1, * __restrict w0 = c.w0, * __restrict w1 = c.w1, * __restrict m0 = c.m0, * __restrict m1 = c.m1, * __restrict inverse_w = c.inverse_w, * __restrict inverse_m = c.inverse_m, * __restrict offset = c.offset;
+  const double* __restrict g0 = c.g0;
+  const double* __restrict g1 = c.g1;
+  const double* __restrict w0 = c.w0;
+  const double* __restrict w1 = c.w1;
+  const double* __restrict m0 = c.m0;
+  const double* __restrict m1 = c.m1;
+  const double* __restrict inverse_w = c.inverse_w;
+  const double* __restrict inverse_m = c.inverse_m;
+  const double* __restrict offset = c.offset;
   for (unsigned int b = 0; b < count; ++b)
   {
-    // (39)
-    // Both branches computed, then selected: no operation under a condition
-    // (the loop then vectorises with -ftrapping-math).
+    // (39). Both branches are computed, then selected: no operation under a
+    // condition, so that gcc vectorises the loop (this file is built with
+    // -fno-trapping-math, CMakeLists.txt).
     const double inverse = inverse_w[b];
     const bool selected = inverse != 0.;
     const double s = 0. + g0[b] * a0[b] + g1[b] * a1[b];
