@@ -244,13 +244,19 @@ TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth
   ASSERT_TRUE(banded.is_banded());
   const auto rhs = [](const unsigned int i, const unsigned int k)
   { return std::sin(0.37 * i + k) + 0.1 * ((i + k) % 5); };
-  std::vector<dealii::Vector<double>> reference(4, dealii::Vector<double>(n));
-  for (unsigned int k = 0; k < 4; ++k)
+  // UMFPACK's solutions for the right-hand sides f(i, k), k = 0 .. 3.
+  const auto umfpack_solutions = [&](const auto& f)
   {
-    for (unsigned int i = 0; i < n; ++i)
-      reference[k](i) = rhs(i, k);
-    umfpack.solve(reference[k]);
-  }
+    std::vector<dealii::Vector<double>> x(4, dealii::Vector<double>(n));
+    for (unsigned int k = 0; k < 4; ++k)
+    {
+      for (unsigned int i = 0; i < n; ++i)
+        x[k](i) = f(i, k);
+      umfpack.solve(x[k]);
+    }
+    return x;
+  };
+  const std::vector<dealii::Vector<double>> reference = umfpack_solutions(rhs);
   for (unsigned int width = 1; width <= 4; ++width)
   {
     std::vector<double> X(n * width);
@@ -265,7 +271,6 @@ TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth
     EXPECT_LT(worst, 1e-13 * reference[0].linfty_norm()) << width << " right-hand sides";
   }
   // solve_local() on one row per block, away from the long blocks' ends.
-  std::vector<dealii::Vector<double>> point(4, dealii::Vector<double>(n));
   const auto point_rhs = [&](const unsigned int i, const unsigned int k)
   {
     for (std::size_t b = 0; b < spans.size(); ++b)
@@ -273,12 +278,7 @@ TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth
         return 1. + 0.5 * k + 0.1 * b;
     return 0.;
   };
-  for (unsigned int k = 0; k < 4; ++k)
-  {
-    for (unsigned int i = 0; i < n; ++i)
-      point[k](i) = point_rhs(i, k);
-    umfpack.solve(point[k]);
-  }
+  const std::vector<dealii::Vector<double>> point = umfpack_solutions(point_rhs);
   for (unsigned int width = 1; width <= 4; ++width)
   {
     std::vector<double> X(n * width);
