@@ -1278,8 +1278,8 @@ TEST(DisjointFixedConstraints, EachConstraintHoldsAndTheBatchedPassIsTheSameToTh
   // products), after project() G_k q + z_k = 0 and G_k v = 0 for those of
   // (40) (the fixed block [h^2 S, h S; 2h S, 0] solved exactly), and the
   // others keep their values. The batched pass that projects while it
-  // accelerates (consecutive droppers, up to sixteen at a time) gives the same bits as the two
-  // passes one after the other, also with some constraints deferred.
+  // accelerates (consecutive droppers, up to sixteen at a time) gives the same bits as
+  // the two passes one after the other, also with some constraints deferred.
   const unsigned int n = 42;
   std::vector<double> m(n), w(n);
   for (unsigned int i = 0; i < n; ++i)
