@@ -300,6 +300,125 @@ TEST(LinearSolvers, BandedSubstitutionsAgreeWithUmfpackForEveryBandwidthAndWidth
   }
 }
 
+TEST(LinearSolvers, TwistedFactorsSolveAsThePlainOnesToRoundOff)
+{
+  // Long blocks (256 rows and more) get a twisted factor (TwistedBand), which
+  // the solves with one right-hand side use: half bandwidths 1 to 4, each with
+  // an even and an odd number of rows besides the middle (KD or KD + 1
+  // middle rows), in pairs of the same and of different bandwidths, a short
+  // block that stays plain, and a long one without a partner. The solution
+  // must be UMFPACK's to 1e-13 relative and the plain factor's (two
+  // right-hand sides take the plain substitutions) to 1e-13 (round-off: the
+  // matrix's condition number is below 10), and its residual at round-off.
+  struct Span
+  {
+    int length, bandwidth;
+  };
+  const std::vector<Span> spans = {{256, 1}, {257, 1}, {300, 2}, {301, 2}, {400, 3},
+                                   {401, 3}, {500, 4}, {501, 4}, {5, 2},   {1000, 3}};
+  int n = 0;
+  std::vector<int> first_row;
+  for (const Span& s : spans)
+  {
+    first_row.push_back(n);
+    n += s.length;
+  }
+  dealii::DynamicSparsityPattern dsp(n, n);
+  for (std::size_t b = 0; b < spans.size(); ++b)
+    for (int i = 0; i < spans[b].length; ++i)
+      for (int j = std::max(0, i - spans[b].bandwidth);
+           j <= std::min(spans[b].length - 1, i + spans[b].bandwidth); ++j)
+        dsp.add(first_row[b] + i, first_row[b] + j);
+  dealii::SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  dealii::SparseMatrix<double> A(pattern);
+  for (int i = 0; i < n; ++i)
+    for (auto it = pattern.begin(i); it != pattern.end(i); ++it)
+    {
+      const int j = it->column(), d = std::abs(i - j);
+      A.set(i, j, i == j ? 9. + 0.01 * (i % 7) : -1. / (d + 0.3 * ((i + j) % 3)));
+    }
+  SparseDirectSolver banded, umfpack;
+  banded.factorize(A, "A");
+  umfpack.factorize(A, "A", LinearSolverType::umfpack);
+  ASSERT_TRUE(banded.is_banded());
+  ASSERT_EQ(banded.blocks().size(), spans.size());
+  for (std::size_t b = 0; b < spans.size(); ++b)
+  {
+    const auto& block = banded.blocks()[b];
+    EXPECT_EQ(block.bandwidth, spans[b].bandwidth);
+    if (spans[b].length >= 256) // near the middle
+      EXPECT_NEAR(block.twist, (block.first + block.last) / 2, spans[b].bandwidth);
+    else
+      EXPECT_EQ(block.twist, 0);
+  }
+  dealii::Vector<double> b(n), x(n), y(n);
+  for (int i = 0; i < n; ++i)
+    b(i) = std::sin(0.37 * i) + 0.1 * (i % 5) + (i % 97 == 0 ? 3. : 0.);
+  x = b;
+  banded.solve(x);
+  y = b;
+  umfpack.solve(y);
+  std::vector<double> plain(2 * n);
+  for (int i = 0; i < n; ++i)
+    plain[2 * i] = plain[2 * i + 1] = b(i);
+  banded.solve_interleaved(plain.data(), 2);
+  double from_umfpack = 0., from_plain = 0.;
+  for (int i = 0; i < n; ++i)
+  {
+    from_umfpack = std::max(from_umfpack, std::abs(x(i) - y(i)));
+    from_plain = std::max(from_plain, std::abs(x(i) - plain[2 * i]));
+  }
+  EXPECT_LT(from_umfpack, 1e-13 * y.linfty_norm());
+  EXPECT_LT(from_plain, 1e-13 * y.linfty_norm());
+  EXPECT_GT(from_plain, 0.); // a different factor: round-off differs somewhere
+  dealii::Vector<double> r(n);
+  A.vmult(r, x);
+  r -= b;
+  EXPECT_LT(r.linfty_norm(), 1e-13 * b.linfty_norm());
+}
+
+TEST(LinearSolvers, TwistedFactorOfTheFemIterationMatrixSolvesToRoundOff)
+{
+  // The BDF-2 iteration matrix of the FEM (N+1 = 500: the wires' blocks of
+  // 1000 and 500 rows, Hermite and linear) and its mass matrix: the twisted
+  // solve of one right-hand side equals the plain factor's and UMFPACK's to
+  // 1e-12 relative (round-off times the condition number, about 1e3 for M).
+  CaseRunner simulation(fem_bdf2(500).make_case());
+  const SemiDiscreteSystem& sys = simulation.system();
+  dealii::SparseMatrix<double> S;
+  bdf2_matrix(sys, S);
+  for (const dealii::SparseMatrix<double>* A :
+       {static_cast<const dealii::SparseMatrix<double>*>(&S), &sys.mass})
+  {
+    const int n = A->m();
+    SparseDirectSolver banded, umfpack;
+    banded.factorize(*A, "A");
+    umfpack.factorize(*A, "A", LinearSolverType::umfpack);
+    ASSERT_TRUE(banded.is_banded());
+    int twisted = 0;
+    for (const auto& block : banded.blocks())
+      twisted += block.twist > 0;
+    EXPECT_EQ(twisted, 2); // the two wires
+    dealii::Vector<double> x(n), y(n);
+    std::vector<double> plain(2 * n);
+    for (int i = 0; i < n; ++i)
+      x(i) = y(i) = plain[2 * i] = plain[2 * i + 1] =
+          std::cos(0.11 * i) + 0.01 * (i % 13);
+    banded.solve(x);
+    umfpack.solve(y);
+    banded.solve_interleaved(plain.data(), 2);
+    double from_umfpack = 0., from_plain = 0.;
+    for (int i = 0; i < n; ++i)
+    {
+      from_umfpack = std::max(from_umfpack, std::abs(x(i) - y(i)));
+      from_plain = std::max(from_plain, std::abs(x(i) - plain[2 * i]));
+    }
+    EXPECT_LT(from_umfpack, 1e-12 * y.linfty_norm());
+    EXPECT_LT(from_plain, 1e-12 * y.linfty_norm());
+  }
+}
+
 TEST(LinearSolvers, LocalSolvesAreTheFullSolvesWhereTheColumnsAreNotNegligible)
 {
   // The columns S^-1 G^T of a contact (BDF-2 matrix of FEM, N+1 = 500, 1501

@@ -20,7 +20,8 @@ namespace pantocat
 {
 namespace
 {
-/// Blocks at least this long are kept apart and substituted two at a time.
+/// Blocks at least this long are kept apart and twisted (TwistedBand): with
+/// one right-hand side, substituted from both ends, two blocks at a time.
 constexpr int long_block = 256;
 
 /**
@@ -299,52 +300,6 @@ void substitute(const ScaledBand& f, double* __restrict X, const int first,
     backward_row<K>(f.upper, f.kd, f.recip, X, i, last, width);
 }
 
-/**
- * Two independent chains of the same kind side by side: rows t of both in
- * the same iteration, then the longer one's rest alone. The recurrences are
- * latency-bound (each row waits for the one before), so two chains in
- * flight take about the time of one.
- */
-template <int KD, typename Chain, typename RowA, typename RowB>
-void side_by_side(Chain& a, Chain& b, const int length_a, const int length_b,
-                  const RowA& row_a, const RowB& row_b)
-{
-  a.start();
-  b.start();
-  const int common = std::min(length_a, length_b);
-  for (int t = KD; t < common; ++t)
-  {
-    a.step(row_a(t));
-    b.step(row_b(t));
-  }
-  for (int t = std::max(common, KD); t < length_a; ++t)
-    a.step(row_a(t));
-  for (int t = std::max(common, KD); t < length_b; ++t)
-    b.step(row_b(t));
-}
-
-/**
- * substitute() on two uncoupled blocks of the same factor side by side: a
- * section's contact wire and messenger are two such blocks. Each row's
- * operations are those of substitute(), in the same order.
- */
-template <int KD, int K>
-void substitute_two(const ScaledBand& f, double* __restrict X,
-                    const SparseDirectSolver::Block& a,
-                    const SparseDirectSolver::Block& b)
-{
-  const int length_a = a.last - a.first, length_b = b.last - b.first;
-  ForwardChain<KD, K> fa{f, X, a.first, a.last, {}}, fb{f, X, b.first, b.last, {}};
-  side_by_side<KD>(
-      fa, fb, length_a, length_b, [&](const int t) { return a.first + t; },
-      [&](const int t) { return b.first + t; });
-  // Backward from each block's last row.
-  BackwardChain<KD, K> ba{f, X, a.first, a.last, {}}, bb{f, X, b.first, b.last, {}};
-  side_by_side<KD>(
-      ba, bb, length_a, length_b, [&](const int t) { return a.last - 1 - t; },
-      [&](const int t) { return b.last - 1 - t; });
-}
-
 template <int K>
 void substitute_block(const ScaledBand& f, double* X, const SparseDirectSolver::Block& b)
 {
@@ -545,6 +500,7 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
           1e-12 * (std::abs(band[e]) + std::abs(mirror[e])))
         return false;
     }
+  const std::vector<double> matrix = band; // A, for the twisted factors
   int info = 0;
   dpbtrf_("U", &n, &kd, band.data(), &ld, &info);
   if (info != 0) // not positive definite
@@ -564,6 +520,14 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
       upper_scaled[e] = band[e] * reciprocal[i];
     }
   find_blocks(A); // the Cholesky factor has the block structure of A
+  twisted.assign(independent_blocks.size(), TwistedBand());
+  for (std::size_t i = 0; i < independent_blocks.size(); ++i)
+  {
+    Block& b = independent_blocks[i];
+    if (b.last - b.first >= long_block &&
+        twisted[i].factorize(b.first, b.last, b.bandwidth, kd, matrix, band))
+      b.twist = twisted[i].twist();
+  }
   return true;
 }
 
@@ -606,6 +570,7 @@ void SparseDirectSolver::factorize(const dealii::SparseMatrix<double>& matrix,
   lower_scaled.clear();
   upper_scaled.clear();
   independent_blocks.clear();
+  twisted.clear();
   try
   {
     if (type == LinearSolverType::trilinos_klu)
@@ -672,24 +637,17 @@ void SparseDirectSolver::solve_interleaved(double* X, const unsigned int k) cons
   for (std::size_t i = 0; i < independent_blocks.size(); ++i)
   {
     const Block& b = independent_blocks[i];
-    // Two long blocks side by side (one right-hand side), with the larger of
-    // their bandwidths: the other block's extra band entries are zeros.
-    const int pair_bandwidth =
-        i + 1 < independent_blocks.size()
-            ? std::max(b.bandwidth, independent_blocks[i + 1].bandwidth)
-            : 0;
-    if (k == 1 && pair_bandwidth >= 1 && pair_bandwidth <= 3 &&
-        std::min(b.last - b.first, independent_blocks[i + 1].last -
-                                       independent_blocks[i + 1].first) >= long_block)
+    // One right-hand side: a long block's twisted factor, two such blocks
+    // side by side (a section's contact wire and messenger: four chains).
+    if (k == 1 && b.twist > 0)
     {
-      const Block& c = independent_blocks[i + 1];
-      if (pair_bandwidth == 1)
-        substitute_two<1, 1>(f, X, b, c);
-      else if (pair_bandwidth == 2)
-        substitute_two<2, 1>(f, X, b, c);
+      if (i + 1 < independent_blocks.size() && independent_blocks[i + 1].twist > 0)
+      {
+        TwistedBand::solve_pair(twisted[i], twisted[i + 1], X);
+        ++i;
+      }
       else
-        substitute_two<3, 1>(f, X, b, c);
-      ++i;
+        twisted[i].solve(X);
       continue;
     }
     switch (k)

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/lac/twisted_band.h>
+
 #include <deal.II/lac/sparse_direct.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -39,7 +41,9 @@ using RowRanges = std::vector<RowRange>;
  * written out because the reference BLAS behind dpbtrs is slower still).
  * The factor inherits the block structure of the matrix: each block of
  * unknowns that no entry couples to another (carrier, contact wire,
- * pantograph) is substituted with its own half bandwidth.
+ * pantograph) is substituted with its own half bandwidth. A long block is
+ * also twisted (TwistedBand): the solves with one right-hand side substitute
+ * it from both ends, which halves their latency-bound chains.
  * Any other matrix goes to deal.II's UMFPACK.
  */
 class SparseDirectSolver
@@ -105,6 +109,10 @@ public:
   struct Block
   {
     int first = 0, last = 0, bandwidth = 0;
+    /// 0, or the first middle row of the block's twisted factor
+    /// (TwistedBand; long blocks of half bandwidth 1 to 4), which the solves
+    /// with one right-hand side use.
+    int twist = 0;
   };
   /// The banded factor as the substitutions read it (see lower_scaled, upper_scaled).
   struct ScaledBand
@@ -137,6 +145,8 @@ private:
   /// The scaled factor as the substitutions read it.
   ScaledBand scaled_band() const;
   std::vector<Block> independent_blocks;
+  /// The twisted factor of each block with Block::twist (else empty).
+  std::vector<TwistedBand> twisted;
   dealii::SparseDirectUMFPACK umfpack;
 };
 } // namespace pantocat
