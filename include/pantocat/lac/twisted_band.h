@@ -14,8 +14,9 @@ namespace pantocat
  * subtract, about 8 cycles), so the solve of one right-hand side is
  * latency-bound, and its time is the block's length. The twisted factor
  * orders the block's rows as: the top [first, t) downwards, the bottom
- * [t + KD, last) upwards, then the KD middle rows [t, t + KD), with t near
- * the middle; with that order P, P A P^T = R^T R. R has no more entries
+ * [t + M, last) upwards, then the M middle rows [t, t + M), with t near the
+ * middle and M = KD or KD + 1 so that top and bottom are equally long; with
+ * that order P, P A P^T = R^T R. R has no more entries
  * than U (top and bottom are bands of half bandwidth KD, each coupled to the
  * middle only). R^T y = b runs from the top down and from the bottom up,
  * side by side, and ends in the middle; R x = y starts in the middle and
@@ -25,9 +26,10 @@ namespace pantocat
  * are the plain factor's, its bottom rows (and C_B) the banded Cholesky
  * factor (dpbtrf) of the rows [t, last) in reverse order, its middle the
  * Cholesky factor (dpotrf) of the Schur complement A_MM - C_T^T C_T -
- * C_B^T C_B. Each chain's coefficients are stored in the order it reads
- * them (one record per row: 1 / R(i, i), then R's row over R(i, i)), so a
- * step reads one record and moves two pointers.
+ * C_B^T C_B. The coefficients are stored in the order the chains read
+ * them, the top's and the bottom's side by side in one record per step
+ * (1 / R(i, i), then R's row over R(i, i)): a step of both chains is one
+ * SSE2 operation per term.
  */
 class TwistedBand
 {
@@ -40,14 +42,12 @@ public:
    * at least 4 bandwidth rows), of the matrix whose upper band is
    * @p matrix and whose plain Cholesky factor is @p factor (both in LAPACK's
    * upper band storage with half bandwidth @p kd >= @p bandwidth). Returns
-   * false, leaving it empty, if the block is not eligible or LAPACK
+   * false, leaving it without a factor, if the block is not eligible or LAPACK
    * reports a matrix that is not positive definite.
    */
   bool factorize(int first, int last, int bandwidth, int kd,
                  const std::vector<double>& matrix, const std::vector<double>& factor);
 
-  /// True after a successful factorize().
-  bool empty() const { return kd_block == 0; }
   /// The first of the middle rows.
   int twist() const { return t; }
 
