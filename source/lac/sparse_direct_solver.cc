@@ -500,7 +500,12 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
           1e-12 * (std::abs(band[e]) + std::abs(mirror[e])))
         return false;
     }
-  const std::vector<double> matrix = band; // A, for the twisted factors
+  find_blocks(A); // the Cholesky factor has the block structure of A
+  // A's band, for the twisted factors of the long blocks (if any).
+  const bool any_long =
+      std::any_of(independent_blocks.begin(), independent_blocks.end(),
+                  [](const Block& b) { return b.last - b.first >= long_block; });
+  const std::vector<double> matrix = any_long ? band : std::vector<double>();
   int info = 0;
   dpbtrf_("U", &n, &kd, band.data(), &ld, &info);
   if (info != 0) // not positive definite
@@ -519,7 +524,6 @@ bool SparseDirectSolver::try_banded_cholesky(const dealii::SparseMatrix<double>&
       lower_scaled[e] = band[e] * reciprocal[j];
       upper_scaled[e] = band[e] * reciprocal[i];
     }
-  find_blocks(A); // the Cholesky factor has the block structure of A
   twisted.assign(independent_blocks.size(), TwistedBand());
   for (std::size_t i = 0; i < independent_blocks.size(); ++i)
   {
