@@ -15,6 +15,7 @@
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
+#include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/disjoint_fixed_constraints.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/ggl_fixed_block.h>
@@ -31,6 +32,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 using namespace pantocat;
 
@@ -728,7 +730,7 @@ TEST(GglFixedBlock, SolvesTheFixedBlockOfTheGglMultiplierSystem)
     constraints.push_back(owned[k].get());
   }
   GglFixedBlock block;
-  block.initialize(G, constraints, S, M, sys.damping, c, n);
+  block.initialize(G, constraints, S, M, sys.damping, DampingOverMass(sys), c, n);
   std::vector<bool> force(m, true), engaged(m, false);
   force[m - 1] = false;
   engaged[m - 1] = true;
@@ -1113,24 +1115,56 @@ TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
 
 // PatternOperators keeps the rows in runs with the same offsets (stride 1 for
 // the FDM's and the strings' nodes, 2 for a Hermite beam's values and
-// slopes) and sums down a run offset by offset, several rows at once. Each
-// row's sum must still be the loop over its entries in the pattern's order,
-// to the bit: f + M h + D r and IDA's M (qp - v), M vp + D v + K q - f,
-// computed here by that loop from the matrices, on random vectors. A sum that
-// dropped an entry or took them in another order would differ in the last
-// bits. The FEM grid must form runs of stride 2 (few runs, not one per row).
+// slopes) and sums down a run offset by offset, several rows at once;
+// history() sums a uniform wire's rows from two rows' coefficients kept
+// aside, four rows at once, and the rows with coefficients of their own (the
+// droppers' clamp masses) four at a time. Each row's sum must still be the
+// loop over its entries in the pattern's order, to the bit: f + M h + D r and
+// IDA's M (qp - v), M vp + D v + K q - f, computed here by that loop from the
+// matrices, on random vectors. A sum that dropped an entry or took them in
+// another order would differ in the last bits. The FEM grid must form runs of
+// stride 2 (few runs, not one per row), and all but a wire's ends must be
+// summed from the stretches: on a uniform grid every cell adds the same
+// values (FemCatenary), so the rows repeat to the bit. Cases: the benchmark
+// (clamp masses as loads only), and 100 m with 40 droppers and their clamp
+// masses' inertia, at nodes (dx = 0.2 m) and between them (FEM: a mass
+// enters the rows of its cell's four unknowns).
 TEST(PatternOperators, RunsGiveTheRowLoopsSumsToTheBit)
 {
   std::mt19937 random(5);
   std::uniform_real_distribution<double> value(-1., 1.);
-  for (const SpaceMethod method : {SpaceMethod::fdm, SpaceMethod::fem})
+  struct Case
   {
-    ProgramParameters p = benchmark(32., method, "bdf2");
+    SpaceMethod method;
+    unsigned int droppers;
+    double offset; ///< of the droppers from the nodes [m]
+  };
+  for (const Case c : {Case{SpaceMethod::fdm, 0, 0.}, Case{SpaceMethod::fem, 0, 0.},
+                       Case{SpaceMethod::fdm, 40, 0.}, Case{SpaceMethod::fem, 40, 0.},
+                       Case{SpaceMethod::fem, 40, 0.07}})
+  {
+    ProgramParameters p = benchmark(32., c.method, "bdf2");
+    if (c.droppers > 0)
+    {
+      p.catenary.span = 100.;
+      p.discretisation.n_intervals = 500;
+      p.catenary.dropper_positions.clear();
+      for (unsigned int j = 0; j < c.droppers; ++j)
+        p.catenary.dropper_positions.push_back(2.5 * j + 1.2 + c.offset);
+      p.catenary.dropper_lengths.assign(c.droppers, 0.95);
+      p.catenary.dropper_spans.assign(c.droppers, 0);
+      p.catenary.point_mass_inertia = true;
+    }
     CaseRunner simulation(p.make_case(), {});
     const SemiDiscreteSystem& sys = simulation.system();
     const unsigned int n = sys.n_dofs();
     PatternOperators operators(sys);
     EXPECT_LT(operators.n_runs(), 40u) << "rows not grouped, n = " << n;
+    // Without masses only the wires' ends and the pantograph are left out (10
+    // rows of 1000 or 1501); a mass between FEM nodes gives 6 rows of their
+    // own (4 of the beam, 2 of the string) every 12.5 cells.
+    EXPECT_GT(operators.rows_in_stretches(), (c.droppers > 0 ? 0.8 : 0.99) * n)
+        << "n = " << n << ", droppers " << c.droppers;
     dealii::Vector<double> h(n), r(n), q(n), v(n), qp(n), vp(n), r_q(n), r_v(n);
     for (auto* x : {&h, &r, &q, &v, &qp, &vp})
       for (unsigned int i = 0; i < n; ++i)
@@ -1154,6 +1188,97 @@ TEST(PatternOperators, RunsGiveTheRowLoopsSumsToTheBit)
       EXPECT_EQ(out[i], s) << i;
       EXPECT_EQ(r_q[i], fq) << i;
       EXPECT_EQ(r_v[i], fv) << i;
+    }
+  }
+}
+
+// GglFixedBlock::add_forces() adds the fixed constraints' multipliers to a
+// BDF step's vectors, q += S^-1 (G^T (lambda + eta) + (c G^T + D M^-1 G^T)
+// mu), u1 += M^-1 G^T mu, u2 += M^-1 G^T eta, by the truncated columns (few
+// constraints) or by two solves with M and one with S (many). Both ways
+// must give these sums, computed here from full solves, to round-off of the
+// solves (1e-12 relative: a condition number of S of about 1e3 times the
+// unit round-off, with margin). Damping: the wires' viscous damping (D M^-1
+// G^T sparse: DampingOverMass) and Rayleigh damping alpha M + beta K (D
+// applied to M^-1 G^T mu on full vectors).
+TEST(GglFixedBlock, ColumnsAndSolvesAddTheSameForces)
+{
+  for (const bool rayleigh : {false, true})
+  {
+    ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
+    p.discretisation.n_intervals = 40;
+    if (rayleigh)
+    {
+      p.catenary.damping = CatenaryDamping::rayleigh;
+      p.catenary.rayleigh_alpha = 0.1;
+      p.catenary.rayleigh_beta = 1e-4;
+    }
+    CaseRunner simulation(p.make_case(), {});
+    const SemiDiscreteSystem& sys = simulation.system();
+    const unsigned int n = sys.n_dofs();
+    const double c = 1.5 / 5e-5;
+    dealii::SparseMatrix<double> S_matrix;
+    assemble_iteration_matrix(sys, c, c * c, S_matrix);
+    SparseDirectSolver S;
+    S.factorize(S_matrix, "S");
+    MassInverse M;
+    M.initialize(sys.mass, sys.mass_is_diagonal, "M");
+    std::vector<ConstraintState> states;
+    std::vector<const SparseRow*> G;
+    std::vector<const Constraint*> constraints;
+    for (unsigned int i = 0; i < sys.n_constraints(); ++i)
+      if (!sys.constraints[i]->depends_on_time())
+      {
+        states.emplace_back();
+        constraints.push_back(sys.constraints[i].get());
+      }
+    for (unsigned int i = 0, k = 0; i < sys.n_constraints(); ++i)
+      if (!sys.constraints[i]->depends_on_time())
+        sys.constraints[i]->evaluate(0., states[k++]);
+    for (const ConstraintState& r : states)
+      G.push_back(&r.G);
+    const unsigned int m = G.size();
+    ASSERT_GE(m, 2u);
+    GglFixedBlock block;
+    const DampingOverMass structure(sys);
+    EXPECT_EQ(structure.all_structured(), !rayleigh);
+    block.initialize(G, constraints, S, M, sys.damping, structure, c, n);
+    block.select(std::vector<bool>(m, true), std::vector<bool>(m, false));
+
+    std::vector<double> lambda_plus_eta(m), eta(m), mu(m);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      lambda_plus_eta[k] = 100. * std::sin(1. + k);
+      eta[k] = 3. * std::cos(2. + k);
+      mu[k] = 1e-2 * std::sin(3. + 2. * k);
+    }
+    dealii::Vector<double> q_ref(n), u1_ref(n), u2_ref(n), D_y(n);
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      G[k]->add_transpose_to(q_ref, lambda_plus_eta[k] + c * mu[k]);
+      G[k]->add_transpose_to(u1_ref, mu[k]);
+      G[k]->add_transpose_to(u2_ref, eta[k]);
+    }
+    M.apply(u1_ref);
+    M.apply(u2_ref);
+    sys.damping.vmult(D_y, u1_ref);
+    q_ref += D_y;
+    S.solve(q_ref);
+    for (const bool solves : {false, true})
+    {
+      block.set_forces_by_solves(solves);
+      EXPECT_EQ(block.adds_forces_by_solves(), solves);
+      dealii::Vector<double> q(n), u1(n), u2(n);
+      // Twice: the solves' workspace must be left at zero.
+      for (unsigned int pass = 0; pass < 2; ++pass)
+        block.add_forces(lambda_plus_eta, eta, mu, q, u1, u2);
+      for (const auto& [x, ref, what] :
+           {std::tuple{&q, &q_ref, "q"}, std::tuple{&u1, &u1_ref, "u1"},
+            std::tuple{&u2, &u2_ref, "u2"}})
+        for (unsigned int i = 0; i < n; ++i)
+          EXPECT_NEAR((*x)[i], 2. * (*ref)[i], 1e-12 * 2. * ref->linfty_norm())
+              << what << " row " << i << (solves ? " (solves)" : " (columns)")
+              << (rayleigh ? " rayleigh" : "");
     }
   }
 }

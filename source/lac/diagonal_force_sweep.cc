@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
 
 namespace pantocat
 {
@@ -105,62 +106,59 @@ sweep_by_diagonals(const Block& x, const std::vector<int>& k_offsets,
 }
 
 /**
- * The block's rows of a run, from its two rows' coefficients (@p kc, @p dc:
- * [offset index][parity]; the block starts at an even distance from the
- * run's first row, and every offset reaches inside the matrix). The terms
- * and their order are those of sweep_by_diagonals().
+ * The rows [@p begin, @p end) of a run, from its two rows' coefficients (@p
+ * kc, @p dc: [offset index][parity], parity 0 at @p begin; every offset
+ * reaches inside the matrix): four rows at once, each row's terms summed in
+ * a register until it is done (no partial sums through memory), the
+ * velocity sums formed where they are read. The terms, their order and each
+ * operation are those of sweep_by_diagonals(), so the bits are the same.
  */
-__attribute__((target_clones("avx2", "default"))) void
-sweep_run(const Block& x, const std::vector<int>& k_offsets,
-          const std::array<std::array<double, 2>, 7>& kc,
-          const std::vector<int>& d_offsets,
-          const std::array<std::array<double, 2>, 7>& dc)
+__attribute__((target_clones("avx2", "default"))) void sweep_run(
+    const int begin, const int end, const double* __restrict f,
+    const double* __restrict q, const double* __restrict vp, const double* __restrict v,
+    double* __restrict out, const std::vector<int>& k_offsets,
+    const std::array<std::array<double, 2>, 7>& kc, const std::vector<int>& d_offsets,
+    const std::array<std::array<double, 2>, 7>& dc)
 {
-  const int begin = x.begin, end = x.end;
-  const double* __restrict f = x.f;
-  const double* __restrict q = x.q;
-  double* __restrict out = x.out;
-  const int pairs_end = begin + (end - begin) / 2 * 2;
-  std::size_t next = 0;
-  if (k_offsets.empty())
-    std::copy(f + begin, f + end, out + begin);
-  else
+  using Quad = double __attribute__((vector_size(32)));
+  const auto load = [](const double* x)
   {
-    const int o = k_offsets[next];
-    const double c0 = kc[next][0], c1 = kc[next][1];
-    ++next;
-    for (int i = begin; i < pairs_end; i += 2)
-    {
-      out[i] = f[i] - c0 * q[i + o];
-      out[i + 1] = f[i + 1] - c1 * q[i + 1 + o];
-    }
-    if (pairs_end < end)
-      out[pairs_end] = f[pairs_end] - c0 * q[pairs_end + o];
+    Quad y;
+    std::memcpy(&y, x, sizeof y);
+    return y;
+  };
+  const int nk = k_offsets.size(), nd = d_offsets.size();
+  int ko[7], dof[7];
+  Quad kq[7], dq[7];
+  for (int j = 0; j < nk; ++j)
+  {
+    ko[j] = k_offsets[j];
+    kq[j] = Quad{kc[j][0], kc[j][1], kc[j][0], kc[j][1]};
   }
-  for (; next < k_offsets.size(); ++next)
+  for (int j = 0; j < nd; ++j)
   {
-    const int o = k_offsets[next];
-    const double c0 = kc[next][0], c1 = kc[next][1];
-    for (int i = begin; i < pairs_end; i += 2)
-    {
-      out[i] -= c0 * q[i + o];
-      out[i + 1] -= c1 * q[i + 1 + o];
-    }
-    if (pairs_end < end)
-      out[pairs_end] -= c0 * q[pairs_end + o];
+    dof[j] = d_offsets[j];
+    dq[j] = Quad{dc[j][0], dc[j][1], dc[j][0], dc[j][1]};
   }
-  for (std::size_t j = 0; j < d_offsets.size(); ++j)
+  int i = begin;
+  for (; i + 4 <= end; i += 4)
   {
-    const int o = d_offsets[j];
-    const double c0 = dc[j][0], c1 = dc[j][1];
-    const double* __restrict uo = x.u + o - x.lo;
-    for (int i = begin; i < pairs_end; i += 2)
-    {
-      out[i] -= c0 * uo[i];
-      out[i + 1] -= c1 * uo[i + 1];
-    }
-    if (pairs_end < end)
-      out[pairs_end] -= c0 * uo[pairs_end];
+    Quad s = load(f + i);
+    for (int j = 0; j < nk; ++j)
+      s -= kq[j] * load(q + i + ko[j]);
+    for (int j = 0; j < nd; ++j)
+      s -= dq[j] * (load(vp + i + dof[j]) + load(v + i + dof[j]));
+    std::memcpy(out + i, &s, sizeof s);
+  }
+  for (; i < end; ++i)
+  {
+    const int p = (i - begin) % 2;
+    double s = f[i];
+    for (int j = 0; j < nk; ++j)
+      s -= kc[j][p] * q[i + ko[j]];
+    for (int j = 0; j < nd; ++j)
+      s -= dc[j][p] * (vp[i + dof[j]] + v[i + dof[j]]);
+    out[i] = s;
   }
 }
 } // namespace
@@ -179,6 +177,7 @@ void DiagonalForceSweep::initialize(const int n_rows, const int bandwidth,
   d = &half_damping;
   velocity_sum.assign(block + 2 * b, 0.);
   find_runs();
+  group_exceptions();
 }
 
 bool DiagonalForceSweep::same_coefficients(const int i, const int j) const
@@ -261,22 +260,68 @@ void DiagonalForceSweep::find_runs()
   }
 }
 
-void DiagonalForceSweep::sweep_exception(const std::size_t e, const double* f,
-                                         const double* q, const double* vp,
-                                         const double* v, double* out) const
+namespace
 {
-  // The terms of sweep_by_diagonals() for an inner row, in its order, from
-  // the row's coefficients copied side by side (the diagonals are not read
-  // in a step that sweeps runs: they would be fetched from memory).
-  const int i = exceptions[e];
-  const double* c =
-      exception_coefficients.data() + e * (k_offsets->size() + d_offsets->size());
-  double s = f[i];
-  for (const int o : *k_offsets)
-    s -= *c++ * q[i + o];
-  for (const int o : *d_offsets)
-    s -= *c++ * (vp[i + o] + v[i + o]);
-  out[i] = s;
+/**
+ * The exceptions four at a time, one row per lane (@p rows: four per group,
+ * the last group padded with its last row), from their coefficients laid
+ * out [group][term][lane]: the terms of sweep_by_diagonals() for an inner
+ * row, in its order, each lane's operations those of a row swept alone. Four
+ * rows' chains of subtractions advance together instead of one after the
+ * other (a row alone waits on its 14 dependent subtractions).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+sweep_exception_groups(const int* rows, const std::size_t groups, const double* c,
+                       const std::vector<int>& k_offsets,
+                       const std::vector<int>& d_offsets, const double* f,
+                       const double* q, const double* vp, const double* v, double* out)
+{
+  using Quad = double __attribute__((vector_size(32)));
+  for (std::size_t g = 0; g < groups; ++g, rows += 4)
+  {
+    const int r0 = rows[0], r1 = rows[1], r2 = rows[2], r3 = rows[3];
+    Quad s = {f[r0], f[r1], f[r2], f[r3]};
+    for (const int o : k_offsets)
+    {
+      Quad coefficient;
+      std::memcpy(&coefficient, c, sizeof coefficient);
+      c += 4;
+      s -= coefficient * Quad{q[r0 + o], q[r1 + o], q[r2 + o], q[r3 + o]};
+    }
+    for (const int o : d_offsets)
+    {
+      Quad coefficient;
+      std::memcpy(&coefficient, c, sizeof coefficient);
+      c += 4;
+      s -= coefficient * Quad{vp[r0 + o] + v[r0 + o], vp[r1 + o] + v[r1 + o],
+                              vp[r2 + o] + v[r2 + o], vp[r3 + o] + v[r3 + o]};
+    }
+    // In reverse: a padded group's repeated last row gets its value last.
+    out[r3] = s[3];
+    out[r2] = s[2];
+    out[r1] = s[1];
+    out[r0] = s[0];
+  }
+}
+} // namespace
+
+void DiagonalForceSweep::group_exceptions()
+{
+  // [group][term][lane]: the coefficients of exceptions 4 g .. 4 g + 3 (the
+  // last group repeats its last exception).
+  const std::size_t terms = k_offsets->size() + d_offsets->size();
+  const std::size_t groups = (exceptions.size() + 3) / 4;
+  grouped_rows.assign(4 * groups, 0);
+  grouped_coefficients.assign(4 * groups * terms, 0.);
+  for (std::size_t g = 0; g < groups; ++g)
+    for (std::size_t lane = 0; lane < 4; ++lane)
+    {
+      const std::size_t e = std::min(4 * g + lane, exceptions.size() - 1);
+      grouped_rows[4 * g + lane] = exceptions[e];
+      for (std::size_t t = 0; t < terms; ++t)
+        grouped_coefficients[(g * terms + t) * 4 + lane] =
+            exception_coefficients[e * terms + t];
+    }
 }
 
 int DiagonalForceSweep::rows_in_runs() const
@@ -291,7 +336,7 @@ void DiagonalForceSweep::apply(const double* f, const double* q, const double* v
                                const double* v, double* out)
 {
   double* __restrict u = velocity_sum.data();
-  const auto sweep = [&](const int first, const int last, const Run* run)
+  const auto sweep = [&](const int first, const int last)
   {
     for (int begin = first; begin < last; begin += block)
     {
@@ -304,21 +349,20 @@ void DiagonalForceSweep::apply(const double* f, const double* q, const double* v
         for (int j = x.lo; j < hi; ++j)
           u[j - x.lo] = vp[j] + v[j];
       }
-      if (run)
-        sweep_run(x, *k_offsets, run->k, *d_offsets, run->d);
-      else
-        sweep_by_diagonals(x, *k_offsets, *k, *d_offsets, *d);
+      sweep_by_diagonals(x, *k_offsets, *k, *d_offsets, *d);
     }
   };
   int row = 0;
   for (const Run& r : runs)
   {
-    sweep(row, r.first, nullptr);
-    sweep(r.first, r.last, &r);
-    for (std::size_t e = r.first_exception; e < r.last_exception; ++e)
-      sweep_exception(e, f, q, vp, v, out);
+    sweep(row, r.first);
+    sweep_run(r.first, r.last, f, q, vp, v, out, *k_offsets, r.k, *d_offsets, r.d);
     row = r.last;
   }
-  sweep(row, n, nullptr);
+  sweep(row, n);
+  // The runs' exceptions, over what their runs gave them.
+  sweep_exception_groups(grouped_rows.data(), grouped_rows.size() / 4,
+                         grouped_coefficients.data(), *k_offsets, *d_offsets, f, q, vp, v,
+                         out);
 }
 } // namespace pantocat

@@ -133,6 +133,46 @@ private:
   dealii::SparseMatrix<double>& matrix;
   std::vector<double> values;
 };
+
+/// One cell's contributions to M, D and K of a wire (weak form (16)), summed over
+/// the quadrature points.
+struct CellMatrices
+{
+  explicit CellMatrices(const unsigned int n)
+      : n(n), mass(n * n), damping(n * n), stiffness(n * n)
+  {
+  }
+
+  void compute(const dealii::FEValues<1>& fe_values, const WireTerms& t, const bool beam)
+  {
+    std::fill(mass.begin(), mass.end(), 0.);
+    std::fill(damping.begin(), damping.end(), 0.);
+    std::fill(stiffness.begin(), stiffness.end(), 0.);
+    for (unsigned int q = 0; q < fe_values.n_quadrature_points; ++q)
+    {
+      const double jxw = fe_values.JxW(q);
+      for (unsigned int i = 0; i < n; ++i)
+        for (unsigned int j = 0; j < n; ++j)
+        {
+          const double vivj =
+              fe_values.shape_value(i, q) * fe_values.shape_value(j, q) * jxw;
+          mass[i * n + j] += t.mass * vivj;
+          damping[i * n + j] += t.damping * vivj;
+          // T int v' w' + EI int v'' w''; products first, so that K is
+          // symmetric to the last bit.
+          double k =
+              t.tension * (fe_values.shape_grad(i, q)[0] * fe_values.shape_grad(j, q)[0]);
+          if (beam)
+            k += t.bending * (fe_values.shape_hessian(i, q)[0][0] *
+                              fe_values.shape_hessian(j, q)[0][0]);
+          stiffness[i * n + j] += k * jxw;
+        }
+    }
+  }
+
+  unsigned int n;
+  std::vector<double> mass, damping, stiffness;
+};
 } // namespace
 
 void FemCatenary::add_terms(const Wire wire, const WireTerms& t, BlockOperator& op) const
@@ -151,48 +191,43 @@ void FemCatenary::add_terms(const Wire wire, const WireTerms& t, BlockOperator& 
           dealii::update_JxW_values);
   EntryValues mass(op.mass, t.mass != 0.), damping(op.damping, t.damping != 0.),
       stiffness(op.stiffness, t.tension != 0. || beam);
-  std::vector<std::size_t> entry(n_local * n_local);
+  // The cell matrices, kept for the next cell of the same length (to 1e-12):
+  // on a uniform grid every cell adds the same values to the bit, so equal
+  // rows repeat exactly (what PatternOperators and DiagonalForceSweep look
+  // for), instead of differing in the last bits with each cell's vertices.
+  CellMatrices local(n_local);
+  double local_length = -1.;
   for (const auto& cell : s.dofs.active_cell_iterators())
   {
     fe_values.reinit(cell);
     cell->get_dof_indices(dofs);
-    for (unsigned int i = 0; i < n_local; ++i)
-      for (unsigned int j = 0; j < n_local; ++j)
-        if (s.free[dofs[i]] != invalid && s.free[dofs[j]] != invalid)
-          entry[i * n_local + j] = (*op.sparsity)(s.free[dofs[i]], s.free[dofs[j]]);
+    const double length = cell->vertex(1)[0] - cell->vertex(0)[0];
+    if (std::abs(length - local_length) > 1e-12 * std::abs(local_length))
+    {
+      local.compute(fe_values, t, beam);
+      local_length = length;
+    }
     for (unsigned int q = 0; q < quadrature.size(); ++q)
     {
       const double jxw = fe_values.JxW(q);
       for (unsigned int i = 0; i < n_local; ++i)
-      {
-        const unsigned int I = s.free[dofs[i]];
-        if (I == invalid)
-          continue;
-        const double vi = fe_values.shape_value(i, q);
-        if (t.weight != 0.)
-          op.load(I) -= t.weight * vi * jxw;
-        for (unsigned int j = 0; j < n_local; ++j)
-        {
-          if (s.free[dofs[j]] == invalid)
-            continue;
-          const std::size_t e = entry[i * n_local + j];
-          const double vivj = vi * fe_values.shape_value(j, q) * jxw;
-          if (t.mass != 0.)
-            mass.add(e, t.mass * vivj);
-          if (t.damping != 0.)
-            damping.add(e, t.damping * vivj);
-          // Weak form (16): T int v' w' + EI int v'' w''.
-          // Products first, so that K is symmetric to the last bit.
-          double k =
-              t.tension * (fe_values.shape_grad(i, q)[0] * fe_values.shape_grad(j, q)[0]);
-          if (beam)
-            k += t.bending * (fe_values.shape_hessian(i, q)[0][0] *
-                              fe_values.shape_hessian(j, q)[0][0]);
-          if (k != 0.)
-            stiffness.add(e, k * jxw);
-        }
-      }
+        if (t.weight != 0. && s.free[dofs[i]] != invalid)
+          op.load(s.free[dofs[i]]) -= t.weight * fe_values.shape_value(i, q) * jxw;
     }
+    for (unsigned int i = 0; i < n_local; ++i)
+      for (unsigned int j = 0; j < n_local; ++j)
+      {
+        if (s.free[dofs[i]] == invalid || s.free[dofs[j]] == invalid)
+          continue;
+        const std::size_t e = (*op.sparsity)(s.free[dofs[i]], s.free[dofs[j]]);
+        const std::size_t ij = i * n_local + j;
+        if (t.mass != 0.)
+          mass.add(e, local.mass[ij]);
+        if (t.damping != 0.)
+          damping.add(e, local.damping[ij]);
+        if (local.stiffness[ij] != 0.)
+          stiffness.add(e, local.stiffness[ij]);
+      }
   }
   for (EntryValues* values : {&mass, &damping, &stiffness})
     values->store();

@@ -1,6 +1,7 @@
 #include <pantocat/system/pattern_operators.h>
 
 #include <algorithm>
+#include <cstring>
 #include <type_traits>
 
 namespace pantocat
@@ -62,6 +63,190 @@ PatternOperators::PatternOperators(const SemiDiscreteSystem& system)
     }
     runs.push_back(run);
   }
+  find_stretches();
+  cut_runs_at_stretches();
+}
+
+PatternOperators::RowEntries PatternOperators::row_entries(const unsigned int i) const
+{
+  RowEntries r;
+  auto d = system.damping.begin(i);
+  for (auto m = system.mass.begin(i); m != system.mass.end(i); ++m, ++d)
+  {
+    r.offsets.push_back(static_cast<int>(m->column()) - static_cast<int>(i));
+    r.mass.push_back(m->value());
+    r.damping.push_back(d->value());
+  }
+  return r;
+}
+
+namespace
+{
+/// True if @p a comes before @p b in a deal.II row: the diagonal first, then by column.
+bool before(const int a, const int b)
+{
+  return a == 0 ? b != 0 : (b != 0 && a < b);
+}
+
+/// The offsets of @p a and @p b merged in the pattern's order (empty if they
+/// disagree on it, which deal.II's rows do not).
+std::vector<int> merged_offsets(const std::vector<int>& a, const std::vector<int>& b)
+{
+  std::vector<int> u;
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size())
+    if (j == b.size() || (i < a.size() && before(a[i], b[j])))
+      u.push_back(a[i++]);
+    else if (i == a.size() || before(b[j], a[i]))
+      u.push_back(b[j++]);
+    else
+      u.push_back(a[i++]), ++j;
+  for (std::size_t k = 1; k < u.size(); ++k)
+    if (!before(u[k - 1], u[k]))
+      return {};
+  return u;
+}
+} // namespace
+
+void PatternOperators::find_stretches()
+{
+  // As DiagonalForceSweep::find_runs(): a stretch takes the entries of its
+  // first two rows; rows with others are its exceptions. Its scan ends where
+  // more than gap_limit exceptions follow each other or where they become
+  // more than one in eight; it is kept with at least minimum_stretch rows and
+  // at most one exception in four. Every row of a stretch must reach its
+  // merged offsets inside the vectors.
+  constexpr unsigned int gap_limit = 8, max_offsets = 8;
+  const unsigned int n = system.n_dofs();
+  std::vector<RowEntries> entries(n);
+  for (unsigned int i = 0; i < n; ++i)
+    entries[i] = row_entries(i);
+  const auto inside = [&](const unsigned int i, const std::vector<int>& u)
+  {
+    const int row = static_cast<int>(i);
+    return row + *std::min_element(u.begin(), u.end()) >= 0 &&
+           row + *std::max_element(u.begin(), u.end()) < static_cast<int>(n);
+  };
+  std::vector<unsigned int> own;
+  unsigned int start = 0;
+  while (start + minimum_stretch <= n)
+  {
+    const std::vector<int> u =
+        merged_offsets(entries[start].offsets, entries[start + 1].offsets);
+    if (u.empty() || u.size() > max_offsets || !inside(start, u) || !inside(start + 1, u))
+    {
+      ++start;
+      continue;
+    }
+    unsigned int last_match = start + 1, gap = 0;
+    own.clear();
+    for (unsigned int i = start + 2; i < n && gap <= gap_limit && inside(i, u); ++i)
+    {
+      if (entries[i] == entries[start + (i - start) % 2])
+        last_match = i, gap = 0;
+      else
+      {
+        ++gap;
+        own.push_back(i);
+      }
+      if (i - start >= minimum_stretch && 8 * own.size() > i - start)
+        break;
+    }
+    const unsigned int end = last_match + 1;
+    while (!own.empty() && own.back() >= end)
+      own.pop_back();
+    if (end - start < minimum_stretch || 4 * own.size() > end - start)
+    {
+      ++start;
+      continue;
+    }
+    Stretch st{start, end, static_cast<unsigned int>(own.size()), u, {}, {}, {}, {}, {}};
+    st.mass.assign(2 * u.size(), 0.);
+    st.damping.assign(2 * u.size(), 0.);
+    for (unsigned int p = 0; p < 2; ++p)
+    {
+      const RowEntries& row = entries[start + p];
+      for (std::size_t e = 0; e < row.offsets.size(); ++e)
+      {
+        const std::size_t k = std::find(u.begin(), u.end(), row.offsets[e]) - u.begin();
+        st.mass[2 * k + p] = row.mass[e];
+        st.damping[2 * k + p] = row.damping[e];
+      }
+    }
+    std::vector<unsigned int> grouped;
+    std::vector<const RowEntries*> grouped_entries;
+    for (const unsigned int i : own)
+      if (merged_offsets(u, entries[i].offsets) == u)
+      {
+        grouped.push_back(i);
+        grouped_entries.push_back(&entries[i]);
+      }
+      else
+      {
+        exceptions.push_back(i);
+        exception_entries.push_back(entries[i]);
+      }
+    st.group(grouped, grouped_entries);
+    stretches.push_back(std::move(st));
+    start = end;
+  }
+}
+
+void PatternOperators::Stretch::group(const std::vector<unsigned int>& rows,
+                                      const std::vector<const RowEntries*>& entries)
+{
+  const std::size_t groups = (rows.size() + 3) / 4, E = offsets.size();
+  grouped_rows.assign(4 * groups, 0);
+  grouped_mass.assign(4 * groups * E, 0.);
+  grouped_damping.assign(4 * groups * E, 0.);
+  for (std::size_t g = 0; g < groups; ++g)
+    for (std::size_t lane = 0; lane < 4; ++lane)
+    {
+      const std::size_t x = std::min(4 * g + lane, rows.size() - 1);
+      grouped_rows[4 * g + lane] = rows[x];
+      const RowEntries& row = *entries[x];
+      for (std::size_t e = 0; e < row.offsets.size(); ++e)
+      {
+        const std::size_t k =
+            std::find(offsets.begin(), offsets.end(), row.offsets[e]) - offsets.begin();
+        grouped_mass[(g * E + k) * 4 + lane] = row.mass[e];
+        grouped_damping[(g * E + k) * 4 + lane] = row.damping[e];
+      }
+    }
+}
+
+void PatternOperators::cut_runs_at_stretches()
+{
+  const unsigned int n = system.n_dofs();
+  std::vector<char> in_stretch(n, 0);
+  for (const Stretch& st : stretches)
+    std::fill(in_stretch.begin() + st.first, in_stretch.begin() + st.last, 1);
+  for (const Run& run : runs)
+    for (unsigned int r = 0; r < run.rows;)
+    {
+      if (in_stretch[run.first + r * run.stride])
+      {
+        ++r;
+        continue;
+      }
+      unsigned int e = r;
+      while (e < run.rows && !in_stretch[run.first + e * run.stride])
+        ++e;
+      Run piece = run;
+      piece.first = run.first + r * run.stride;
+      piece.rows = e - r;
+      piece.values = run.values + r;
+      history_runs.push_back(piece);
+      r = e;
+    }
+}
+
+unsigned int PatternOperators::rows_in_stretches() const
+{
+  unsigned int rows = 0;
+  for (const Stretch& st : stretches)
+    rows += st.last - st.first - st.n_exceptions;
+  return rows;
 }
 
 void PatternOperators::set_time(const double t) const
@@ -114,6 +299,141 @@ void with_stride(const unsigned int stride, const F& f)
   else
     f(std::integral_constant<unsigned int, 3>{});
 }
+
+/**
+ * out = f + M h + D r on the rows [@p first, @p last) of a stretch from its
+ * two rows' coefficients (@p m, @p d: [offset index * 2 + parity], parity 0
+ * at @p first), four rows at once (two of each parity), each row's terms
+ * summed in a register in the offsets' order, each term as the runs' passes
+ * form it: s += m h + d r. Compiled for AVX2 beside the baseline (no fused
+ * multiply-add: the same bits either way).
+ */
+template <unsigned int E>
+__attribute__((target_clones("avx2", "default"))) void stretch_history(
+    const unsigned int first, const unsigned int last, const int* __restrict offsets,
+    const double* __restrict m, const double* __restrict d, const double* __restrict f,
+    const double* __restrict h, const double* __restrict r, double* __restrict out)
+{
+  using Quad = double __attribute__((vector_size(32)));
+  const auto load = [](const double* x)
+  {
+    Quad v;
+    std::memcpy(&v, x, sizeof v);
+    return v;
+  };
+  Quad mq[E], dq[E];
+  for (unsigned int e = 0; e < E; ++e)
+  {
+    mq[e] = Quad{m[2 * e], m[2 * e + 1], m[2 * e], m[2 * e + 1]};
+    dq[e] = Quad{d[2 * e], d[2 * e + 1], d[2 * e], d[2 * e + 1]};
+  }
+  unsigned int i = first;
+  for (; i + 4 <= last; i += 4)
+  {
+    Quad s = load(f + i);
+    for (unsigned int e = 0; e < E; ++e)
+      s += mq[e] * load(h + i + offsets[e]) + dq[e] * load(r + i + offsets[e]);
+    std::memcpy(out + i, &s, sizeof s);
+  }
+  for (; i < last; ++i)
+  {
+    const unsigned int p = (i - first) % 2;
+    double s = f[i];
+    for (unsigned int e = 0; e < E; ++e)
+      s += m[2 * e + p] * h[i + offsets[e]] + d[2 * e + p] * r[i + offsets[e]];
+    out[i] = s;
+  }
+}
+
+/// stretch_history() for 1 to 8 offsets.
+void sweep_stretch(const unsigned int n_offsets, const unsigned int first,
+                   const unsigned int last, const int* offsets, const double* m,
+                   const double* d, const double* f, const double* h, const double* r,
+                   double* out)
+{
+  switch (n_offsets)
+  {
+  case 1:
+    return stretch_history<1>(first, last, offsets, m, d, f, h, r, out);
+  case 2:
+    return stretch_history<2>(first, last, offsets, m, d, f, h, r, out);
+  case 3:
+    return stretch_history<3>(first, last, offsets, m, d, f, h, r, out);
+  case 4:
+    return stretch_history<4>(first, last, offsets, m, d, f, h, r, out);
+  case 5:
+    return stretch_history<5>(first, last, offsets, m, d, f, h, r, out);
+  case 6:
+    return stretch_history<6>(first, last, offsets, m, d, f, h, r, out);
+  case 7:
+    return stretch_history<7>(first, last, offsets, m, d, f, h, r, out);
+  default:
+    return stretch_history<8>(first, last, offsets, m, d, f, h, r, out);
+  }
+}
+
+/**
+ * The exceptions of a stretch four at a time, one row per lane (@p rows:
+ * four per group), from their M and D values [group][offset index][lane]:
+ * each lane sums its row's terms as stretch_history() does, in the same
+ * order, the stretch's offsets a row lacks entering with 0.
+ */
+template <unsigned int E>
+__attribute__((target_clones("avx2", "default"))) void exception_history(
+    const std::size_t groups, const unsigned int* rows, const int* __restrict offsets,
+    const double* __restrict m, const double* __restrict d, const double* __restrict f,
+    const double* __restrict h, const double* __restrict r, double* __restrict out)
+{
+  using Quad = double __attribute__((vector_size(32)));
+  for (std::size_t g = 0; g < groups; ++g, rows += 4, m += 4 * E, d += 4 * E)
+  {
+    const unsigned int r0 = rows[0], r1 = rows[1], r2 = rows[2], r3 = rows[3];
+    Quad s = {f[r0], f[r1], f[r2], f[r3]};
+    for (unsigned int e = 0; e < E; ++e)
+    {
+      const int o = offsets[e];
+      Quad me, de;
+      std::memcpy(&me, m + 4 * e, sizeof me);
+      std::memcpy(&de, d + 4 * e, sizeof de);
+      s += me * Quad{h[r0 + o], h[r1 + o], h[r2 + o], h[r3 + o]} +
+           de * Quad{r[r0 + o], r[r1 + o], r[r2 + o], r[r3 + o]};
+    }
+    // In reverse: a padded group's repeated last row gets its value last.
+    out[r3] = s[3];
+    out[r2] = s[2];
+    out[r1] = s[1];
+    out[r0] = s[0];
+  }
+}
+
+/// exception_history() for 1 to 8 offsets.
+void sweep_exception_groups(const unsigned int n_offsets, const std::size_t groups,
+                            const unsigned int* rows, const int* offsets, const double* m,
+                            const double* d, const double* f, const double* h,
+                            const double* r, double* out)
+{
+  if (groups == 0)
+    return;
+  switch (n_offsets)
+  {
+  case 1:
+    return exception_history<1>(groups, rows, offsets, m, d, f, h, r, out);
+  case 2:
+    return exception_history<2>(groups, rows, offsets, m, d, f, h, r, out);
+  case 3:
+    return exception_history<3>(groups, rows, offsets, m, d, f, h, r, out);
+  case 4:
+    return exception_history<4>(groups, rows, offsets, m, d, f, h, r, out);
+  case 5:
+    return exception_history<5>(groups, rows, offsets, m, d, f, h, r, out);
+  case 6:
+    return exception_history<6>(groups, rows, offsets, m, d, f, h, r, out);
+  case 7:
+    return exception_history<7>(groups, rows, offsets, m, d, f, h, r, out);
+  default:
+    return exception_history<8>(groups, rows, offsets, m, d, f, h, r, out);
+  }
+}
 } // namespace
 
 void PatternOperators::history(const dealii::Vector<double>& h,
@@ -121,7 +441,7 @@ void PatternOperators::history(const dealii::Vector<double>& h,
                                dealii::Vector<double>& out) const
 {
   double s[block];
-  for (const Run& run : runs)
+  for (const Run& run : history_runs)
     for (unsigned int first = 0; first < run.rows; first += block)
     {
       const unsigned int rows = std::min(block, run.rows - first),
@@ -131,7 +451,7 @@ void PatternOperators::history(const dealii::Vector<double>& h,
       for (unsigned int e = 0; e < run.n_offsets; ++e)
       {
         const std::size_t at =
-            run.values + static_cast<std::size_t>(e) * run.rows + first;
+            run.values + static_cast<std::size_t>(e) * run.leading + first;
         const int o = offsets[run.first_offset + e];
         const double *m = mass.data() + at, *d = damping.data() + at,
                      *hh = h.begin() + i0 + o, *rr = r.begin() + i0 + o;
@@ -145,6 +465,24 @@ void PatternOperators::history(const dealii::Vector<double>& h,
       for (unsigned int j = 0; j < rows; ++j)
         out[i0 + j * run.stride] = s[j];
     }
+  for (const Stretch& st : stretches)
+  {
+    sweep_stretch(st.offsets.size(), st.first, st.last, st.offsets.data(), st.mass.data(),
+                  st.damping.data(), load.begin(), h.begin(), r.begin(), out.begin());
+    sweep_exception_groups(st.offsets.size(), st.grouped_rows.size() / 4,
+                           st.grouped_rows.data(), st.offsets.data(),
+                           st.grouped_mass.data(), st.grouped_damping.data(),
+                           load.begin(), h.begin(), r.begin(), out.begin());
+  }
+  for (std::size_t x = 0; x < exceptions.size(); ++x)
+  {
+    const unsigned int i = exceptions[x];
+    const RowEntries& row = exception_entries[x];
+    double sum = load[i];
+    for (std::size_t e = 0; e < row.offsets.size(); ++e)
+      sum += row.mass[e] * h[i + row.offsets[e]] + row.damping[e] * r[i + row.offsets[e]];
+    out[i] = sum;
+  }
 }
 
 void PatternOperators::motion(const double* q, const double* v, const double* qp,
@@ -164,7 +502,7 @@ void PatternOperators::motion(const double* q, const double* v, const double* qp
       for (unsigned int e = 0; e < run.n_offsets; ++e)
       {
         const std::size_t at =
-            run.values + static_cast<std::size_t>(e) * run.rows + first;
+            run.values + static_cast<std::size_t>(e) * run.leading + first;
         const int o = offsets[run.first_offset + e];
         with_stride(run.stride,
                     [&](auto S)

@@ -117,7 +117,8 @@ struct Bdf2Integrator::Stage : IterationMatrix
       G.push_back(&rows[i].G);
       constraints.push_back(system.constraints[i].get());
     }
-    block.initialize(G, constraints, inverse, mass_inverse, system.damping, c,
+    block.initialize(G, constraints, inverse, mass_inverse, system.damping,
+                     damping_over_mass, c,
                      system.n_dofs());
     block_ready = true;
   }

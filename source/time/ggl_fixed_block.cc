@@ -9,10 +9,12 @@ namespace pantocat
 void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
                                const std::vector<const Constraint*>& constraints,
                                const SparseDirectSolver& S, const MassInverse& M,
-                               const dealii::SparseMatrix<double>& D, const double c_,
+                               const dealii::SparseMatrix<double>& D,
+                               const DampingOverMass& DM, const double c_,
                                const unsigned int n_dofs)
 {
   m = G.size();
+  n_unknowns = n_dofs;
   c = c_;
   ratio.assign(m, 0.);
   std::vector<double> compliance(m, 0.);
@@ -69,24 +71,35 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   M_inverse = &M;
   damping = &D;
   // Columns: a pass over the slices of X (X^lambda and X^mu side by side) and
-  // of Y (two sums), four unknowns per multiply-add; solves: S once, M once
-  // for two right-hand sides, D once, one multiply-add per entry of their
-  // factors, in chains that wait on each other. A slice's multiply-add costs
-  // about 1/2.5 of a substitution's (bench_constraints, FEM + BDF-2, h = 0.2
-  // m: the columns were faster at m = 100, 200 and 400, by 30 %, 17 % and 5 %).
+  // of Y (two sums), four unknowns per multiply-add with a gathered factor.
+  // Solves: S once and M twice, each a substitution (a twisted one for long
+  // blocks) of about one multiply-add per entry of the factor, with D
+  // applied to M^-1 G^T mu for bodies without DampingOverMass's structure.
+  // Measured with bench_constraints (FEM + BDF-2, h = 0.2 m, 2026-11-25),
+  // both ways take the same time at about 100 constraints (45 us per step);
+  // at 200 the solves took 77 instead of 83 us, at 20 26 instead of 22 us.
+  damping_rows.assign(m, SparseRow());
+  bool structured = true;
+  for (unsigned int k = 0; k < m && structured; ++k)
+    structured = DM.apply(*G[k], damping_rows[k]);
+  if (!structured)
+    damping_rows.clear();
   const SparseDirectSolver* M_factor = M.factorised();
   const double solve_cost = S.solve_cost() +
-                            (M_factor ? M_factor->solve_cost() : n_dofs) +
-                            D.n_nonzero_elements();
+                            2. * (M_factor ? M_factor->solve_cost() : n_dofs) +
+                            (structured ? 0. : D.n_nonzero_elements());
   const double columns_cost =
-      static_cast<double>(X.n_slice_operations() + 2 * Y.n_slice_operations()) / 2.5;
-  solves_are_cheaper = columns_cost > solve_cost;
-  if (solves_are_cheaper)
-  {
-    mass_batch.reinit(n_dofs);
-    work.reinit(n_dofs);
-    D_y.reinit(n_dofs);
-  }
+      static_cast<double>(X.n_slice_operations() + 2 * Y.n_slice_operations()) *
+      slice_operation_cost;
+  set_forces_by_solves(columns_cost > solve_cost);
+}
+
+void GglFixedBlock::set_forces_by_solves(const bool solves)
+{
+  solves_are_cheaper = solves;
+  const unsigned int n = solves ? n_unknowns : 0;
+  for (auto* v : {&work, &mass_mu, &mass_eta, &D_y})
+    v->reinit(n);
 }
 
 void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
@@ -101,31 +114,33 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
     Y.add(mu, u1, eta, u2);
     return;
   }
+  // work, mass_mu and mass_eta are zero on entry (and left so).
   const unsigned int n = q.size();
-  mass_batch.clear();
   for (unsigned int k = 0; k < m; ++k)
   {
-    mass_batch.add_row(0, rows[k], mu[k]);
-    mass_batch.add_row(1, rows[k], eta[k]);
+    rows[k].add_transpose_to(mass_mu, mu[k]);
+    rows[k].add_transpose_to(mass_eta, eta[k]);
     rows[k].add_transpose_to(work, lambda_plus_eta[k] + c * mu[k]);
   }
-  M_inverse->apply(mass_batch);
-  for (unsigned int i = 0; i < n; ++i)
+  if (!damping_rows.empty())
+    for (unsigned int k = 0; k < m; ++k)
+      damping_rows[k].add_transpose_to(work, mu[k]);
+  M_inverse->apply(mass_mu);
+  M_inverse->apply(mass_eta);
+  if (damping_rows.empty())
   {
-    u1[i] += mass_batch(i, 0);
-    u2[i] += mass_batch(i, 1);
-    D_y[i] = mass_batch(i, 0);
-  }
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    double s = 0.;
-    for (auto it = damping->begin(i); it != damping->end(i); ++it)
-      s += it->value() * D_y[it->column()];
-    work[i] += s;
+    damping->vmult(D_y, mass_mu);
+    work += D_y;
   }
   S_inverse->solve(work);
-  q += work;
-  work = 0.;
+  double *w = work.begin(), *y = mass_mu.begin(), *z = mass_eta.begin();
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    q[i] += w[i];
+    u1[i] += y[i];
+    u2[i] += z[i];
+    w[i] = y[i] = z[i] = 0.;
+  }
 }
 
 void GglFixedBlock::select(const std::vector<bool>& force,
@@ -150,16 +165,26 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     if (w->size() < count)
       w->resize(count, dealii::Vector<double>(m));
   auto &mu = mu_w, &eta = eta_w, &rhs = rhs_w;
+  // A border column of a constraint's lambda has no entries in these slots,
+  // one of its mu none in the eta slots: zero vectors are not solved for.
   std::vector<dealii::Vector<double>*> batch;
+  std::vector<char> mu_zero(count), eta_zero(count);
   for (std::size_t j = 0; j < count; ++j)
   {
+    bool mu_nonzero = false, eta_nonzero = false;
     for (unsigned int k = 0; k < m; ++k)
     {
       mu[j][k] = force_set[k] ? -(*xs[j])[3 * k + 2] : 0.;
       eta[j][k] = force_set[k] ? -(*xs[j])[3 * k] : 0.;
+      mu_nonzero = mu_nonzero || mu[j][k] != 0.;
+      eta_nonzero = eta_nonzero || eta[j][k] != 0.;
     }
-    batch.push_back(&mu[j]);
-    batch.push_back(&eta[j]);
+    mu_zero[j] = !mu_nonzero;
+    eta_zero[j] = !eta_nonzero;
+    if (mu_nonzero)
+      batch.push_back(&mu[j]);
+    if (eta_nonzero)
+      batch.push_back(&eta[j]);
   }
   N.solve(batch);
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
@@ -169,11 +194,19 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       std::find(engaged_set.begin(), engaged_set.end(), true) != engaged_set.end();
   for (std::size_t j = 0; j < count; ++j)
   {
-    P.vmult(P_eta, eta[j]);
+    if (eta_zero[j])
+      P_eta = 0.;
+    else
+      P.vmult(P_eta, eta[j]);
     if (any_engaged) // N mu enters the laws of the engaged ones only
-      N.vmult(N_mu, mu[j]);
+    {
+      if (mu_zero[j])
+        N_mu = 0.;
+      else
+        N.vmult(N_mu, mu[j]);
+    }
     for (unsigned int k = 0; k < m; ++k)
-      Q_mu[k] = Q.dot(k, mu[j].begin());
+      Q_mu[k] = mu_zero[j] ? 0. : Q.dot(k, mu[j].begin());
     const dealii::Vector<double>& x = *xs[j];
     rhs[j] = 0.;
     for (unsigned int k = 0; k < m; ++k)

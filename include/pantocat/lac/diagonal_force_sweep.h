@@ -35,9 +35,11 @@ struct ForceDiagonals
  * rows alternate), those of a string with period 1. On runs of such rows the
  * sweep reads the two rows' coefficients kept aside instead of streaming the
  * 2 (2b + 1) diagonals from memory: with S55's 14 diagonals the streams,
- * not the arithmetic, set the pace once the grid outgrows the caches. Rows
- * of a run with coefficients of their own (point masses, supports) are its
- * exceptions: swept with the run's, then again from the diagonals. The
+ * not the arithmetic, set the pace once the grid outgrows the caches. It
+ * sums four rows at once, each row's terms in a register until the row is
+ * done. Rows of a run with coefficients of their own (point masses,
+ * supports) are its exceptions: swept with the run's, then again from their
+ * own coefficients, four exceptions at once (one per vector lane). The
  * other rows (the ends, the pantograph) read the diagonals. Every row's terms come in the
  * order of the offsets, from the same coefficient values, so the result is the same to
  * the bit whichever way a row is swept.
@@ -78,9 +80,8 @@ private:
   };
   void find_runs();
   bool same_coefficients(int i, int j) const;
-  /// Exception @p e (an inner row) as sweep_by_diagonals() sums it.
-  void sweep_exception(std::size_t e, const double* f, const double* q, const double* vp,
-                       const double* v, double* out) const;
+  /// The exceptions' rows and coefficients in groups of four (sweep_exception_groups()).
+  void group_exceptions();
 
   int n = 0, b = 0;
   const std::vector<int>* k_offsets = nullptr;
@@ -91,6 +92,10 @@ private:
   std::vector<int> exceptions; ///< rows of the runs with their own coefficients
   /// Their stiffness, then damping coefficients by offset, row after row.
   std::vector<double> exception_coefficients;
+  /// The same, four exceptions per group: rows [group][lane], coefficients
+  /// [group][term][lane].
+  std::vector<int> grouped_rows;
+  std::vector<double> grouped_coefficients;
   std::vector<double> velocity_sum; ///< v_{n-1} + v_n of a block of rows
 };
 } // namespace pantocat

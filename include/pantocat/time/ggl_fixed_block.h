@@ -3,6 +3,7 @@
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/constraint.h>
+#include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/fixed_constraint_schur.h>
 #include <pantocat/time/mass_inverse.h>
 #include <pantocat/time/truncated_columns.h>
@@ -50,11 +51,13 @@ public:
   /**
    * Computes P, Q, N and the truncated columns S^-1 G^T, S^-1 (c G^T +
    * D M^-1 G^T), M^-1 G^T for the rows @p G of the constraints @p constraints.
+   * @p DM gives D M^-1 G^T as sparse rows where the bodies allow it.
    */
   void initialize(const std::vector<const SparseRow*>& G,
                   const std::vector<const Constraint*>& constraints,
                   const SparseDirectSolver& S, const MassInverse& M,
-                  const dealii::SparseMatrix<double>& D, double c, unsigned int n_dofs);
+                  const dealii::SparseMatrix<double>& D, const DampingOverMass& DM,
+                  double c, unsigned int n_dofs);
 
   unsigned int size() const { return m; }
 
@@ -70,14 +73,26 @@ public:
    * The multipliers' share of a step's vectors: q += S^-1 G^T (lambda + eta) +
    * S^-1 (c G^T + D M^-1 G^T) mu, u1 += M^-1 G^T mu, u2 += M^-1 G^T eta
    * (Bdf2Integrator: v = c q - rho_q - u1, a = c v - rho_v - u2). From the
-   * truncated columns, or, when they hold more entries than the solves read
-   * (many constraints on a FEM grid), from one solve with M (two right-hand
-   * sides side by side) and one with S.
+   * truncated columns, or, when they cost more than the solves (many
+   * constraints on a FEM grid), from two solves with M and one with S: the
+   * right-hand side of S gathered from the sparse rows G_k and D M^-1 G_k^T
+   * (DampingOverMass), or, for bodies without that structure, with D
+   * applied to M^-1 G^T mu.
    */
   void add_forces(const std::vector<double>& lambda_plus_eta,
                   const std::vector<double>& eta, const std::vector<double>& mu,
                   dealii::Vector<double>& q, dealii::Vector<double>& u1,
                   dealii::Vector<double>& u2) const;
+
+  /// True if add_forces() solves rather than adds the truncated columns.
+  bool adds_forces_by_solves() const { return solves_are_cheaper; }
+  /// Makes add_forces() solve (@p solves) or add the columns, whatever they
+  /// cost (the tests compare both ways).
+  void set_forces_by_solves(bool solves);
+
+  /// The time of one multiply-add of the columns' slices (four unknowns) in
+  /// entries of a substitution (measured with bench_constraints, see initialize()).
+  static constexpr double slice_operation_cost = 1.9;
 
   /// Columns S^-1 G^T (of lambda and eta) with their partners S^-1 (c G^T +
   /// D M^-1 G^T) (of mu); M^-1 G^T.
@@ -85,7 +100,7 @@ public:
   const TruncatedColumns& mass_columns() const { return Y; }
 
 private:
-  unsigned int m = 0;
+  unsigned int m = 0, n_unknowns = 0;
   double c = 0.;
   FixedConstraintSchur P, N; ///< P + C on F + E, N on F
   CompressedRows Q;          ///< Q by rows
@@ -95,9 +110,11 @@ private:
   const SparseDirectSolver* S_inverse = nullptr;
   const MassInverse* M_inverse = nullptr;
   const dealii::SparseMatrix<double>* damping = nullptr;
-  bool solves_are_cheaper = false;          ///< add_forces() by solves
-  mutable InterleavedColumns mass_batch;    ///< G^T mu, G^T eta, then M^-1 of them
-  mutable dealii::Vector<double> work, D_y; ///< workspace of add_forces()
+  bool solves_are_cheaper = false; ///< add_forces() by solves
+  /// D M^-1 G_k^T of each constraint (empty if a body lacks the structure).
+  std::vector<SparseRow> damping_rows;
+  /// Workspace of add_forces(): the right-hand sides of S and of M (twice).
+  mutable dealii::Vector<double> work, mass_mu, mass_eta, D_y;
   /// Workspace of solve().
   mutable std::vector<dealii::Vector<double>> mu_w, eta_w, rhs_w;
   mutable dealii::Vector<double> P_eta, Q_mu, N_mu;
