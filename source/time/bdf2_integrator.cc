@@ -118,8 +118,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
       constraints.push_back(system.constraints[i].get());
     }
     block.initialize(G, constraints, inverse, mass_inverse, system.damping,
-                     damping_over_mass, c,
-                     system.n_dofs());
+                     damping_over_mass, c, system.n_dofs());
     block_ready = true;
   }
 
@@ -149,7 +148,8 @@ Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double ti
                                const LinearSolverType linear_solver)
     : TimeIntegrator(system), dt(time_step), linear_solver(linear_solver),
       damping_over_mass(system), operators(system), at_next(system),
-      active_set(system, max_iterations), impacts(system, mass_inverse)
+      active_set(system, max_iterations), impacts(system, mass_inverse),
+      work(std::make_unique<TrialWorkspace>())
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
@@ -176,6 +176,23 @@ enum class Role : char
   engaged   ///< an engaged compliant constraint: lambda; its law
 };
 } // namespace
+
+/// The vectors of implicit_step() and solve_trial(), kept from step to step
+/// so that a step allocates nothing once their sizes are reached.
+struct Bdf2Integrator::TrialWorkspace
+{
+  std::vector<double> gaps, rates;
+  std::vector<Role> role;
+  std::vector<bool> force, engaged;
+  std::vector<Slot> unknowns, equations;
+  std::vector<unsigned int> border;
+  dealii::Vector<double> r, y, rhs;
+  std::vector<dealii::Vector<double>> Bc, Cr;
+  dealii::FullMatrix<double> D;
+  std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
+  std::vector<dealii::Vector<double>*> batch;
+  std::vector<double> lambda_eta, eta_F, mu_F;
+};
 
 DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                                            const dealii::Vector<double>& rho_v,
@@ -220,7 +237,9 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   DynamicState x = std::move(storage); // its vectors' memory, if any
   x.t = t1;
   x.impulse.clear();
-  std::vector<double> gaps(m_all), rates(m_all);
+  std::vector<double>&gaps = work->gaps, &rates = work->rates;
+  gaps.resize(m_all);
+  rates.resize(m_all);
   active_set.start(active_at_start);
   for (;;)
   {
@@ -276,16 +295,23 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   const double c = s.c;
   // Roles; fixed constraints with force or engaged form the block, the
   // moving ones and the touching fixed ones border it.
-  std::vector<Role> role(m_all, Role::none);
+  TrialWorkspace& w = *work;
+  std::vector<Role>& role = w.role;
+  role.assign(m_all, Role::none);
   for (const unsigned int i : active_set.active_indices())
     role[i] = Role::touching;
   for (const unsigned int i : active_set.force_indices())
     role[i] = Role::force;
   for (const unsigned int i : active_set.engaged_indices())
     role[i] = Role::engaged;
-  std::vector<bool> force(mF, false), engaged(mF, false);
-  std::vector<Slot> unknowns, equations;
-  std::vector<unsigned int> border;
+  std::vector<bool>&force = w.force, &engaged = w.engaged;
+  force.assign(mF, false);
+  engaged.assign(mF, false);
+  std::vector<Slot>&unknowns = w.unknowns, &equations = w.equations;
+  unknowns.clear();
+  equations.clear();
+  std::vector<unsigned int>& border = w.border;
+  border.clear();
   for (unsigned int i = 0; i < m_all; ++i)
   {
     if (role[i] == Role::none)
@@ -353,15 +379,24 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       v[3 * k] = L[0] + s.block.damping_ratio(k) * L[1];
   };
 
-  dealii::Vector<double> r(3 * mF), y(p);
+  dealii::Vector<double>&r = w.r, &y = w.y;
+  r.reinit(3 * mF);
+  y.reinit(p);
   for (unsigned int k = 0; k < mF; ++k)
   {
     const Levels& g = base_levels[s.fixed[k]];
     fixed_slots(k, {{-g[0], -g[1], -g[2]}}, r);
   }
-  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(3 * mF)),
-      Cr(p, dealii::Vector<double>(3 * mF));
-  dealii::FullMatrix<double> D(p, p);
+  std::vector<dealii::Vector<double>>&Bc = w.Bc, &Cr = w.Cr;
+  Bc.resize(p);
+  Cr.resize(p);
+  for (unsigned int u = 0; u < p; ++u)
+  {
+    Bc[u].reinit(3 * mF);
+    Cr[u].reinit(3 * mF);
+  }
+  dealii::FullMatrix<double>& D = w.D;
+  D.reinit(p, p);
   // Fixed rows against the border columns: G_t = G_tt = 0 on them, and the
   // unknowns of one border constraint share its batches, so each fixed row
   // takes its products with them once (the values border_levels() gives).
@@ -392,7 +427,8 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   }
   // Border rows against the fixed unknowns, from the truncated columns.
   const GglFixedBlock& block = s.block;
-  std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
+  std::vector<double>&X0 = w.X0, &X1 = w.X1, &X2 = w.X2, &V0 = w.V0, &V1 = w.V1,
+  &V2 = w.V2, &Y0 = w.Y0, &Y1 = w.Y1;
   unsigned int products_of = m_all;
   for (unsigned int e = 0; e < p; ++e)
   {
@@ -429,8 +465,8 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     }
     y(e) = -value(base_levels[eq.constraint], eq);
   }
-  dealii::Vector<double> rhs;
-  std::vector<dealii::Vector<double>*> batch;
+  dealii::Vector<double>& rhs = w.rhs;
+  std::vector<dealii::Vector<double>*>& batch = w.batch;
   solve_bordered([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, rhs, batch,
                  x.t, "BDF step");
 
@@ -439,7 +475,10 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   //   v = c q - rho_q - sum_l (mu_l Y_l + eta_l Z_l),  a = c v - rho_v - sum_l eta_l Y_l
   // (fixed: X^eta = X^lambda, Z = 0).
   x.lambda.assign(m_all, 0.);
-  std::vector<double> lambda_eta(mF), eta_F(mF), mu_F(mF);
+  std::vector<double>&lambda_eta = w.lambda_eta, &eta_F = w.eta_F, &mu_F = w.mu_F;
+  lambda_eta.resize(mF);
+  eta_F.resize(mF);
+  mu_F.resize(mF);
   for (unsigned int k = 0; k < mF; ++k)
   {
     x.lambda[s.fixed[k]] = r[3 * k];

@@ -131,11 +131,13 @@ void GeneralizedAlphaIntegrator::advance()
     base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - r.G.dot(q_hat)) + r.G.dot(v_hat) + r.z_t;
   }
 
-  DynamicState x;
+  DynamicState x = std::move(spare); // its vectors' memory, if any
   x.t = t1;
   x.lambda.assign(m_all, 0.);
+  x.impulse.clear();
   x.q.reinit(n, true);
-  std::vector<double> gaps(m_all), rates(m_all);
+  gaps.resize(m_all);
+  rates.resize(m_all);
   active_set.start(current.active);
   bool touching = false;
   for (;;)
@@ -168,14 +170,30 @@ void GeneralizedAlphaIntegrator::advance()
 
   // a, v, a_c from the Newmark relations (with q before the position
   // projection: mu corrects positions only, like the GGL multiplier of (38)).
-  dealii::Vector<double> a_next(touching ? q_newmark : x.q);
-  a_next.add(-1., q_hat);
-  a_next *= 1. / (h * h * k.beta);
-  x.v = v_hat;
-  x.v.add(h * k.gamma, a_next);
-  x.a.reinit(n, true);
-  x.a.equ((1. - k.alpha_m) / (1. - k.alpha_f), a_next);
-  x.a += w;
+  // In one pass, each entry as deal.II's add(), *=, equ() and += make it:
+  // a_next = (q - q^) / (h^2 beta), v = v^ + h gamma a_next,
+  // a = (1 - alpha_m) / (1 - alpha_f) a_next + w.
+  dealii::Vector<double>& a_next = next_pseudo_acceleration;
+  for (auto* y : {&a_next, &x.v, &x.a})
+    y->reinit(n, true);
+  {
+    const double* __restrict qs = (touching ? q_newmark : x.q).begin();
+    const double* __restrict qh = q_hat.begin();
+    const double* __restrict vh = v_hat.begin();
+    const double* __restrict ww = w.begin();
+    double* __restrict an = a_next.begin();
+    double* __restrict vn = x.v.begin();
+    double* __restrict acc = x.a.begin();
+    const double fa = 1. / (h * h * k.beta), fv = h * k.gamma,
+                 fw = (1. - k.alpha_m) / (1. - k.alpha_f);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      const double ai = (qs[i] + -1. * qh[i]) * fa;
+      an[i] = ai;
+      vn[i] = vh[i] + fv * ai;
+      acc[i] = fw * ai + ww[i];
+    }
+  }
   if (active_set.impact_in_step())
   {
     // The impact: velocities onto dg/dt = 0 with the complementary impulses
@@ -202,6 +220,7 @@ void GeneralizedAlphaIntegrator::advance()
         [&](const unsigned int i) { return rows[i].velocity_residual(x.q, x.v); }, x.v,
         velocity_multipliers, "velocity projection");
   pseudo_acceleration.swap(a_next);
+  spare = std::move(current);
   current = std::move(x);
   ++step_number;
   ++stats.steps;

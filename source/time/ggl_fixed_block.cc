@@ -167,8 +167,11 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
   auto &mu = mu_w, &eta = eta_w, &rhs = rhs_w;
   // A border column of a constraint's lambda has no entries in these slots,
   // one of its mu none in the eta slots: zero vectors are not solved for.
-  std::vector<dealii::Vector<double>*> batch;
-  std::vector<char> mu_zero(count), eta_zero(count);
+  std::vector<dealii::Vector<double>*>& batch = batch_w;
+  batch.clear();
+  std::vector<char>&mu_zero = mu_zero_w, &eta_zero = eta_zero_w;
+  mu_zero.resize(count);
+  eta_zero.resize(count);
   for (std::size_t j = 0; j < count; ++j)
   {
     bool mu_nonzero = false, eta_nonzero = false;

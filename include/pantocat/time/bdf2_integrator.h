@@ -89,7 +89,8 @@ public:
   void load(CheckpointIn& archive) override;
 
 private:
-  struct Stage; ///< factorisation and constant columns for one value of c
+  struct Stage;          ///< factorisation and constant columns for one value of c
+  struct TrialWorkspace; ///< the vectors of a step, kept from step to step
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s
   /// (into @p storage's vectors, if it has them).
@@ -135,6 +136,7 @@ private:
   ImpactProjection impacts;
   std::unique_ptr<Stage> bdf2;
   std::unique_ptr<Stage> start_full, start_half; ///< c = 1/dt, 2/dt of the start
+  std::unique_ptr<TrialWorkspace> work;
   /// The last step had an impact: the next one is a Richardson start.
   bool restart = false;
   DynamicState previous, current;

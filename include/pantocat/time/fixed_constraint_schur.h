@@ -63,6 +63,9 @@ public:
     double solve_cost = 0.;
     /// Keep the truncated columns whatever they cost (columns() is needed).
     bool keep_columns = false;
+    /// Two right-hand sides are solved one after the other rather than side
+    /// by side (the factor has twisted blocks: SparseDirectSolver).
+    bool solve_one_at_a_time = false;
   };
   /// A^-1 given by a MassInverse, respectively a factorisation.
   static ColumnSolver column_solver(const MassInverse& A, bool keep_columns = false);
@@ -123,6 +126,7 @@ private:
   std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
   std::function<void(InterleavedColumns&)> solve_columns_with_A;
+  bool solve_one_at_a_time = false;     ///< ColumnSolver::solve_one_at_a_time
   mutable dealii::Vector<double> work;  ///< G_F^T lambda, when the columns are dropped
   mutable InterleavedColumns work_pair; ///< G_F^T f and G_F^T g, side by side
   mutable std::vector<double> interleaved;

@@ -155,5 +155,10 @@ private:
   /// velocity projection, per constraint.
   std::vector<double> position_multipliers, velocity_multipliers;
   dealii::Vector<double> q_newmark; ///< q_{n+1} before the position projection
+  /// The state before current and the pseudo-acceleration before the
+  /// current one: their vectors' memory for the next step's.
+  DynamicState spare;
+  dealii::Vector<double> next_pseudo_acceleration;
+  std::vector<double> gaps, rates; ///< of a trial, per constraint
 };
 } // namespace pantocat

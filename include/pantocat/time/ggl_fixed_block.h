@@ -117,6 +117,8 @@ private:
   mutable dealii::Vector<double> work, mass_mu, mass_eta, D_y;
   /// Workspace of solve().
   mutable std::vector<dealii::Vector<double>> mu_w, eta_w, rhs_w;
+  mutable std::vector<dealii::Vector<double>*> batch_w;
+  mutable std::vector<char> mu_zero_w, eta_zero_w;
   mutable dealii::Vector<double> P_eta, Q_mu, N_mu;
   std::vector<bool> force_set, engaged_set;
 };
