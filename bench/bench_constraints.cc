@@ -11,6 +11,7 @@
 // matrix (the reference of the implicit methods' target, 2.5 solves per step).
 // Usage: bench_constraints [steps] [m ...]
 // [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
+#include "banded_solve_time.h"
 #include "bench_error.h"
 
 #include <pantocat/app/program_parameters.h>
@@ -74,36 +75,6 @@ ProgramParameters span_with_droppers(const unsigned int m, const std::string& me
   p.parse_parameters(prm);
   p.time_integration.force_step_size = true;
   return p;
-}
-
-/**
- * Microseconds of one solve with the BDF-2 iteration matrix S = K + c D +
- * c^2 M (c = 1.5/dt) of the case without droppers, by the banded Cholesky of
- * SparseDirectSolver (fastest of the batches): the reference of the target
- * "FEM + BDF-2 and generalized-alpha within 2.5 banded solves per step".
- */
-double banded_solve_time(const ProgramParameters& p)
-{
-  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
-  const SemiDiscreteSystem& system = simulation.system();
-  const double c = 1.5 / p.time_integration.time_step;
-  dealii::SparseMatrix<double> S;
-  assemble_iteration_matrix(system, c, c * c, S);
-  SparseDirectSolver solver;
-  solver.factorize(S, "S");
-  dealii::Vector<double> x(system.n_dofs());
-  double best = 1e300;
-  constexpr unsigned int repetitions = 2000;
-  for (unsigned int b = 0; b < batches; ++b)
-  {
-    x = 1.;
-    const auto t0 = Clock::now();
-    for (unsigned int k = 0; k < repetitions; ++k)
-      solver.solve(x);
-    best = std::min(best, 1e6 * std::chrono::duration<double>(Clock::now() - t0).count() /
-                              repetitions);
-  }
-  return best;
 }
 
 /**
@@ -218,7 +189,8 @@ try
     return 0;
   std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
             << std::setprecision(3)
-            << banded_solve_time(span_with_droppers(0, "fem", "bdf2")) << " us\n";
+            << bench::banded_solve_microseconds(span_with_droppers(0, "fem", "bdf2"))
+            << " us\n";
 }
 catch (const std::exception& e)
 {

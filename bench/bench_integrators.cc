@@ -3,13 +3,15 @@
 //  - FDM + half-explicit against a fused single-sweep kernel of the same
 //    method (bench/fused_half_explicit.h), whose contact force is checked
 //    against the library's;
-//  - FEM + BDF-2 against one hand-written banded Cholesky solve of the same size;
+//  - FEM + BDF-2 against one solve with its iteration matrix by the library's
+//    banded Cholesky (SparseDirectSolver, twisted factors: the fastest solve we have);
 // then the sparse direct solvers (banded Cholesky, UMFPACK, Trilinos KLU) on the
 // same BDF-2 iteration matrices.
 // Every figure is the fastest of 5 batches (noisy machines).
 // Usage: bench_integrators [--half-explicit-only] [steps] [N+1 ...]; prints
 // Markdown tables; exit status 1 if the fused kernel's contact force differs
 // from the library's.
+#include "banded_solve_time.h"
 #include "bench_error.h"
 
 #include "fused_half_explicit.h"
@@ -167,61 +169,6 @@ std::pair<double, double> time_half_explicit(const ProgramParameters& p,
   return {library, kernel};
 }
 
-/// One hand-written banded Cholesky solve (forward and backward substitution
-/// with precomputed reciprocal pivots) with half bandwidth 3 (the Hermite
-/// wire's) and size n: microseconds per solve.
-double baseline_banded_solve(int n, unsigned int repetitions)
-{
-  const int kd = 3;
-  std::vector<double> L((kd + 1) * n), x(n, 1.);
-  for (int i = 0; i < n; ++i) // SPD band: diagonally dominant
-    for (int k = 0; k <= kd; ++k)
-      L[i * (kd + 1) + k] = k == 0 ? 10. : -1. / (1. + k);
-  // Cholesky in place: row i holds L(i, i-k) at k.
-  for (int i = 0; i < n; ++i)
-  {
-    for (int k = kd; k >= 1; --k)
-    {
-      const int j = i - k;
-      if (j < 0)
-        continue;
-      double s = L[i * (kd + 1) + k];
-      for (int m = k + 1; m <= kd && j - (m - k) >= 0; ++m)
-        s -= L[i * (kd + 1) + m] * L[j * (kd + 1) + (m - k)];
-      L[i * (kd + 1) + k] = s / L[j * (kd + 1)];
-    }
-    double s = L[i * (kd + 1)];
-    for (int k = 1; k <= kd && i - k >= 0; ++k)
-      s -= L[i * (kd + 1) + k] * L[i * (kd + 1) + k];
-    L[i * (kd + 1)] = std::sqrt(s);
-  }
-  std::vector<double> reciprocal(n);
-  for (int i = 0; i < n; ++i)
-    reciprocal[i] = 1. / L[i * (kd + 1)];
-  const auto t0 = Clock::now();
-  for (unsigned int r = 0; r < repetitions; ++r)
-  {
-    for (int i = 0; i < n; ++i) // fresh right-hand side: no denormals
-      x[i] = 1. + 1e-3 * (i % 7);
-    for (int i = 0; i < n; ++i)
-    {
-      double s = x[i];
-      for (int k = 1; k <= kd && i - k >= 0; ++k)
-        s -= L[i * (kd + 1) + k] * x[i - k];
-      x[i] = s * reciprocal[i];
-    }
-    for (int i = n - 1; i >= 0; --i)
-    {
-      double s = x[i];
-      for (int k = 1; k <= kd && i + k < n; ++k)
-        s -= L[(i + k) * (kd + 1) + k] * x[i + k];
-      x[i] = s * reciprocal[i];
-    }
-  }
-  volatile double sink = x[n / 2];
-  (void)sink;
-  return 1e6 * seconds_since(t0) / repetitions;
-}
 } // namespace
 
 /**
@@ -313,7 +260,8 @@ bool half_explicit_table(const std::vector<unsigned int>& grids, const unsigned 
   return passed;
 }
 
-/// FEM + BDF-2 against one banded solve of the same size, and FDM + BDF-2.
+/// FEM + BDF-2 against one solve with its iteration matrix by the library's
+/// banded Cholesky (bench::banded_solve_microseconds), and FDM + BDF-2.
 void bdf2_table(const std::vector<unsigned int>& grids, const unsigned int steps)
 {
   std::cout << "\n| N+1 | FEM+BDF2 [us/step] | banded solve [us] | ratio | FDM+BDF2 "
@@ -322,10 +270,9 @@ void bdf2_table(const std::vector<unsigned int>& grids, const unsigned int steps
   {
     const double scale = 500. / n, dt = 5e-5 * scale * scale;
     const unsigned int bdf_steps = std::max(20u, steps / (n / 250));
-    const double bdf =
-        library_step(benchmark(n, SpaceMethod::fem, "bdf2", dt), bdf_steps);
-    const double banded =
-        baseline_banded_solve(3 * n + 1, 500); // FEM system size: N + (2N+2) + 2
+    const ProgramParameters fem = benchmark(n, SpaceMethod::fem, "bdf2", dt);
+    const double bdf = library_step(fem, bdf_steps);
+    const double banded = bench::banded_solve_microseconds(fem, 5, 500);
     const double fdm_bdf =
         library_step(benchmark(n, SpaceMethod::fdm, "bdf2", dt), bdf_steps);
     std::cout << std::setprecision(3) << "| " << n << " | " << bdf << " | " << banded
