@@ -378,6 +378,20 @@ TEST(HalfExplicit, StepAboveTheStabilityLimitIsRefusedWithTheLimit)
 
 namespace
 {
+/// The BDF-2 iteration matrix S = K + c D + c^2 M of @p sys factorised, and M^-1.
+struct BdfInverses
+{
+  BdfInverses(const SemiDiscreteSystem& sys, const double c)
+  {
+    dealii::SparseMatrix<double> S_matrix;
+    assemble_iteration_matrix(sys, c, c * c, S_matrix);
+    S.factorize(S_matrix, "S");
+    M.initialize(sys.mass, sys.mass_is_diagonal, "M");
+  }
+  SparseDirectSolver S;
+  MassInverse M;
+};
+
 SemiDiscreteSystem two_dropper_system()
 {
   CatenaryParameters catenary;
@@ -696,12 +710,8 @@ TEST(GglFixedBlock, SolvesTheFixedBlockOfTheGglMultiplierSystem)
   const SemiDiscreteSystem& sys = simulation.system();
   const unsigned int n = sys.n_dofs();
   const double c = 1.5 / 5e-5;
-  dealii::SparseMatrix<double> S_matrix;
-  assemble_iteration_matrix(sys, c, c * c, S_matrix);
-  SparseDirectSolver S;
-  S.factorize(S_matrix, "S");
-  MassInverse M;
-  M.initialize(sys.mass, sys.mass_is_diagonal, "M");
+  const BdfInverses inverses(sys, c);
+  const auto& [S, M] = inverses;
 
   std::vector<std::unique_ptr<FixedConstraint>> owned;
   for (unsigned int i = 0; i < sys.n_constraints(); ++i)
@@ -1217,12 +1227,8 @@ TEST(GglFixedBlock, ColumnsAndSolvesAddTheSameForces)
     const SemiDiscreteSystem& sys = simulation.system();
     const unsigned int n = sys.n_dofs();
     const double c = 1.5 / 5e-5;
-    dealii::SparseMatrix<double> S_matrix;
-    assemble_iteration_matrix(sys, c, c * c, S_matrix);
-    SparseDirectSolver S;
-    S.factorize(S_matrix, "S");
-    MassInverse M;
-    M.initialize(sys.mass, sys.mass_is_diagonal, "M");
+    const BdfInverses inverses(sys, c);
+    const auto& [S, M] = inverses;
     std::vector<ConstraintState> states;
     std::vector<const SparseRow*> G;
     std::vector<const Constraint*> constraints;

@@ -345,30 +345,29 @@ __attribute__((target_clones("avx2", "default"))) void stretch_history(
   }
 }
 
-/// stretch_history() for 1 to 8 offsets.
-void sweep_stretch(const unsigned int n_offsets, const unsigned int first,
-                   const unsigned int last, const int* offsets, const double* m,
-                   const double* d, const double* f, const double* h, const double* r,
-                   double* out)
+/// f(std::integral_constant<unsigned int, E>) for E = @p n_offsets (1 to 8):
+/// the kernels' loops over the offsets unrolled.
+template <typename F>
+void with_offsets(const unsigned int n_offsets, const F& f)
 {
   switch (n_offsets)
   {
   case 1:
-    return stretch_history<1>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 1>{});
   case 2:
-    return stretch_history<2>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 2>{});
   case 3:
-    return stretch_history<3>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 3>{});
   case 4:
-    return stretch_history<4>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 4>{});
   case 5:
-    return stretch_history<5>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 5>{});
   case 6:
-    return stretch_history<6>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 6>{});
   case 7:
-    return stretch_history<7>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 7>{});
   default:
-    return stretch_history<8>(first, last, offsets, m, d, f, h, r, out);
+    return f(std::integral_constant<unsigned int, 8>{});
   }
 }
 
@@ -406,34 +405,6 @@ __attribute__((target_clones("avx2", "default"))) void exception_history(
   }
 }
 
-/// exception_history() for 1 to 8 offsets.
-void sweep_exception_groups(const unsigned int n_offsets, const std::size_t groups,
-                            const unsigned int* rows, const int* offsets, const double* m,
-                            const double* d, const double* f, const double* h,
-                            const double* r, double* out)
-{
-  if (groups == 0)
-    return;
-  switch (n_offsets)
-  {
-  case 1:
-    return exception_history<1>(groups, rows, offsets, m, d, f, h, r, out);
-  case 2:
-    return exception_history<2>(groups, rows, offsets, m, d, f, h, r, out);
-  case 3:
-    return exception_history<3>(groups, rows, offsets, m, d, f, h, r, out);
-  case 4:
-    return exception_history<4>(groups, rows, offsets, m, d, f, h, r, out);
-  case 5:
-    return exception_history<5>(groups, rows, offsets, m, d, f, h, r, out);
-  case 6:
-    return exception_history<6>(groups, rows, offsets, m, d, f, h, r, out);
-  case 7:
-    return exception_history<7>(groups, rows, offsets, m, d, f, h, r, out);
-  default:
-    return exception_history<8>(groups, rows, offsets, m, d, f, h, r, out);
-  }
-}
 } // namespace
 
 void PatternOperators::history(const dealii::Vector<double>& h,
@@ -467,12 +438,20 @@ void PatternOperators::history(const dealii::Vector<double>& h,
     }
   for (const Stretch& st : stretches)
   {
-    sweep_stretch(st.offsets.size(), st.first, st.last, st.offsets.data(), st.mass.data(),
-                  st.damping.data(), load.begin(), h.begin(), r.begin(), out.begin());
-    sweep_exception_groups(st.offsets.size(), st.grouped_rows.size() / 4,
-                           st.grouped_rows.data(), st.offsets.data(),
-                           st.grouped_mass.data(), st.grouped_damping.data(),
-                           load.begin(), h.begin(), r.begin(), out.begin());
+    const std::size_t groups = st.grouped_rows.size() / 4;
+    with_offsets(st.offsets.size(),
+                 [&](auto E)
+                 {
+                   constexpr unsigned int e = decltype(E)::value;
+                   stretch_history<e>(st.first, st.last, st.offsets.data(),
+                                      st.mass.data(), st.damping.data(), load.begin(),
+                                      h.begin(), r.begin(), out.begin());
+                   if (groups > 0)
+                     exception_history<e>(groups, st.grouped_rows.data(),
+                                          st.offsets.data(), st.grouped_mass.data(),
+                                          st.grouped_damping.data(), load.begin(),
+                                          h.begin(), r.begin(), out.begin());
+                 });
   }
   for (std::size_t x = 0; x < exceptions.size(); ++x)
   {
