@@ -1,4 +1,5 @@
 #include <pantocat/lac/diagonal_force_sweep.h>
+#include <pantocat/lac/repeating_rows.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -199,46 +200,16 @@ void DiagonalForceSweep::find_runs()
   // The coefficients kept aside: at most 7 offsets of each operator.
   if (b > 3 || k_offsets->size() > 7 || d_offsets->size() > 7)
     return;
-  // Rows whose every offset reaches inside the matrix: [b, n - b). A run
-  // takes the coefficients of its first two rows; rows with others (a point
-  // mass, a support) are its exceptions. The scan of a run ends where more
-  // than gap_limit exceptions follow each other (the run ends at its last
-  // row with the pattern) or where they become more than one in eight. A
-  // run is kept if it has at least minimum_run rows and at most one in four
-  // exceptions, which every scan longer than minimum_run + gap_limit meets:
-  // a start without a run costs O(minimum_run), and the scans stay linear in n.
-  constexpr int gap_limit = 8;
-  int start = b;
-  std::vector<int> own;
-  while (start + 2 <= n - b)
+  // Rows whose every offset reaches inside the matrix: [b, n - b).
+  const auto always = [](int) { return true; };
+  for (const RepeatingRows& found : find_repeating_rows(
+           b, n - b, minimum_run, always, always,
+           [&](const int i, const int j) { return same_coefficients(i, j); }))
   {
-    int last_match = start + 1, gap = 0;
-    own.clear();
-    for (int i = start + 2; i < n - b && gap <= gap_limit; ++i)
-    {
-      if (same_coefficients(i, start + (i - start) % 2))
-        last_match = i, gap = 0;
-      else
-      {
-        ++gap;
-        own.push_back(i);
-      }
-      if (i - start >= minimum_run &&
-          8 * own.size() > static_cast<std::size_t>(i - start))
-        break;
-    }
-    const int end = last_match + 1;
-    while (!own.empty() && own.back() >= end) // the rows after the last match
-      own.pop_back();
-    if (end - start < minimum_run ||
-        4 * own.size() > static_cast<std::size_t>(end - start))
-    {
-      ++start;
-      continue;
-    }
+    const int start = found.first;
     Run r;
     r.first = start;
-    r.last = end;
+    r.last = found.last;
     for (std::size_t j = 0; j < k_offsets->size(); ++j)
       for (int p = 0; p < 2; ++p)
         r.k[j][p] = (*k)[(*k_offsets)[j] + b][start + p];
@@ -246,7 +217,7 @@ void DiagonalForceSweep::find_runs()
       for (int p = 0; p < 2; ++p)
         r.d[j][p] = (*d)[(*d_offsets)[j] + b][start + p];
     r.first_exception = exceptions.size();
-    for (const int i : own)
+    for (const int i : found.exceptions)
     {
       exceptions.push_back(i);
       for (const int o : *k_offsets)
@@ -256,7 +227,6 @@ void DiagonalForceSweep::find_runs()
     }
     r.last_exception = exceptions.size();
     runs.push_back(r);
-    start = end;
   }
 }
 

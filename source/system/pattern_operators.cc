@@ -1,3 +1,4 @@
+#include <pantocat/lac/repeating_rows.h>
 #include <pantocat/system/pattern_operators.h>
 
 #include <algorithm>
@@ -110,57 +111,39 @@ std::vector<int> merged_offsets(const std::vector<int>& a, const std::vector<int
 
 void PatternOperators::find_stretches()
 {
-  // As DiagonalForceSweep::find_runs(): a stretch takes the entries of its
-  // first two rows; rows with others are its exceptions. Its scan ends where
-  // more than gap_limit exceptions follow each other or where they become
-  // more than one in eight; it is kept with at least minimum_stretch rows and
-  // at most one exception in four. Every row of a stretch must reach its
-  // merged offsets inside the vectors.
-  constexpr unsigned int gap_limit = 8, max_offsets = 8;
-  const unsigned int n = system.n_dofs();
+  // The rows repeating with period 2 (find_repeating_rows()), compared by
+  // their entries. Rows s and s + 1 open a stretch if their offsets merge
+  // (at most 8); every row of a stretch must reach the merged offsets inside
+  // the vectors.
+  constexpr std::size_t max_offsets = 8;
+  const int n = system.n_dofs();
   std::vector<RowEntries> entries(n);
-  for (unsigned int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i)
     entries[i] = row_entries(i);
-  const auto inside = [&](const unsigned int i, const std::vector<int>& u)
+  const auto merged = [&](const int s)
+  { return merged_offsets(entries[s].offsets, entries[s + 1].offsets); };
+  int lowest = 0, highest = 0; // the offsets of the stretch opened last
+  const auto fits = [&](const int i) { return i + lowest >= 0 && i + highest < n; };
+  const auto opens = [&](const int s)
   {
-    const int row = static_cast<int>(i);
-    return row + *std::min_element(u.begin(), u.end()) >= 0 &&
-           row + *std::max_element(u.begin(), u.end()) < static_cast<int>(n);
+    const std::vector<int> u = merged(s);
+    if (u.empty() || u.size() > max_offsets)
+      return false;
+    lowest = *std::min_element(u.begin(), u.end());
+    highest = *std::max_element(u.begin(), u.end());
+    return fits(s) && fits(s + 1);
   };
-  std::vector<unsigned int> own;
-  unsigned int start = 0;
-  while (start + minimum_stretch <= n)
+  for (const RepeatingRows& found : find_repeating_rows(
+           0, n, minimum_stretch, opens, fits,
+           [&](const int i, const int j) { return entries[i] == entries[j]; }))
   {
-    const std::vector<int> u =
-        merged_offsets(entries[start].offsets, entries[start + 1].offsets);
-    if (u.empty() || u.size() > max_offsets || !inside(start, u) || !inside(start + 1, u))
-    {
-      ++start;
-      continue;
-    }
-    unsigned int last_match = start + 1, gap = 0;
-    own.clear();
-    for (unsigned int i = start + 2; i < n && gap <= gap_limit && inside(i, u); ++i)
-    {
-      if (entries[i] == entries[start + (i - start) % 2])
-        last_match = i, gap = 0;
-      else
-      {
-        ++gap;
-        own.push_back(i);
-      }
-      if (i - start >= minimum_stretch && 8 * own.size() > i - start)
-        break;
-    }
-    const unsigned int end = last_match + 1;
-    while (!own.empty() && own.back() >= end)
-      own.pop_back();
-    if (end - start < minimum_stretch || 4 * own.size() > end - start)
-    {
-      ++start;
-      continue;
-    }
-    Stretch st{start, end, static_cast<unsigned int>(own.size()), u, {}, {}, {}, {}, {}};
+    const int start = found.first;
+    const std::vector<int> u = merged(start);
+    Stretch st;
+    st.first = start;
+    st.last = found.last;
+    st.n_exceptions = found.exceptions.size();
+    st.offsets = u;
     st.mass.assign(2 * u.size(), 0.);
     st.damping.assign(2 * u.size(), 0.);
     for (unsigned int p = 0; p < 2; ++p)
@@ -175,7 +158,7 @@ void PatternOperators::find_stretches()
     }
     std::vector<unsigned int> grouped;
     std::vector<const RowEntries*> grouped_entries;
-    for (const unsigned int i : own)
+    for (const int i : found.exceptions)
       if (merged_offsets(u, entries[i].offsets) == u)
       {
         grouped.push_back(i);
@@ -188,7 +171,6 @@ void PatternOperators::find_stretches()
       }
     st.group(grouped, grouped_entries);
     stretches.push_back(std::move(st));
-    start = end;
   }
 }
 
