@@ -4,19 +4,32 @@
 
 namespace pantocat
 {
+void merge_ranges(const RowRanges& a, const RowRanges& b, RowRanges& out)
+{
+  out.clear();
+  std::size_t i = 0, j = 0;
+  while (i < a.size() || j < b.size())
+  {
+    const RowRange& r =
+        j == b.size() || (i < a.size() && a[i].first <= b[j].first) ? a[i++] : b[j++];
+    if (!out.empty() && r.first <= out.back().last)
+      out.back().last = std::max(out.back().last, r.last);
+    else
+      out.push_back(r);
+  }
+}
+
 RowRanges union_of(const RowRanges& a, const RowRanges& b)
 {
-  RowRanges all(a);
-  all.insert(all.end(), b.begin(), b.end());
-  std::sort(all.begin(), all.end(),
-            [](const RowRange& x, const RowRange& y) { return x.first < y.first; });
   RowRanges merged;
-  for (const RowRange& r : all)
-    if (!merged.empty() && r.first <= merged.back().last)
-      merged.back().last = std::max(merged.back().last, r.last);
-    else
-      merged.push_back(r);
+  merge_ranges(a, b, merged);
   return merged;
+}
+
+void add_ranges(RowRanges& into, const RowRanges& b, RowRanges& scratch)
+{
+  merge_ranges(into, b, scratch);
+  into.swap(scratch);
 }
 
 void LocalColumns::reinit(const unsigned int n)
@@ -36,13 +49,13 @@ void LocalColumns::clear()
 
 void LocalColumns::take_in(const std::vector<unsigned int>& sorted)
 {
-  RowRanges added;
+  added.clear();
   for (const unsigned int i : sorted)
     if (!added.empty() && static_cast<int>(i) <= added.back().last)
       added.back().last = std::max<int>(added.back().last, i + 1);
     else
       added.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
-  rows = union_of(rows, added);
+  add_ranges(rows, added, merged);
 }
 
 void LocalColumns::add_row(const unsigned int k, const SparseRow& row,
@@ -60,7 +73,10 @@ void LocalColumns::set(const unsigned int i, const unsigned int k, const double 
   const auto in = [i](const RowRange& r)
   { return r.first <= static_cast<int>(i) && static_cast<int>(i) < r.last; };
   if (std::none_of(rows.begin(), rows.end(), in)) // else the reach holds row i
-    take_in({i});
+  {
+    scratch.assign(1, i);
+    take_in(scratch);
+  }
 }
 
 void LocalColumns::solve(const SparseDirectSolver& A)

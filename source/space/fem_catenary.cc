@@ -303,12 +303,11 @@ void FemCatenary::full_load_row(const double x_c, const unsigned int k,
   full_load_rows(x_c, k, 1, &row);
 }
 
-void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
-                                 const unsigned int count, SparseRow* rows) const
+template <typename Sink>
+void FemCatenary::for_each_load_entry(const double x_c, const unsigned int first_k,
+                                      const unsigned int count, Sink&& sink) const
 {
   AssertThrow(count >= 1 && count <= 3, dealii::ExcMessage("one to three load rows"));
-  for (unsigned int r = 0; r < count; ++r)
-    rows[r].clear();
   if (discretisation.load_shape == LoadShape::point)
   {
     // int delta^{(k)}(x - x_c) v(x) dx = (-1)^k v^{(k)}(x_c)
@@ -318,8 +317,7 @@ void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
     {
       const unsigned int k = first_k + r;
       for (unsigned int i = 0; i < dofs.size(); ++i)
-        rows[r].add(dofs[i],
-                    (k % 2 ? -1. : 1.) * shape(Wire::contact_wire, c, i, k, x_c));
+        sink(r, dofs[i], (k % 2 ? -1. : 1.) * shape(Wire::contact_wire, c, i, k, x_c));
     }
     return;
   }
@@ -362,8 +360,18 @@ void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
     const auto& dofs = local_dofs(Wire::contact_wire, c);
     for (unsigned int r = 0; r < count; ++r)
       for (unsigned int i = 0; i < 4; ++i)
-        rows[r].add(dofs[i], local[r][i]);
+        sink(r, dofs[i], local[r][i]);
   }
+}
+
+void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
+                                 const unsigned int count, SparseRow* rows) const
+{
+  for (unsigned int r = 0; r < count; ++r)
+    rows[r].clear();
+  for_each_load_entry(x_c, first_k, count,
+                      [&](const unsigned int r, const unsigned int dof, const double value)
+                      { rows[r].add(dof, value); });
 }
 
 void FemCatenary::load_row(const double x_c, const unsigned int k, SparseRow& row) const
@@ -375,25 +383,23 @@ void FemCatenary::load_row(const double x_c, const unsigned int k, SparseRow& ro
 void FemCatenary::load_rows(const double x_c, const unsigned int first_k,
                             const unsigned int count, SparseRow* const* rows) const
 {
-  std::array<SparseRow, 3> full;
-  full_load_rows(x_c, first_k, count, full.data());
-  // Sum duplicates of shared vertex dofs and drop the eliminated ones.
+  // Sum duplicates of shared vertex dofs and drop the eliminated ones, in
+  // the order of the entries (as from full_load_rows()).
   const auto& free = wire_space.free;
   for (unsigned int r = 0; r < count; ++r)
-  {
-    SparseRow& row = *rows[r];
-    row.clear();
-    for (std::size_t m = 0; m < full[r].size(); ++m)
-    {
-      const unsigned int I = free[full[r].index[m]];
-      if (I == invalid)
-        continue;
-      auto it = std::find(row.index.begin(), row.index.end(), I);
-      if (it == row.index.end())
-        row.add(I, full[r].value[m]);
-      else
-        row.value[it - row.index.begin()] += full[r].value[m];
-    }
-  }
+    rows[r]->clear();
+  for_each_load_entry(x_c, first_k, count,
+                      [&](const unsigned int r, const unsigned int dof, const double value)
+                      {
+                        const unsigned int I = free[dof];
+                        if (I == invalid)
+                          return;
+                        SparseRow& row = *rows[r];
+                        auto it = std::find(row.index.begin(), row.index.end(), I);
+                        if (it == row.index.end())
+                          row.add(I, value);
+                        else
+                          row.value[it - row.index.begin()] += value;
+                      });
 }
 } // namespace pantocat

@@ -192,6 +192,7 @@ struct Bdf2Integrator::TrialWorkspace
   std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
   std::vector<dealii::Vector<double>*> batch;
   std::vector<double> lambda_eta, eta_F, mu_F;
+  RowRanges reach, reach_scratch;
 };
 
 DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
@@ -205,12 +206,8 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   const auto& rows = at_next.at(t1);
   if (!s.block_ready)
     s.initialize_block(rows);
-  // Base solution S^-1 (f + M (rho_v + c rho_q) + D rho_q); the moving
-  // constraints' columns on the rows they reach.
-  const unsigned int n = system.n_dofs();
-  history.reinit(n, true);
-  for (unsigned int i = 0; i < n; ++i)
-    history[i] = rho_v[i] + c * rho_q[i];
+  // Base solution S^-1 (f + M history + D rho_q); the moving constraints'
+  // columns on the rows they reach.
   operators.set_time(t1);
   operators.history(history, rho_q, s.base);
   s.inverse.solve(s.base);
@@ -283,6 +280,35 @@ std::vector<double> combined_impulses(const std::vector<double>& a, const double
   for (unsigned int i = 0; i < b.size(); ++i)
     sum[i] += fb * b[i];
   return sum;
+}
+
+/**
+ * The BDF-2 history in one pass: rho_q = f q + fp q_prev, rho_v = f v +
+ * fp v_prev and h = rho_v + c rho_q (compiled for AVX2 beside the baseline;
+ * no fused multiply-add, so the same bits either way).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+bdf2_history(const unsigned int n, const double f, const double fp, const double c,
+             const double* __restrict q, const double* __restrict q_prev,
+             const double* __restrict v, const double* __restrict v_prev,
+             double* __restrict rho_q, double* __restrict rho_v, double* __restrict h)
+{
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double rq = f * q[i] + fp * q_prev[i], rv = f * v[i] + fp * v_prev[i];
+    rho_q[i] = rq;
+    rho_v[i] = rv;
+    h[i] = rv + c * rq;
+  }
+}
+
+/// h = rho_v + c rho_q (the Richardson start's steps).
+__attribute__((target_clones("avx2", "default"))) void
+euler_history(const unsigned int n, const double c, const double* __restrict rho_q,
+              const double* __restrict rho_v, double* __restrict h)
+{
+  for (unsigned int i = 0; i < n; ++i)
+    h[i] = rho_v[i] + c * rho_q[i];
 }
 } // namespace
 
@@ -490,25 +516,38 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     if (unknowns[u].kind == lambda)
       x.lambda[unknowns[u].constraint] = y(u);
 
-  x.q = s.base;
-  x.v.reinit(n);
-  x.a.reinit(n);
-  block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
+  // Without fixed forces, q, v, a are formed from the base in
+  // combine_trial()'s pass (no copy, no zeroing).
+  const bool fixed_forces = mF > 0;
+  if (fixed_forces)
+  {
+    x.q = s.base;
+    x.v.reinit(n);
+    x.a.reinit(n);
+    block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
+  }
+  else
+    for (dealii::Vector<double>* y : {&x.q, &x.v, &x.a})
+      y->reinit(n, true);
   // The border columns, then v and a, in one pass; on each unknown the
   // border unknowns add in their order.
   border_terms.clear();
-  RowRanges reach;
+  RowRanges& reach = w.reach;
+  reach.clear();
   for (unsigned int u = 0; u < p; ++u)
   {
     const auto [X, U] = s.batches(unknowns[u].constraint);
     if (u == 0 || unknowns[u].constraint != unknowns[u - 1].constraint)
-      reach = union_of(reach, union_of(X->reach(), U->reach()));
+    {
+      add_ranges(reach, X->reach(), w.reach_scratch);
+      add_ranges(reach, U->reach(), w.reach_scratch);
+    }
     const unsigned int kind = unknowns[u].kind;
     const double f = y(u);
     border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
-  combine_trial(border_terms, reach, c, rho_q, rho_v, x);
+  combine_trial(border_terms, reach, c, rho_q, rho_v, fixed_forces ? nullptr : &s.base, x);
 }
 
 namespace
@@ -521,7 +560,7 @@ namespace
  * +0), so adding 0 U leaves them as they are.
  */
 template <unsigned int P, bool last, typename Term>
-void combine_pass(const Term* terms, const double c, const double* __restrict rq,
+__attribute__((target_clones("avx2", "default"))) void combine_pass(const Term* terms, const double c, const double* __restrict rq,
                   const double* __restrict rv, const RowRange rows, double* __restrict q,
                   double* __restrict v, double* __restrict a)
 {
@@ -558,16 +597,48 @@ void combine_pass(const Term* terms, const double c, const double* __restrict rq
     a[i] = ai;
   }
 }
+
+/// q = base, v = c q - rho_q, a = c v - rho_v on @p rows: combine_pass<0,
+/// true>() after q = base, v = a = 0 (x - 0 = x), in one pass.
+__attribute__((target_clones("avx2", "default"))) void
+fresh_pass(const double* __restrict base, const double c, const double* __restrict rq,
+                const double* __restrict rv, const RowRange rows, double* __restrict q,
+                double* __restrict v, double* __restrict a)
+{
+  for (int i = rows.first; i < rows.last; ++i)
+  {
+    const double qi = base[i], vi = c * qi - rq[i];
+    q[i] = qi;
+    v[i] = vi;
+    a[i] = c * vi - rv[i];
+  }
+}
 } // namespace
 
 void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
                                    const RowRanges& reach, const double c,
                                    const dealii::Vector<double>& rho_q,
-                                   const dealii::Vector<double>& rho_v, DynamicState& x)
+                                   const dealii::Vector<double>& rho_v,
+                                   const dealii::Vector<double>* base, DynamicState& x)
 {
   const int n = x.q.size();
   double *q = x.q.begin(), *v = x.v.begin(), *a = x.a.begin();
   const double *rq = rho_q.begin(), *rv = rho_v.begin();
+  if (base)
+  {
+    // q, v, a from the base alone off the reach; on it q = base, v = a = 0
+    // before the terms (the same sums as a copy and zeroing would give).
+    int next = 0;
+    for (const RowRange& rows : reach)
+    {
+      fresh_pass(base->begin(), c, rq, rv, RowRange{next, rows.first}, q, v, a);
+      std::copy(base->begin() + rows.first, base->begin() + rows.last, q + rows.first);
+      std::fill(v + rows.first, v + rows.last, 0.);
+      std::fill(a + rows.first, a + rows.last, 0.);
+      next = rows.last;
+    }
+    fresh_pass(base->begin(), c, rq, rv, RowRange{next, n}, q, v, a);
+  }
   // On the rows the terms reach, passes of three terms (a contact with
   // force: lambda, eta, mu); then v and a on all rows. On each unknown the
   // terms add in their order (off the reach they are zero).
@@ -584,7 +655,19 @@ void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
       default:
         combine_pass<3, false>(terms.data() + k, c, rq, rv, rows, q, v, a);
       }
-  combine_pass<0, true>(terms.data(), c, rq, rv, RowRange{0, n}, q, v, a);
+  if (!base)
+    combine_pass<0, true>(terms.data(), c, rq, rv, RowRange{0, n}, q, v, a);
+  else
+    for (const RowRange& rows : reach)
+      combine_pass<0, true>(terms.data(), c, rq, rv, rows, q, v, a);
+}
+
+void Bdf2Integrator::form_history(const double c, const dealii::Vector<double>& rho_q,
+                                  const dealii::Vector<double>& rho_v)
+{
+  const unsigned int n = system.n_dofs();
+  history.reinit(n, true);
+  euler_history(n, c, rho_q.begin(), rho_v.begin(), history.begin());
 }
 
 void Bdf2Integrator::initialize(const DynamicState& initial)
@@ -611,16 +694,19 @@ void Bdf2Integrator::richardson_start()
   dealii::Vector<double> rho_q(x0.q), rho_v(x0.v);
   rho_q *= 1. / dt;
   rho_v *= 1. / dt;
+  form_history(full.c, rho_q, rho_v);
   const DynamicState coarse = implicit_step(full, rho_q, rho_v, x0.t + dt, x0.active);
   rho_q = x0.q;
   rho_v = x0.v;
   rho_q *= 2. / dt;
   rho_v *= 2. / dt;
+  form_history(half.c, rho_q, rho_v);
   const DynamicState mid = implicit_step(half, rho_q, rho_v, x0.t + 0.5 * dt, x0.active);
   rho_q = mid.q;
   rho_v = mid.v;
   rho_q *= 2. / dt;
   rho_v *= 2. / dt;
+  form_history(half.c, rho_q, rho_v);
   DynamicState fine = implicit_step(half, rho_q, rho_v, x0.t + dt, mid.active);
   // The impulses of both half steps.
   fine.impulse = combined_impulses(mid.impulse, 1., fine.impulse, 1.);
@@ -649,16 +735,15 @@ void Bdf2Integrator::advance()
     if (!bdf2)
       bdf2 = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1.5 / dt,
                                      linear_solver);
-    // rho = (4 x_n - x_{n-1}) / (2 dt), in one pass
+    // rho = (4 x_n - x_{n-1}) / (2 dt) and the history rho_v + c rho_q, in
+    // one pass
     const unsigned int n = system.n_dofs();
-    const double f = 2. / dt, fp = -0.5 / dt;
     step_rho_q.reinit(n, true);
     step_rho_v.reinit(n, true);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      step_rho_q[i] = f * current.q[i] + fp * previous.q[i];
-      step_rho_v[i] = f * current.v[i] + fp * previous.v[i];
-    }
+    history.reinit(n, true);
+    bdf2_history(n, 2. / dt, -0.5 / dt, bdf2->c, current.q.begin(), previous.q.begin(),
+                 current.v.begin(), previous.v.begin(), step_rho_q.begin(),
+                 step_rho_v.begin(), history.begin());
     DynamicState next = implicit_step(*bdf2, step_rho_q, step_rho_v, current.t + dt,
                                       current.active, std::move(spare));
     spare = std::move(previous);

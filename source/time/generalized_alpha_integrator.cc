@@ -9,6 +9,58 @@ namespace
 {
 /// Columns of the S batch: S^-1 G^T, S^-1 G_t^T.
 constexpr unsigned int lambda_column = 0, rate_column = 1;
+
+/// The factors of predict().
+struct PredictorFactors
+{
+  double h, hq, hv, wm, wf, c_q, c_v;
+};
+
+/**
+ * The predictors q^ = q + h v + hq a_n, v^ = v + hv a_n, w = wm a_n + wf a and
+ * the right-hand side's parts c_q q^ - w, c_v q^ - v^, in one pass (each
+ * entry as deal.II's add(), equ() and -= make it; compiled for AVX2 beside
+ * the baseline, without fused multiply-add: the same bits either way).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+predict(const unsigned int n, const PredictorFactors f, const double* __restrict q,
+        const double* __restrict v, const double* __restrict a_n,
+        const double* __restrict a, double* __restrict q_hat, double* __restrict v_hat,
+        double* __restrict w, double* __restrict mass_part,
+        double* __restrict damping_part)
+{
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double qh = q[i] + f.h * v[i] + f.hq * a_n[i];
+    const double vh = v[i] + f.hv * a_n[i];
+    const double wi = f.wm * a_n[i] + f.wf * a[i];
+    q_hat[i] = qh;
+    v_hat[i] = vh;
+    w[i] = wi;
+    mass_part[i] = f.c_q * qh - wi;
+    damping_part[i] = f.c_v * qh - vh;
+  }
+}
+
+/**
+ * The Newmark relations in one pass: a_next = (q - q^) fa, v = v^ + fv
+ * a_next, a = fw a_next + w (each entry as deal.II's add(), *=, equ() and +=
+ * make it; AVX2 beside the baseline, the same bits).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+newmark_update(const unsigned int n, const double fa, const double fv, const double fw,
+               const double* __restrict q, const double* __restrict q_hat,
+               const double* __restrict v_hat, const double* __restrict w,
+               double* __restrict a_next, double* __restrict v, double* __restrict a)
+{
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double ai = (q[i] + -1. * q_hat[i]) * fa;
+    a_next[i] = ai;
+    v[i] = v_hat[i] + fv * ai;
+    a[i] = fw * ai + w[i];
+  }
+}
 } // namespace
 
 GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
@@ -100,25 +152,22 @@ void GeneralizedAlphaIntegrator::advance()
   const dealii::Vector<double>& a_n = pseudo_acceleration;
   for (auto* x : {&q_hat, &v_hat, &w, &mass_part, &damping_part})
     x->reinit(n, true);
-  const double hq = h * h * (0.5 - k.beta), hv = h * (1. - k.gamma),
-               wm = k.alpha_m / (1. - k.alpha_f), wf = -k.alpha_f / (1. - k.alpha_f);
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    const double qh = current.q[i] + h * current.v[i] + hq * a_n[i];
-    const double vh = current.v[i] + hv * a_n[i];
-    const double wi = wm * a_n[i] + wf * current.a[i];
-    q_hat[i] = qh;
-    v_hat[i] = vh;
-    w[i] = wi;
-    mass_part[i] = c_q * qh - wi;
-    damping_part[i] = c_v * qh - vh;
-  }
+  const PredictorFactors f{h,
+                           h * h * (0.5 - k.beta),
+                           h * (1. - k.gamma),
+                           k.alpha_m / (1. - k.alpha_f),
+                           -k.alpha_f / (1. - k.alpha_f),
+                           c_q,
+                           c_v};
+  predict(n, f, current.q.begin(), current.v.begin(), a_n.begin(), current.a.begin(),
+          q_hat.begin(), v_hat.begin(), w.begin(), mass_part.begin(),
+          damping_part.begin());
   operators.set_time(t1);
   operators.history(mass_part, damping_part, S.base);
   S.inverse.solve(S.base);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     compute_moving_columns(c, rows[S.moving[c]]);
-  q0 = S.base;
+  const dealii::Vector<double>& q0 = S.base; // the base solution
 
   // g and dg/dt of every constraint at q0, with v = v^ + c_v (q - q^) (Newmark).
   base_gap.resize(m_all);
@@ -176,24 +225,10 @@ void GeneralizedAlphaIntegrator::advance()
   dealii::Vector<double>& a_next = next_pseudo_acceleration;
   for (auto* y : {&a_next, &x.v, &x.a})
     y->reinit(n, true);
-  {
-    const double* __restrict qs = (touching ? q_newmark : x.q).begin();
-    const double* __restrict qh = q_hat.begin();
-    const double* __restrict vh = v_hat.begin();
-    const double* __restrict ww = w.begin();
-    double* __restrict an = a_next.begin();
-    double* __restrict vn = x.v.begin();
-    double* __restrict acc = x.a.begin();
-    const double fa = 1. / (h * h * k.beta), fv = h * k.gamma,
-                 fw = (1. - k.alpha_m) / (1. - k.alpha_f);
-    for (unsigned int i = 0; i < n; ++i)
-    {
-      const double ai = (qs[i] + -1. * qh[i]) * fa;
-      an[i] = ai;
-      vn[i] = vh[i] + fv * ai;
-      acc[i] = fw * ai + ww[i];
-    }
-  }
+  newmark_update(n, 1. / (h * h * k.beta), h * k.gamma,
+                 (1. - k.alpha_m) / (1. - k.alpha_f),
+                 (touching ? q_newmark : x.q).begin(), q_hat.begin(), v_hat.begin(),
+                 w.begin(), a_next.begin(), x.v.begin(), x.a.begin());
   if (active_set.impact_in_step())
   {
     // The impact: velocities onto dg/dt = 0 with the complementary impulses
@@ -236,7 +271,9 @@ void GeneralizedAlphaIntegrator::solve_position_level(
   // untouched. The fixed constraints form a sparse block, the moving ones
   // border it.
   std::fill(keep.begin(), keep.end(), false);
-  std::vector<unsigned int> moving_in;
+  Bordered& b = bordered;
+  std::vector<unsigned int>& moving_in = b.moving_in;
+  moving_in.clear();
   const auto select = [&](const unsigned int i)
   {
     if (system.constraints[i]->depends_on_time())
@@ -251,7 +288,10 @@ void GeneralizedAlphaIntegrator::solve_position_level(
   fixed_S.select(keep);
 
   const unsigned int mF = S.fixed.size(), p = moving_in.size();
-  dealii::Vector<double> x(mF), y(p);
+  dealii::Vector<double>&x = b.x, &y = b.y;
+  std::vector<dealii::Vector<double>>&Bc = b.Bc, &Cr = b.Cr;
+  dealii::FullMatrix<double>& D = b.D;
+  b.reinit(mF, p);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
     {
@@ -259,9 +299,6 @@ void GeneralizedAlphaIntegrator::solve_position_level(
       const double d = damping_ratio(*system.constraints[i]);
       x(k) = -(base_gap[i] + d * base_rate[i]) / (1. + d * c_v);
     }
-  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF)),
-      Cr(p, dealii::Vector<double>(mF));
-  dealii::FullMatrix<double> D(p, p);
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int i = moving_in[c];
@@ -288,10 +325,8 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     if (system.constraints[i]->is_compliant())
       D(c, c) += 1. / system.constraints[i]->compliance().stiffness;
   }
-  dealii::Vector<double> rhs;
-  std::vector<dealii::Vector<double>*> batch;
-  solve_bordered([&](const auto& xs) { fixed_S.solve(xs); }, Bc, Cr, D, x, y, rhs, batch,
-                 current.t + h, "generalized-alpha step");
+  solve_bordered([&](const auto& xs) { fixed_S.solve(xs); }, Bc, Cr, D, x, y, b.rhs,
+                 b.batch, current.t + h, "generalized-alpha step");
   std::fill(lambda.begin(), lambda.end(), 0.);
   for (unsigned int k = 0; k < mF; ++k)
     lambda[S.fixed[k]] = factors[k] = keep[k] ? x(k) : 0.;
@@ -302,7 +337,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
 void GeneralizedAlphaIntegrator::assemble_positions(const std::vector<double>& lambda,
                                                     dealii::Vector<double>& q) const
 {
-  q = q0;
+  q = S.base; // q0
   fixed_S.add_columns(factors, q);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     if (lambda[S.moving[c]] != 0.)
@@ -323,7 +358,9 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   if (A.empty())
     return;
   std::fill(keep.begin(), keep.end(), false);
-  std::vector<unsigned int> moving_in;
+  Bordered& b = bordered;
+  std::vector<unsigned int>& moving_in = b.moving_in;
+  moving_in.clear();
   for (const unsigned int i : A)
     if (system.constraints[i]->depends_on_time())
       moving_in.push_back(i);
@@ -331,12 +368,13 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
       keep[S.position[i]] = true;
   fixed_M.select(keep);
   const unsigned int mF = S.fixed.size(), p = moving_in.size();
-  dealii::Vector<double> x(mF), y(p);
+  dealii::Vector<double>&x = b.x, &y = b.y;
+  std::vector<dealii::Vector<double>>&Bc = b.Bc, &Cr = b.Cr;
+  dealii::FullMatrix<double>& D = b.D;
+  b.reinit(mF, p);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       x(k) = -residual(S.fixed[k]);
-  std::vector<dealii::Vector<double>> Bc(p, dealii::Vector<double>(mF));
-  dealii::FullMatrix<double> D(p, p);
   for (unsigned int c = 0; c < p; ++c)
   {
     const LocalColumns& U = S.M_columns[S.position[moving_in[c]]];
@@ -347,12 +385,12 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
       D(r, c) = U.dot(rows[moving_in[r]].G, 0);
     y(c) = -residual(moving_in[c]);
   }
-  const std::vector<dealii::Vector<double>> Cr(Bc);
-  dealii::Vector<double> rhs;
-  std::vector<dealii::Vector<double>*> batch;
-  solve_bordered([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, rhs, batch,
-                 t1, what);
-  std::vector<double> fixed_part(mF, 0.);
+  for (unsigned int c = 0; c < p; ++c)
+    Cr[c] = Bc[c];
+  solve_bordered([&](const auto& xs) { fixed_M.solve(xs); }, Bc, Cr, D, x, y, b.rhs,
+                 b.batch, t1, what);
+  std::vector<double>& fixed_part = b.fixed_part;
+  fixed_part.assign(mF, 0.);
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
       multipliers[S.fixed[k]] = fixed_part[k] = x(k);
@@ -362,6 +400,20 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
     multipliers[moving_in[c]] = y(c);
     S.M_columns[S.position[moving_in[c]]].add_combination({{y(c), 0., 0., 0.}}, target);
   }
+}
+
+void GeneralizedAlphaIntegrator::Bordered::reinit(const unsigned int mF,
+                                                  const unsigned int p)
+{
+  x.reinit(mF);
+  y.reinit(p);
+  for (auto* columns : {&Bc, &Cr})
+  {
+    columns->resize(p);
+    for (dealii::Vector<double>& column : *columns)
+      column.reinit(mF);
+  }
+  D.reinit(p, p);
 }
 
 void GeneralizedAlphaIntegrator::save(CheckpointOut& archive) const

@@ -62,8 +62,13 @@ private:
 
   RowRanges rows;
   std::vector<unsigned int> scratch;
+  RowRanges added, merged; ///< take_in()'s workspace: no allocation once grown
 };
 
 /// The union of @p a and @p b (disjoint ranges in increasing order each).
 RowRanges union_of(const RowRanges& a, const RowRanges& b);
+/// @p out = the union of @p a and @p b (as union_of(), into @p out's memory).
+void merge_ranges(const RowRanges& a, const RowRanges& b, RowRanges& out);
+/// @p into = the union of @p into and @p b; @p scratch is workspace.
+void add_ranges(RowRanges& into, const RowRanges& b, RowRanges& scratch);
 } // namespace pantocat

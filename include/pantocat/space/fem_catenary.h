@@ -85,6 +85,10 @@ private:
   const std::vector<dealii::types::global_dof_index>& local_dofs(Wire wire,
                                                                  unsigned int c) const;
   const WireSpace& space(Wire wire) const;
+  /// The entries of full_load_rows(), in its order: sink(r, dof, value).
+  template <typename Sink>
+  void for_each_load_entry(double x_c, unsigned int first_k, unsigned int count,
+                           Sink&& sink) const;
 
   dealii::QGauss<1> gauss{4}; ///< degree 3 + 3 = 6 <= 7: exact on each piece of (33)
   dealii::Triangulation<1> triangulation;

@@ -93,12 +93,16 @@ private:
   struct TrialWorkspace; ///< the vectors of a step, kept from step to step
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s
-  /// (into @p storage's vectors, if it has them).
+  /// (into @p storage's vectors, if it has them); `history` must hold
+  /// rho_v + c rho_q (form_history(), or the BDF-2 step's pass).
   DynamicState implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                              const dealii::Vector<double>& rho_v, double t1,
                              const std::vector<bool>& active_at_start,
                              DynamicState storage = {});
   void richardson_start();
+  /// history = rho_v + c rho_q.
+  void form_history(double c, const dealii::Vector<double>& rho_q,
+                    const dealii::Vector<double>& rho_v);
   /**
    * One trial of the active-set iteration: the multipliers of the current
    * sets (the fixed block GglFixedBlock bordered by the moving and touching
@@ -120,11 +124,13 @@ private:
    * q += sum of the border terms on the rows @p reach that their columns
    * reach, then v = c q - rho_q - (v + their mass columns), a = c v - rho_v -
    * (a + theirs) in one pass over the unknowns (v and a hold u1, u2 of (38)'s
-   * BDF form on entry).
+   * BDF form on entry). With a @p base (no fixed forces), x's vectors hold
+   * nothing on entry: q starts from the base and u1 = u2 = 0.
    */
   static void combine_trial(const std::vector<BorderTerm>& terms, const RowRanges& reach,
                             double c, const dealii::Vector<double>& rho_q,
-                            const dealii::Vector<double>& rho_v, DynamicState& x);
+                            const dealii::Vector<double>& rho_v,
+                            const dealii::Vector<double>* base, DynamicState& x);
 
   double dt;
   LinearSolverType linear_solver;

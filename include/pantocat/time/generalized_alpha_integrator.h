@@ -143,7 +143,7 @@ private:
   /// G_F M^-1 G_F^T of the fixed constraints.
   FixedConstraintSchur fixed_S, fixed_M;
   bool fixed_ready = false;
-  dealii::Vector<double> q0, q_hat, v_hat; ///< base solution and predictors
+  dealii::Vector<double> q_hat, v_hat; ///< predictors (the base solution q0: S.base)
   /// w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f), and the parts
   /// c_q q^ - w, c_v q^ - v^ of the right-hand side (workspace of a step).
   dealii::Vector<double> w, mass_part, damping_part;
@@ -160,5 +160,18 @@ private:
   DynamicState spare;
   dealii::Vector<double> next_pseudo_acceleration;
   std::vector<double> gaps, rates; ///< of a trial, per constraint
+  /// The bordered systems of solve_position_level() and project(), kept from
+  /// step to step (nothing allocated once their sizes are reached).
+  struct Bordered
+  {
+    std::vector<unsigned int> moving_in; ///< the moving constraints in the system
+    dealii::Vector<double> x, y, rhs;
+    std::vector<dealii::Vector<double>> Bc, Cr;
+    dealii::FullMatrix<double> D;
+    std::vector<dealii::Vector<double>*> batch;
+    std::vector<double> fixed_part;
+    /// x, Bc, Cr: mF zeros each (p columns); y: p zeros; D: p x p zeros.
+    void reinit(unsigned int mF, unsigned int p);
+  } bordered;
 };
 } // namespace pantocat
