@@ -1401,6 +1401,45 @@ CompressedRows disjoint_rows(std::vector<double>& offsets, std::vector<unsigned 
 }
 } // namespace
 
+TEST(CompressedRows, FourDotsSideBySideAreEachDotToTheBit)
+{
+  // GglFixedBlock forms Q mu of four right-hand sides with dots(): each sum
+  // must be dot()'s, to the bit (the BDF-2 results depend on it). The
+  // entries mix magnitudes so that another order of the sums gives other
+  // bits (checked below: the test can fail).
+  CompressedRows rows;
+  SparseRow row;
+  const unsigned int n = 40;
+  for (unsigned int k = 0; k < 12; ++k)
+  {
+    row.clear();
+    for (unsigned int e = 0; e < (k * 7) % 11; ++e) // lengths 0 .. 10
+      row.add((k * 5 + e * 3) % n,
+              (e % 2 ? -1. : 1.) * std::pow(10., static_cast<int>((3 * e + k) % 17) - 8));
+    rows.push_back(row);
+  }
+  std::vector<std::vector<double>> x(4, std::vector<double>(n));
+  for (unsigned int j = 0; j < 4; ++j)
+    for (unsigned int i = 0; i < n; ++i)
+      x[j][i] = std::sin(1.3 * i + j) * std::pow(10., static_cast<int>((i * (j + 2)) % 13) - 6);
+  const double* xs[4] = {x[0].data(), x[1].data(), x[2].data(), x[3].data()};
+  unsigned int order_matters = 0;
+  for (unsigned int k = 0; k < 12; ++k)
+  {
+    double out[4];
+    rows.dots(k, xs, out);
+    for (unsigned int j = 0; j < 4; ++j)
+    {
+      EXPECT_EQ(out[j], rows.dot(k, xs[j])) << "row " << k << ", vector " << j;
+      double reversed = 0.;
+      for (unsigned int e = rows.start[k + 1]; e-- > rows.start[k];)
+        reversed += rows.value[e] * xs[j][rows.index[e]];
+      order_matters += reversed != out[j];
+    }
+  }
+  EXPECT_GT(order_matters, 0u);
+}
+
 TEST(DisjointFixedConstraints, EachConstraintHoldsAndTheBatchedPassIsTheSameToTheBit)
 {
   // The FDM's fixed constraints under diagonal M and W = M + dt/2 D: each

@@ -190,6 +190,27 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       batch.push_back(&eta[j]);
   }
   N.solve(batch);
+  // Q mu of the non-zero mu, four at a time side by side.
+  if (Q_mu_w.size() < count)
+    Q_mu_w.resize(count, dealii::Vector<double>(m));
+  std::vector<std::size_t>& with_mu = with_mu_w;
+  with_mu.clear();
+  for (std::size_t j = 0; j < count; ++j)
+    if (!mu_zero[j])
+      with_mu.push_back(j);
+  for (std::size_t g = 0; g < with_mu.size(); g += 4)
+  {
+    const double* x[4];
+    for (std::size_t l = 0; l < 4; ++l) // unused lanes repeat the first vector
+      x[l] = mu[with_mu[g + (g + l < with_mu.size() ? l : 0)]].begin();
+    double out[4];
+    for (unsigned int k = 0; k < m; ++k)
+    {
+      Q.dots(k, x, out);
+      for (std::size_t l = 0; l < 4 && g + l < with_mu.size(); ++l)
+        Q_mu_w[with_mu[g + l]][k] = out[l];
+    }
+  }
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
   // E.
   batch.clear();
@@ -209,7 +230,7 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
         N.vmult(N_mu, mu[j]);
     }
     for (unsigned int k = 0; k < m; ++k)
-      Q_mu[k] = mu_zero[j] ? 0. : Q.dot(k, mu[j].begin());
+      Q_mu[k] = mu_zero[j] ? 0. : Q_mu_w[j][k];
     const dealii::Vector<double>& x = *xs[j];
     rhs[j] = 0.;
     for (unsigned int k = 0; k < m; ++k)

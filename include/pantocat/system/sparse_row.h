@@ -91,5 +91,28 @@ struct CompressedRows
       s += value[e] * x[index[e]];
     return s;
   }
+  /**
+   * out[j] = row k . x[j] for four vectors side by side, each summed as dot()
+   * sums it (the same bits): four independent chains, where one dot() waits
+   * for each addition before the next.
+   */
+  void dots(const unsigned int k, const double* const* x, double* out) const
+  {
+    double s0 = 0., s1 = 0., s2 = 0., s3 = 0.;
+    const double *x0 = x[0], *x1 = x[1], *x2 = x[2], *x3 = x[3];
+    for (unsigned int e = start[k]; e < start[k + 1]; ++e)
+    {
+      const double v = value[e];
+      const unsigned int i = index[e];
+      s0 += v * x0[i];
+      s1 += v * x1[i];
+      s2 += v * x2[i];
+      s3 += v * x3[i];
+    }
+    out[0] = s0;
+    out[1] = s1;
+    out[2] = s2;
+    out[3] = s3;
+  }
 };
 } // namespace pantocat

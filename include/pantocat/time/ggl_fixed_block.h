@@ -119,6 +119,8 @@ private:
   mutable std::vector<dealii::Vector<double>> mu_w, eta_w, rhs_w;
   mutable std::vector<dealii::Vector<double>*> batch_w;
   mutable std::vector<char> mu_zero_w, eta_zero_w;
+  mutable std::vector<dealii::Vector<double>> Q_mu_w; ///< Q mu per right-hand side
+  mutable std::vector<std::size_t> with_mu_w;
   mutable dealii::Vector<double> P_eta, Q_mu, N_mu;
   std::vector<bool> force_set, engaged_set;
 };
