@@ -26,6 +26,9 @@ FemCatenary::FemCatenary(const CatenaryParameters& catenary,
   std::sort(cells.begin(), cells.end(),
             [](const auto& a, const auto& b)
             { return a->vertex(0)[0] < b->vertex(0)[0]; });
+  for (const auto& cell : cells)
+    cell_start.push_back(cell->vertex(0)[0]);
+  cell_start.push_back(cells.back()->vertex(1)[0]);
 
   for (auto* s : {&carrier_space, &wire_space})
   {
@@ -255,10 +258,10 @@ void FemCatenary::interpolate(const Wire wire, const std::function<double(double
 
 unsigned int FemCatenary::cell_index(const double x) const
 {
-  const auto it = std::upper_bound(cells.begin(), cells.end(), x,
-                                   [](const double value, const auto& cell)
-                                   { return value < cell->vertex(0)[0]; });
-  const unsigned int c = it == cells.begin() ? 0 : (it - cells.begin()) - 1;
+  // The last cell starting at or before x (cell_start: the cells' left ends
+  // in order, then the right end).
+  const auto it = std::upper_bound(cell_start.begin(), cell_start.end() - 1, x);
+  const unsigned int c = it == cell_start.begin() ? 0 : (it - cell_start.begin()) - 1;
   return std::min<unsigned int>(c, cells.size() - 1);
 }
 
@@ -271,8 +274,8 @@ FemCatenary::local_dofs(const Wire wire, const unsigned int c) const
 double FemCatenary::shape(const Wire wire, const unsigned int c, const unsigned int i,
                           const unsigned int k, const double x) const
 {
-  const double x0 = cells[c]->vertex(0)[0];
-  const double h = cells[c]->vertex(1)[0] - x0;
+  const double x0 = cell_start[c];
+  const double h = cell_start[c + 1] - x0;
   const double xi = (x - x0) / h;
   if (has_bending_element(wire)) // C1 Hermite
     return wire_fe.shape_derivative_on_cell(i, k, xi, h);
@@ -326,7 +329,7 @@ void FemCatenary::for_each_load_entry(const double x_c, const unsigned int first
   const unsigned int last = cell_index(std::min(catenary.length(), x_c + eps));
   for (unsigned int c = first; c <= last; ++c)
   {
-    const double x0 = cells[c]->vertex(0)[0], x1 = cells[c]->vertex(1)[0];
+    const double x0 = cell_start[c], x1 = cell_start[c + 1];
     // Break points: cell ends and the spline knots x_c - eps, x_c, x_c + eps inside the
     // cell.
     std::array<double, 5> breaks{{std::max(x0, x_c - eps), std::min(x1, x_c + eps)}};

@@ -93,6 +93,9 @@ private:
   dealii::QGauss<1> gauss{4}; ///< degree 3 + 3 = 6 <= 7: exact on each piece of (33)
   dealii::Triangulation<1> triangulation;
   std::vector<dealii::Triangulation<1>::active_cell_iterator> cells; ///< ordered by x
+  /// x of the cells' left ends in order, then the last cell's right end: the
+  /// moving contact's rows look cells up every step (no cell accessors).
+  std::vector<double> cell_start;
   dealii::FE_Q<1> carrier_fe;
   FE_CubicHermite wire_fe;
   WireSpace carrier_space;
