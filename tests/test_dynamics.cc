@@ -1421,7 +1421,8 @@ TEST(CompressedRows, FourDotsSideBySideAreEachDotToTheBit)
   std::vector<std::vector<double>> x(4, std::vector<double>(n));
   for (unsigned int j = 0; j < 4; ++j)
     for (unsigned int i = 0; i < n; ++i)
-      x[j][i] = std::sin(1.3 * i + j) * std::pow(10., static_cast<int>((i * (j + 2)) % 13) - 6);
+      x[j][i] =
+          std::sin(1.3 * i + j) * std::pow(10., static_cast<int>((i * (j + 2)) % 13) - 6);
   const double* xs[4] = {x[0].data(), x[1].data(), x[2].data(), x[3].data()};
   unsigned int order_matters = 0;
   for (unsigned int k = 0; k < 12; ++k)

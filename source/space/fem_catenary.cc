@@ -373,8 +373,8 @@ void FemCatenary::full_load_rows(const double x_c, const unsigned int first_k,
   for (unsigned int r = 0; r < count; ++r)
     rows[r].clear();
   for_each_load_entry(x_c, first_k, count,
-                      [&](const unsigned int r, const unsigned int dof, const double value)
-                      { rows[r].add(dof, value); });
+                      [&](const unsigned int r, const unsigned int dof,
+                          const double value) { rows[r].add(dof, value); });
 }
 
 void FemCatenary::load_row(const double x_c, const unsigned int k, SparseRow& row) const
@@ -391,18 +391,19 @@ void FemCatenary::load_rows(const double x_c, const unsigned int first_k,
   const auto& free = wire_space.free;
   for (unsigned int r = 0; r < count; ++r)
     rows[r]->clear();
-  for_each_load_entry(x_c, first_k, count,
-                      [&](const unsigned int r, const unsigned int dof, const double value)
-                      {
-                        const unsigned int I = free[dof];
-                        if (I == invalid)
-                          return;
-                        SparseRow& row = *rows[r];
-                        auto it = std::find(row.index.begin(), row.index.end(), I);
-                        if (it == row.index.end())
-                          row.add(I, value);
-                        else
-                          row.value[it - row.index.begin()] += value;
-                      });
+  for_each_load_entry(
+      x_c, first_k, count,
+      [&](const unsigned int r, const unsigned int dof, const double value)
+      {
+        const unsigned int I = free[dof];
+        if (I == invalid)
+          return;
+        SparseRow& row = *rows[r];
+        auto it = std::find(row.index.begin(), row.index.end(), I);
+        if (it == row.index.end())
+          row.add(I, value);
+        else
+          row.value[it - row.index.begin()] += value;
+      });
 }
 } // namespace pantocat

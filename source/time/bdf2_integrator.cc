@@ -547,7 +547,8 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
-  combine_trial(border_terms, reach, c, rho_q, rho_v, fixed_forces ? nullptr : &s.base, x);
+  combine_trial(border_terms, reach, c, rho_q, rho_v, fixed_forces ? nullptr : &s.base,
+                x);
 }
 
 namespace
@@ -560,9 +561,10 @@ namespace
  * +0), so adding 0 U leaves them as they are.
  */
 template <unsigned int P, bool last, typename Term>
-__attribute__((target_clones("avx2", "default"))) void combine_pass(const Term* terms, const double c, const double* __restrict rq,
-                  const double* __restrict rv, const RowRange rows, double* __restrict q,
-                  double* __restrict v, double* __restrict a)
+__attribute__((target_clones("avx2", "default"))) void
+combine_pass(const Term* terms, const double c, const double* __restrict rq,
+             const double* __restrict rv, const RowRange rows, double* __restrict q,
+             double* __restrict v, double* __restrict a)
 {
   constexpr unsigned int w = InterleavedColumns::width;
   const double* X[P > 0 ? P : 1];
@@ -602,8 +604,8 @@ __attribute__((target_clones("avx2", "default"))) void combine_pass(const Term* 
 /// true>() after q = base, v = a = 0 (x - 0 = x), in one pass.
 __attribute__((target_clones("avx2", "default"))) void
 fresh_pass(const double* __restrict base, const double c, const double* __restrict rq,
-                const double* __restrict rv, const RowRange rows, double* __restrict q,
-                double* __restrict v, double* __restrict a)
+           const double* __restrict rv, const RowRange rows, double* __restrict q,
+           double* __restrict v, double* __restrict a)
 {
   for (int i = rows.first; i < rows.last; ++i)
   {
