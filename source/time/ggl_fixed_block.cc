@@ -59,7 +59,6 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   for (const SparseRow& row : Q_rows)
     Q.push_back(row);
   P_eta.reinit(m);
-  Q_mu.reinit(m);
   N_mu.reinit(m);
   force_set.assign(m, false);
   engaged_set.assign(m, false);
@@ -190,13 +189,15 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       batch.push_back(&eta[j]);
   }
   N.solve(batch);
-  // Q mu of the non-zero mu, four at a time side by side.
+  // Q mu: zero for a zero mu, the others four at a time side by side.
   if (Q_mu_w.size() < count)
     Q_mu_w.resize(count, dealii::Vector<double>(m));
   std::vector<std::size_t>& with_mu = with_mu_w;
   with_mu.clear();
   for (std::size_t j = 0; j < count; ++j)
-    if (!mu_zero[j])
+    if (mu_zero[j])
+      Q_mu_w[j] = 0.;
+    else
       with_mu.push_back(j);
   for (std::size_t g = 0; g < with_mu.size(); g += 4)
   {
@@ -229,9 +230,7 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       else
         N.vmult(N_mu, mu[j]);
     }
-    for (unsigned int k = 0; k < m; ++k)
-      Q_mu[k] = mu_zero[j] ? 0. : Q_mu_w[j][k];
-    const dealii::Vector<double>& x = *xs[j];
+    const dealii::Vector<double>&x = *xs[j], &Q_mu = Q_mu_w[j];
     rhs[j] = 0.;
     for (unsigned int k = 0; k < m; ++k)
       if (force_set[k])

@@ -121,7 +121,7 @@ private:
   mutable std::vector<char> mu_zero_w, eta_zero_w;
   mutable std::vector<dealii::Vector<double>> Q_mu_w; ///< Q mu per right-hand side
   mutable std::vector<std::size_t> with_mu_w;
-  mutable dealii::Vector<double> P_eta, Q_mu, N_mu;
+  mutable dealii::Vector<double> P_eta, N_mu;
   std::vector<bool> force_set, engaged_set;
 };
 } // namespace pantocat
