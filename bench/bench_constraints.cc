@@ -11,6 +11,9 @@
 // matrix (the reference of the implicit methods' target, 2.5 solves per step).
 // Usage: bench_constraints [steps] [m ...]
 // [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
+// [--span=L] (a span of L metres instead of 100, the same h and dx: with L = 1000
+// and m = 200 the constraints are 5 m apart, the density of a real section such
+// as S55's 100 droppers and steady arms in 550 m)
 #include "banded_solve_time.h"
 #include "bench_error.h"
 
@@ -43,25 +46,26 @@ constexpr unsigned int batches = 10;
 
 /// The case: prm/benchmark-32.prm on a 100 m span with m droppers.
 ProgramParameters span_with_droppers(const unsigned int m, const std::string& method,
-                                     const std::string& integrator)
+                                     const std::string& integrator,
+                                     const unsigned int span = 100)
 {
   // FEM beams need dt ~ h^2 with the half-explicit method: h = 0.2 m there
   // (2/omega_max = 1.3e-4 s), dt = 5e-5 s for all.
-  const std::string intervals = method == "fem" ? "500" : "2500";
+  const std::string intervals = std::to_string((method == "fem" ? 5 : 25) * span);
   std::ostringstream positions, lengths;
   for (unsigned int j = 0; j < m; ++j)
   {
-    positions << (j ? "," : "") << 100. * (j + 0.5) / m;
+    positions << (j ? "," : "") << span * (j + 0.5) / m;
     lengths << (j ? "," : "") << 0.95;
   }
-  std::vector<std::string> overrides = {"Catenary/Span=100",
-                                        "Pantograph/Final position=98",
-                                        "Discretisation/Method=" + method,
-                                        "Discretisation/Number of intervals=" + intervals,
-                                        "Time integration/Integrator=" + integrator,
-                                        "Time integration/Time step=5e-5",
-                                        "Scene/Droppers=" +
-                                            std::string(m ? "bilateral" : "absent")};
+  std::vector<std::string> overrides = {
+      "Catenary/Span=" + std::to_string(span),
+      "Pantograph/Final position=" + std::to_string(span - 2),
+      "Discretisation/Method=" + method,
+      "Discretisation/Number of intervals=" + intervals,
+      "Time integration/Integrator=" + integrator,
+      "Time integration/Time step=5e-5",
+      "Scene/Droppers=" + std::string(m ? "bilateral" : "absent")};
   if (m == 0)
     overrides.push_back("Scene/Clamp and dropper masses=false");
   else
@@ -128,9 +132,12 @@ try
   std::vector<unsigned int> counts;
   std::string only; // --only=fem+bdf2 : one column
   bool baseline = true;
+  unsigned int span = 100; // --span=1000 : the constraints of a real section's density
   for (int i = 2; i < argc; ++i)
     if (std::string(argv[i]) == "--no-baseline")
       baseline = false;
+    else if (std::string(argv[i]).rfind("--span=", 0) == 0)
+      span = std::atoi(argv[i] + 7);
     else if (std::string(argv[i]).rfind("--only=", 0) == 0)
       only = std::string(argv[i]).substr(7);
     else
@@ -167,7 +174,7 @@ try
   {
     std::vector<ProgramParameters> cases;
     for (const unsigned int m : ms)
-      cases.push_back(span_with_droppers(m, c.method, c.integrator));
+      cases.push_back(span_with_droppers(m, c.method, c.integrator, span));
     times.push_back(step_times(cases, c.steps));
   }
   for (std::size_t r = 0; r < ms.size(); ++r)
@@ -189,7 +196,8 @@ try
     return 0;
   std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
             << std::setprecision(3)
-            << bench::banded_solve_microseconds(span_with_droppers(0, "fem", "bdf2"))
+            << bench::banded_solve_microseconds(
+                   span_with_droppers(0, "fem", "bdf2", span))
             << " us\n";
 }
 catch (const std::exception& e)

@@ -1007,6 +1007,7 @@ TEST(TruncatedColumns, ProductsAreTheDenseSumsInTheSameOrder)
     c[l] = value(random);
     d[l] = value(random);
   }
+  c[3] = d[3] = 0.; // a constraint without force: its column is skipped
   dealii::Vector<double> y(n), z(n), y2(n), z2(n);
   for (unsigned int i = 0; i < n; ++i)
     y[i] = z[i] = y2[i] = z2[i] = value(random);
@@ -1287,6 +1288,84 @@ TEST(GglFixedBlock, ColumnsAndSolvesAddTheSameForces)
               << (rayleigh ? " rayleigh" : "");
     }
   }
+}
+
+TEST(FixedConstraintSchur, ColumnsByRunsAddWhatTheEntryLoopAdds)
+{
+  // add_columns() reads each truncated column A^-1 G_k^T as runs of
+  // consecutive unknowns, four at once. Its sums must be those of the loop
+  // over the column's entries, y_i += f_k x_ik column after column, to the
+  // bit: columns of one, two and three runs (gaps where A^-1 G^T crosses
+  // zero, and a column on both wires), overlapping, a zero factor, and an
+  // unknown no column reaches that holds -0 (it stays -0).
+  const unsigned int n = 80, m = 5;
+  std::mt19937 random(29);
+  std::uniform_real_distribution<double> value(0.1, 1.);
+  std::vector<std::vector<double>> dense(m, std::vector<double>(n, 0.));
+  const std::vector<std::vector<unsigned int>> pattern = {
+      {0, 1, 2, 3, 4, 5, 6},                 // one run
+      {4, 5, 6, 7, 9, 10, 11},               // two runs, overlapping the first
+      {20, 21, 23, 24, 25, 60, 61, 62},      // three runs (on both wires)
+      {30},                                  // a single unknown
+      {40, 41, 42, 43, 44, 45, 46, 47, 48}}; // nine: two AVX2 lanes and a tail
+  std::vector<SparseRow> rows(m);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    for (const unsigned int i : pattern[k])
+      dense[k][i] = (random() % 2 ? 1. : -1.) * value(random);
+    // G_k: the unit row at the column's first unknown, made positive there
+    // (so that G A^-1 G^T has a positive diagonal).
+    dense[k][pattern[k][0]] = 1. + value(random);
+    rows[k].add(pattern[k][0], 1.);
+  }
+  FixedConstraintSchur::ColumnSolver A;
+  unsigned int next = 0;
+  A.apply = [&](const SparseRow&, dealii::Vector<double>& column)
+  {
+    for (unsigned int i = 0; i < n; ++i)
+      column[i] = dense[next][i];
+    ++next;
+  };
+  A.reset = [](const SparseRow&, dealii::Vector<double>& column) { column = 0.; };
+  A.keep_columns = true;
+  std::vector<const SparseRow*> G;
+  for (const SparseRow& r : rows)
+    G.push_back(&r);
+  FixedConstraintSchur S;
+  S.initialize(G, A, n, "S", {});
+  std::size_t entries = 0;
+  for (const auto& p : pattern)
+    entries += p.size();
+  ASSERT_EQ(S.n_column_entries(), entries); // kept as columns, not solved
+  std::vector<double> f(m), g(m);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    f[k] = value(random) - 0.5;
+    g[k] = value(random) - 0.5;
+  }
+  f[3] = g[3] = 0.;
+  dealii::Vector<double> y(n), z(n), y2(n), z2(n);
+  for (unsigned int i = 0; i < n; ++i)
+    y[i] = z[i] = y2[i] = z2[i] = std::sin(0.7 * i) * 1e-3;
+  y[70] = y2[70] = z[70] = z2[70] = -0.;
+  dealii::Vector<double> expected_y(y), expected_z(z);
+  for (unsigned int k = 0; k < m; ++k)
+    if (f[k] != 0. || g[k] != 0.)
+      for (const unsigned int i : pattern[k])
+      {
+        expected_y[i] += f[k] * dense[k][i];
+        expected_z[i] += g[k] * dense[k][i];
+      }
+  S.add_columns(f, y);
+  S.add_columns(f, y2, g, z2);
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    EXPECT_EQ(y[i], expected_y[i]) << i;
+    EXPECT_EQ(y2[i], expected_y[i]) << i;
+    EXPECT_EQ(z2[i], expected_z[i]) << i;
+  }
+  EXPECT_TRUE(std::signbit(y[70]));
+  EXPECT_TRUE(std::signbit(z2[70]));
 }
 
 TEST(FixedConstraintSchur, ADiagonalComplementIsInvertedEntryByEntry)

@@ -47,6 +47,51 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
   }
   return lower;
 }
+/**
+ * y += f[k] A^-1 G_k^T over the columns k with f[k] != 0, the columns given by
+ * their runs of consecutive unknowns (FixedConstraintSchur::Run): each entry as
+ * the loop over the flat entries makes it, y_i += f[k] value (compiled for AVX2
+ * beside the baseline, without fused multiply-add: the same bits either way).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+add_runs(const unsigned int m, const double* __restrict f,
+         const unsigned int* __restrict run_start,
+         const FixedConstraintSchur::Run* __restrict runs, const double* __restrict value,
+         double* __restrict y)
+{
+  for (unsigned int k = 0; k < m; ++k)
+    if (const double fk = f[k]; fk != 0.)
+      for (unsigned int r = run_start[k]; r < run_start[k + 1]; ++r)
+      {
+        const double* __restrict v = value + runs[r].offset;
+        double* __restrict out = y + runs[r].first;
+        for (unsigned int j = 0; j < runs[r].length; ++j)
+          out[j] += fk * v[j];
+      }
+}
+
+/// add_runs() into y with f and into z with g, in one pass over the columns.
+__attribute__((target_clones("avx2", "default"))) void
+add_runs_pair(const unsigned int m, const double* __restrict f,
+              const double* __restrict g, const unsigned int* __restrict run_start,
+              const FixedConstraintSchur::Run* __restrict runs,
+              const double* __restrict value, double* __restrict y, double* __restrict z)
+{
+  for (unsigned int k = 0; k < m; ++k)
+    if (const double fk = f[k], gk = g[k]; fk != 0. || gk != 0.)
+      for (unsigned int r = run_start[k]; r < run_start[k + 1]; ++r)
+      {
+        const double* __restrict v = value + runs[r].offset;
+        double* __restrict out_y = y + runs[r].first;
+        double* __restrict out_z = z + runs[r].first;
+        for (unsigned int j = 0; j < runs[r].length; ++j)
+        {
+          out_y[j] += fk * v[j];
+          out_z[j] += gk * v[j];
+        }
+      }
+}
+
 /// y += w, then w = 0, in one pass.
 void add_and_clear(dealii::Vector<double>& w, dealii::Vector<double>& y)
 {
@@ -147,6 +192,7 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     work.reinit(n_dofs);
     work_pair.reinit(n_dofs);
   }
+  find_runs();
   // add_columns() reads the flat copy; the rows are kept only when asked for.
   if (!A.keep_columns)
     columns = {};
@@ -265,13 +311,8 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
     add_and_clear(work, y);
     return;
   }
-  const unsigned int* __restrict index = flat_columns.index.data();
-  const double* __restrict value = flat_columns.value.data();
-  double* __restrict out = y.begin();
-  for (unsigned int k = 0; k < n; ++k)
-    if (const double f = factors[k]; f != 0.)
-      for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
-        out[index[e]] += f * value[e];
+  add_runs(n, factors.data(), run_start.data(), runs.data(), flat_columns.value.data(),
+           y.begin());
 }
 
 void FixedConstraintSchur::add_columns(const std::vector<double>& f,
@@ -307,17 +348,24 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& f,
     work_pair.clear();
     return;
   }
-  const unsigned int* __restrict index = flat_columns.index.data();
-  const double* __restrict value = flat_columns.value.data();
-  double* __restrict out_y = y.begin();
-  double* __restrict out_z = z.begin();
-  for (unsigned int k = 0; k < n; ++k)
-    if (f[k] != 0. || g[k] != 0.)
-      for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
-      {
-        out_y[index[e]] += f[k] * value[e];
-        out_z[index[e]] += g[k] * value[e];
-      }
+  add_runs_pair(n, f.data(), g.data(), run_start.data(), runs.data(),
+                flat_columns.value.data(), y.begin(), z.begin());
+}
+
+void FixedConstraintSchur::find_runs()
+{
+  runs.clear();
+  run_start.assign(1, 0);
+  const std::vector<unsigned int>& index = flat_columns.index;
+  for (unsigned int k = 0; k < flat_columns.size(); ++k)
+  {
+    for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
+      if (e > flat_columns.start[k] && index[e] == index[e - 1] + 1)
+        ++runs.back().length;
+      else
+        runs.push_back({index[e], 1, e});
+    run_start.push_back(runs.size());
+  }
 }
 
 void FixedConstraintSchur::vmult(dealii::Vector<double>& out,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
@@ -22,13 +23,18 @@ SparseRow truncated(const dealii::Vector<double>& column);
  *    columns: a few unknowns, each seen by the few columns that reach it);
  *  - X c for coefficients c (the forces of all fixed constraints at once).
  *
- * The rows of X are kept in slices of four reached unknowns (the lanes of a
- * four-double vector), each with the columns that reach any of them, in
- * order (a dropper's column decays away from it, so neighbouring unknowns
- * are reached by nearly the same columns). X c then runs down a slice's
- * columns, four unknowns at once, and each unknown's sum takes its products
- * in the order of the columns, a zero where a column misses it: the value
- * of the sum over its entries alone, to the bit.
+ * For g X, the rows of X are kept in slices of four reached unknowns, each
+ * with the columns that reach any of them, in order (a dropper's column
+ * decays away from it, so neighbouring unknowns are reached by nearly the
+ * same columns). For X c, each column is kept as runs of consecutive
+ * unknowns (a column of a FEM wire is one or two runs): X c sums column by
+ * column into an accumulator, four unknowns at once along a run, then adds
+ * the accumulator to y on the reached unknowns and clears it. (Adding the
+ * products of unknowns that one column alone reaches straight into y was
+ * tried: 135-138 instead of 125 us per FEM + BDF-2 step at 200 droppers
+ * 5 m apart.) Each unknown's sum takes its products in
+ * the order of the columns, from +0: the value of the sum over its entries
+ * alone, to the bit, however the columns overlap.
  */
 class TruncatedColumns
 {
@@ -45,7 +51,8 @@ public:
   /// Entries of the pattern (shared by the partners; without the slices' zeros).
   std::size_t n_entries() const { return pattern_entries; }
   /// Four-double multiply-adds of a pass over the slices with one sum per
-  /// stored set: their columns times the sets.
+  /// stored set: their columns times the sets (GglFixedBlock's cost model,
+  /// fitted when X c ran over the slices).
   std::size_t n_slice_operations() const;
 
   /// out[l] = g . X_l for every column l (out is resized to m).
@@ -60,9 +67,9 @@ public:
            const std::vector<double>& d, dealii::Vector<double>& z) const;
 
   /**
-   * y += sum_l c[l] X_l and then y += sum_l d[l] X'_l, in one pass: on each
-   * unknown the two sums and the two additions of add(c, y) on X and on X'
-   * (the same value, to the bit).
+   * y += sum_l c[l] X_l and then y += sum_l d[l] X'_l: on each unknown the
+   * two sums and the two additions of add(c, y) on X and on X' (the same
+   * value, to the bit).
    */
   void add_with_partners(const std::vector<double>& c, const std::vector<double>& d,
                          dealii::Vector<double>& y) const;
@@ -82,7 +89,26 @@ public:
     std::array<unsigned char, 4> reached_by{{0, 0, 0, 0}};
   };
 
+  /// A run of consecutive unknowns [first, first + length) of a column, its
+  /// values at [offset, offset + length) of ColumnRuns::value.
+  struct Run
+  {
+    unsigned int first, length;
+    std::size_t offset;
+  };
+
 private:
+  /// One set's columns by runs: column l's are runs[run_start[l] .. run_start[l + 1]);
+  /// ranges: the unknowns that some column reaches.
+  struct ColumnRuns
+  {
+    std::vector<Run> runs;
+    std::vector<unsigned int> run_start{0};
+    std::vector<double> value;
+    RowRanges ranges;
+    void initialize(const std::vector<SparseRow>& columns, unsigned int n_dofs);
+  };
+
   /// The entries of one set (0: X, 1: X') on the shared pattern.
   void row_products(const SparseRow& g, unsigned int set, std::vector<double>& out) const;
 
@@ -93,5 +119,9 @@ private:
   std::vector<int> slot; ///< unknown i: 4 slice + lane, or -1 (no column reaches it)
   std::vector<unsigned int> column; ///< the slices' columns (Slice)
   std::vector<double> value;        ///< the slices' values (Slice)
+  ColumnRuns column_runs[2];        ///< of X and of X'
+
+  /// The sums of X c and X d (zero between calls).
+  mutable std::vector<double> acc, acc_d;
 };
 } // namespace pantocat
