@@ -4,6 +4,14 @@
 
 namespace pantocat
 {
+RowRange span_of(const SparseRow& row)
+{
+  if (row.size() == 0)
+    return {0, 0};
+  const auto [lo, hi] = std::minmax_element(row.index.begin(), row.index.end());
+  return {static_cast<int>(*lo), static_cast<int>(*hi) + 1};
+}
+
 void merge_ranges(const RowRanges& a, const RowRanges& b, RowRanges& out)
 {
   out.clear();

@@ -109,6 +109,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
   {
     std::vector<const SparseRow*> G;
     std::vector<const Constraint*> constraints;
+    fixed_span.clear();
     for (const unsigned int i : fixed)
     {
       if (rows[i].G_t.size() > 0 || rows[i].G_tt.size() > 0)
@@ -116,6 +117,7 @@ struct Bdf2Integrator::Stage : IterationMatrix
                               " has constant rows but a time derivative");
       G.push_back(&rows[i].G);
       constraints.push_back(system.constraints[i].get());
+      fixed_span.push_back(span_of(rows[i].G));
     }
     block.initialize(G, constraints, inverse, mass_inverse, system.damping,
                      damping_over_mass, c, system.n_dofs());
@@ -138,6 +140,8 @@ struct Bdf2Integrator::Stage : IterationMatrix
   double c;
   SparseRow DY, DZ; ///< workspace
   GglFixedBlock block;
+  /// The rows [first, last) of each fixed constraint's G (block order).
+  std::vector<RowRange> fixed_span;
   bool block_ready = false;
   /// Columns of the touching fixed constraints of the current step.
   std::map<unsigned int, std::pair<LocalColumns, LocalColumns>> touching_columns;
@@ -435,9 +439,14 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     {
       if (!force[k] && !engaged[k])
         continue;
+      // Columns that do not reach row k give products +0 (the dots of zeros).
       const SparseRow& G = rows[s.fixed[k]].G;
-      const std::array<double, InterleavedColumns::width> GX = X->dots(G),
-                                                          GU = U->dots(G);
+      const RowRange& span = s.fixed_span[k];
+      const std::array<double, InterleavedColumns::width>
+          GX = X->reaches(span) ? X->dots(G)
+                                : std::array<double, InterleavedColumns::width>{},
+          GU = U->reaches(span) ? U->dots(G)
+                                : std::array<double, InterleavedColumns::width>{};
       for (unsigned int u = u0; u < u1; ++u)
       {
         const unsigned int kind = unknowns[u].kind;

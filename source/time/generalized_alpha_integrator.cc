@@ -135,6 +135,9 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
                      "matrix G M^-1 G^T of the fixed constraints (velocity projection)");
   keep.assign(S.fixed.size(), false);
   factors.assign(S.fixed.size(), 0.);
+  fixed_span.clear();
+  for (const unsigned int i : S.fixed)
+    fixed_span.push_back(span_of(rows[i].G));
   fixed_ready = true;
 }
 
@@ -170,14 +173,19 @@ void GeneralizedAlphaIntegrator::advance()
   const dealii::Vector<double>& q0 = S.base; // the base solution
 
   // g and dg/dt of every constraint at q0, with v = v^ + c_v (q - q^) (Newmark).
+  // G q^ and G v^ are kept for the trials' rates.
   base_gap.resize(m_all);
   base_rate.resize(m_all);
+  G_q_hat.resize(m_all);
+  G_v_hat.resize(m_all);
   for (unsigned int i = 0; i < m_all; ++i)
   {
     const ConstraintState& r = rows[i];
     const double Gq0 = r.G.dot(q0);
+    G_q_hat[i] = r.G.dot(q_hat);
+    G_v_hat[i] = r.G.dot(v_hat);
     base_gap[i] = Gq0 + r.z;
-    base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - r.G.dot(q_hat)) + r.G.dot(v_hat) + r.z_t;
+    base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - G_q_hat[i]) + G_v_hat[i] + r.z_t;
   }
 
   DynamicState x = std::move(spare); // its vectors' memory, if any
@@ -207,7 +215,7 @@ void GeneralizedAlphaIntegrator::advance()
       const ConstraintState& r = rows[i];
       const double Gq = r.G.dot(x.q);
       gaps[i] = Gq + r.z;
-      rates[i] = r.G_t.dot(x.q) + c_v * (Gq - r.G.dot(q_hat)) + r.G.dot(v_hat) + r.z_t;
+      rates[i] = r.G_t.dot(x.q) + c_v * (Gq - G_q_hat[i]) + G_v_hat[i] + r.z_t;
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
@@ -305,9 +313,10 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     const LocalColumns& X = S.S_columns[S.position[i]];
     const double d = damping_ratio(*system.constraints[i]);
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
-    // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric).
+    // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric). Both
+    // +0, as reinit() left them, where the columns do not reach row k.
     for (unsigned int k = 0; k < mF; ++k)
-      if (keep[k])
+      if (keep[k] && X.reaches(fixed_span[k]))
       {
         const std::array<double, InterleavedColumns::width> GX =
             X.dots(rows[S.fixed[k]].G); // both columns in one pass
@@ -379,7 +388,7 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   {
     const LocalColumns& U = S.M_columns[S.position[moving_in[c]]];
     for (unsigned int k = 0; k < mF; ++k)
-      if (keep[k])
+      if (keep[k] && U.reaches(fixed_span[k])) // else +0, as reinit() left it
         Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = U.dot(rows[moving_in[r]].G, 0);

@@ -51,6 +51,15 @@ public:
   const double* data() const { return InterleavedColumns::data(); }
   /// The rows outside which every entry is zero, in increasing order.
   const RowRanges& reach() const { return rows; }
+  /// True if the reach meets the rows @p span (a row's products with the
+  /// columns are +0 otherwise: dot() and dots() can be skipped).
+  bool reaches(const RowRange& span) const
+  {
+    for (const RowRange& r : rows)
+      if (r.first < span.last && r.last > span.first)
+        return true;
+    return false;
+  }
 
   /// out += sum_k coefficient[k] * column k, on the reach.
   void add_combination(const std::array<double, width>& coefficient,
@@ -64,6 +73,9 @@ private:
   std::vector<unsigned int> scratch;
   RowRanges added, merged; ///< take_in()'s workspace: no allocation once grown
 };
+
+/// The rows [min, max + 1) of @p row's indices (empty for an empty row).
+RowRange span_of(const SparseRow& row);
 
 /// The union of @p a and @p b (disjoint ranges in increasing order each).
 RowRanges union_of(const RowRanges& a, const RowRanges& b);

@@ -149,6 +149,11 @@ private:
   dealii::Vector<double> w, mass_part, damping_part;
   /// Per constraint at t_{n+1} for q = q0, v = v^ + c_v (q0 - q^): g and dg/dt.
   std::vector<double> base_gap, base_rate;
+  /// G q^ and G v^ of every constraint (the rates of the step's trials).
+  std::vector<double> G_q_hat, G_v_hat;
+  /// The rows [first, last) of each fixed constraint's G (FixedConstraintSchur
+  /// order): the moving columns that do not reach them give products +0.
+  std::vector<RowRange> fixed_span;
   std::vector<bool> keep;      ///< fixed constraints in the current system
   std::vector<double> factors; ///< their multipliers (FixedConstraintSchur order)
   /// mu of the position projection (touching constraints) and eta of the
