@@ -508,3 +508,67 @@ TEST(LinearSolvers, LocalSolvesAreTheFullSolvesWhereTheColumnsAreNotNegligible)
     }
   }
 }
+
+TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
+{
+  // The implicit steps skip a fixed row whose span [first, last) the moving
+  // columns do not reach (LocalColumns::reaches), taking +0 for its products.
+  // That is right only if dots() of such a row is +0 in every column, and
+  // reaches() must say true for a span that shares a single row with the
+  // reach (its ends are half-open). Checked on a contact's columns solved
+  // locally with the FEM BDF-2 matrix (N+1 = 500).
+  CaseRunner simulation(fem_bdf2(500).make_case());
+  const SemiDiscreteSystem& sys = simulation.system();
+  dealii::SparseMatrix<double> S;
+  bdf2_matrix(sys, S);
+  const int n = sys.n_dofs();
+  SparseDirectSolver banded;
+  banded.factorize(S, "S");
+  SparseRow contact;
+  for (int i = n / 4; i < n / 4 + 6; ++i)
+    contact.add(i, 1. + 0.1 * i);
+  LocalColumns X;
+  X.reinit(n);
+  for (unsigned int k = 0; k < 4; ++k)
+    X.add_row(k, contact, std::pow(-10., k));
+  X.solve(banded);
+  ASSERT_FALSE(X.reach().empty());
+  const RowRange first = X.reach().front();
+  ASSERT_GT(first.first, 2);
+  EXPECT_EQ(span_of(contact).first, n / 4);
+  EXPECT_EQ(span_of(contact).last, n / 4 + 6);
+  EXPECT_EQ(span_of(SparseRow()).last - span_of(SparseRow()).first, 0);
+  // Rows just before the reach, just touching it, and far beyond every range.
+  SparseRow before, touching, inside;
+  before.add(first.first - 2, 0.7);
+  before.add(first.first - 1, -1.3);
+  touching.add(first.first - 1, 0.7);
+  touching.add(first.first, -1.3);
+  inside.add((first.first + first.last) / 2, 1.);
+  EXPECT_FALSE(X.reaches(span_of(before)));
+  EXPECT_TRUE(X.reaches(span_of(touching)));
+  EXPECT_TRUE(X.reaches(span_of(inside)));
+  EXPECT_FALSE(X.reaches({first.last, first.last})); // an empty span
+  for (const double d : X.dots(before))
+  {
+    EXPECT_EQ(d, 0.);
+    EXPECT_FALSE(std::signbit(d));
+  }
+  // The touching row's products are not all zero: reaches() must keep it.
+  const auto touched = X.dots(touching);
+  EXPECT_TRUE(std::any_of(touched.begin(), touched.end(),
+                          [](const double d) { return d != 0.; }));
+  // Every row outside the reach: products +0.
+  unsigned int outside = 0;
+  for (int i = 0; i < n; i += 7)
+  {
+    SparseRow r;
+    r.add(i, -2.5);
+    if (X.reaches(span_of(r)))
+      continue;
+    ++outside;
+    for (const double d : X.dots(r))
+      ASSERT_TRUE(d == 0. && !std::signbit(d)) << "row " << i;
+  }
+  EXPECT_GT(outside, static_cast<unsigned int>(n / 7 / 2)); // the reach is local
+}
