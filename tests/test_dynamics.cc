@@ -1124,6 +1124,85 @@ TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
   }
 }
 
+// sum() and sum_with_partners() leave the sums of add() and
+// add_with_partners() for the caller (BDF-2 adds them in its one pass over the
+// unknowns). Added on their rows in the documented order they must give
+// add()'s and add_with_partners()' vectors to the bit, be zero off their rows,
+// and, set to zero again on their rows, give the same sums the next time.
+TEST(TruncatedColumns, SumsLeftToTheCallerAreTheAdditionsToTheBit)
+{
+  const unsigned int n = 70, m = 6;
+  std::mt19937 random(31);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  std::vector<SparseRow> columns(m), partners(m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    for (unsigned int i = 6 * l; i < 6 * l + 10; ++i)
+      columns[l].add(i, value(random));
+    for (unsigned int i = 6 * l + 3; i < 6 * l + 12 + l; i += (l % 2 ? 2 : 1))
+      partners[l].add(i, value(random));
+  }
+  TruncatedColumns X;
+  X.initialize(columns, n, partners);
+  std::vector<double> c(m), d(m);
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    c[l] = value(random);
+    d[l] = value(random);
+  }
+  const auto add_on = [&](const RowRanges& rows, double* sum, dealii::Vector<double>& y)
+  {
+    unsigned int covered = 0;
+    for (const RowRange& r : rows)
+      for (int i = r.first; i < r.last; ++i, ++covered)
+      {
+        y[i] += sum[i];
+        sum[i] = 0.;
+      }
+    for (unsigned int i = 0; i < n; ++i)
+      EXPECT_EQ(sum[i], 0.) << i; // zero off the rows, and cleared on them
+    return covered;
+  };
+  dealii::Vector<double> start(n);
+  for (unsigned int i = 0; i < n; ++i)
+    start[i] = value(random);
+  for (unsigned int round = 0; round < 2; ++round)
+  {
+    dealii::Vector<double> y(start), expected(start);
+    X.add_with_partners(c, d, expected);
+    const TruncatedColumns::Sums s = X.sum_with_partners(c, d);
+    EXPECT_GT(add_on(*s.first_rows, s.first, y), 0u);
+    EXPECT_GT(add_on(*s.second_rows, s.second, y), 0u);
+    for (unsigned int i = 0; i < n; ++i)
+      EXPECT_EQ(y[i], expected[i]) << "round " << round << ", " << i;
+
+    dealii::Vector<double> u(start), w(start), expected_u(start), expected_w(start);
+    X.add(c, expected_u, d, expected_w);
+    const TruncatedColumns::Sums t = X.sum(c, d);
+    EXPECT_EQ(t.first_rows, t.second_rows); // both sums on X's rows
+    add_on(*t.first_rows, t.first, u);
+    add_on(*t.second_rows, t.second, w);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      EXPECT_EQ(u[i], expected_u[i]) << i;
+      EXPECT_EQ(w[i], expected_w[i]) << i;
+    }
+  }
+  // The stretches of reached rows of X and of X', counted from the patterns.
+  std::size_t stretches = 0;
+  for (const auto* set : {&columns, &partners})
+  {
+    std::vector<bool> reached(n + 1, false);
+    for (const SparseRow& r : *set)
+      for (const unsigned int i : r.index)
+        reached[i] = true;
+    for (unsigned int i = 0; i < n; ++i)
+      stretches += reached[i] && (i == 0 || !reached[i - 1]);
+  }
+  EXPECT_EQ(X.n_row_ranges(), stretches);
+  EXPECT_GT(stretches, 2u); // X' leaves gaps at its end
+}
+
 // PatternOperators keeps the rows in runs with the same offsets (stride 1 for
 // the FDM's and the strings' nodes, 2 for a Hermite beam's values and
 // slopes) and sums down a run offset by offset, several rows at once;

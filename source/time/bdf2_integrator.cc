@@ -525,10 +525,13 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     if (unknowns[u].kind == lambda)
       x.lambda[unknowns[u].constraint] = y(u);
 
-  // Without fixed forces, q, v, a are formed from the base in
-  // combine_trial()'s pass (no copy, no zeroing).
-  const bool fixed_forces = mF > 0;
-  if (fixed_forces)
+  // q, v, a are formed from the base and the fixed forces' sums in
+  // combine_trial()'s pass (no copy, no zeroing), unless the forces come
+  // from solves (many constraints close together on a FEM grid) or their
+  // sums reach many short stretches of rows.
+  const bool forces_by_solves = mF > 0 && !block.sums_in_one_pass();
+  GglFixedBlock::ForceSums sums;
+  if (forces_by_solves)
   {
     x.q = s.base;
     x.v.reinit(n);
@@ -536,8 +539,12 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
   }
   else
+  {
     for (dealii::Vector<double>* y : {&x.q, &x.v, &x.a})
       y->reinit(n, true);
+    if (mF > 0)
+      sums = block.sum_forces(lambda_eta, eta_F, mu_F);
+  }
   // The border columns, then v and a, in one pass; on each unknown the
   // border unknowns add in their order.
   border_terms.clear();
@@ -556,8 +563,9 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
-  combine_trial(border_terms, reach, c, rho_q, rho_v, fixed_forces ? nullptr : &s.base,
-                x);
+  combine_trial(border_terms, reach, c, rho_q, rho_v,
+                forces_by_solves ? nullptr : &s.base,
+                mF > 0 && !forces_by_solves ? &sums : nullptr, x);
 }
 
 namespace
@@ -609,46 +617,131 @@ combine_pass(const Term* terms, const double c, const double* __restrict rq,
   }
 }
 
-/// q = base, v = c q - rho_q, a = c v - rho_v on @p rows: combine_pass<0,
-/// true>() after q = base, v = a = 0 (x - 0 = x), in one pass.
+/**
+ * On @p rows: q = base (+ q1, then + q2 where they reach), u1 = 0 (+ y1),
+ * u2 = 0 (+ y2) where the fixed forces' mass sums reach; the sums read are
+ * set to 0. With @p last (rows off the border's reach), also v = c q - rho_q -
+ * u1, a = c v - rho_v - u2, else v = u1, a = u2 for the border passes. Each
+ * entry as the copy, the zeroing, the additions of the sums and
+ * combine_pass<0, true>() made it (x - (+0) = x where a sum does not reach).
+ */
+template <bool with_q1, bool with_q2, bool with_u, bool last>
 __attribute__((target_clones("avx2", "default"))) void
-fresh_pass(const double* __restrict base, const double c, const double* __restrict rq,
-           const double* __restrict rv, const RowRange rows, double* __restrict q,
-           double* __restrict v, double* __restrict a)
+form_pass(const double* __restrict base, double* __restrict q1, double* __restrict q2,
+          double* __restrict y1, double* __restrict y2, const double c,
+          const double* __restrict rq, const double* __restrict rv, const RowRange rows,
+          double* __restrict q, double* __restrict v, double* __restrict a)
 {
   for (int i = rows.first; i < rows.last; ++i)
   {
-    const double qi = base[i], vi = c * qi - rq[i];
+    double qi = base[i], u1 = 0., u2 = 0.;
+    if (with_q1)
+    {
+      qi += q1[i];
+      q1[i] = 0.;
+    }
+    if (with_q2)
+    {
+      qi += q2[i];
+      q2[i] = 0.;
+    }
+    if (with_u)
+    {
+      u1 += y1[i];
+      u2 += y2[i];
+      y1[i] = 0.;
+      y2[i] = 0.;
+    }
     q[i] = qi;
-    v[i] = vi;
-    a[i] = c * vi - rv[i];
+    if (last)
+    {
+      const double vi = with_u ? c * qi - rq[i] - u1 : c * qi - rq[i];
+      v[i] = vi;
+      a[i] = with_u ? c * vi - rv[i] - u2 : c * vi - rv[i];
+    }
+    else
+    {
+      v[i] = u1;
+      a[i] = u2;
+    }
   }
 }
+
+/// form_pass() with its template arguments from @p flag.
+template <bool... Known>
+void form_pass_for(const std::array<bool, 4>& flag, const double* base, double* q1,
+                   double* q2, double* y1, double* y2, const double c, const double* rq,
+                   const double* rv, const RowRange rows, double* q, double* v, double* a)
+{
+  constexpr std::size_t k = sizeof...(Known);
+  if constexpr (k == 4)
+    form_pass<Known...>(base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+  else if (flag[k])
+    form_pass_for<Known..., true>(flag, base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+  else
+    form_pass_for<Known..., false>(flag, base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+}
+
+/// Walks sorted disjoint ranges (or none) along increasing rows: inside()
+/// says whether a row lies in one; next() is the first boundary above a row.
+class RangeWalk
+{
+public:
+  explicit RangeWalk(const RowRanges* ranges) : r(ranges) {}
+  bool inside(const int row)
+  {
+    advance(row);
+    return r && k < r->size() && (*r)[k].first <= row;
+  }
+  int next(const int row, const int end)
+  {
+    advance(row);
+    if (!r || k == r->size())
+      return end;
+    return (*r)[k].first > row ? (*r)[k].first : (*r)[k].last;
+  }
+
+private:
+  void advance(const int row)
+  {
+    while (r && k < r->size() && (*r)[k].last <= row)
+      ++k;
+  }
+  const RowRanges* r;
+  std::size_t k = 0;
+};
 } // namespace
 
 void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
                                    const RowRanges& reach, const double c,
                                    const dealii::Vector<double>& rho_q,
                                    const dealii::Vector<double>& rho_v,
-                                   const dealii::Vector<double>* base, DynamicState& x)
+                                   const dealii::Vector<double>* base,
+                                   const GglFixedBlock::ForceSums* sums, DynamicState& x)
 {
   const int n = x.q.size();
   double *q = x.q.begin(), *v = x.v.begin(), *a = x.a.begin();
   const double *rq = rho_q.begin(), *rv = rho_v.begin();
   if (base)
   {
-    // q, v, a from the base alone off the reach; on it q = base, v = a = 0
-    // before the terms (the same sums as a copy and zeroing would give).
-    int next = 0;
-    for (const RowRange& rows : reach)
+    // Stretches of rows on which the border's reach and the rows of each sum
+    // do not change: q, v, a from the base and the sums, all of it off the
+    // reach, one pass.
+    RangeWalk on_reach(&reach), in_q1(sums ? sums->q.first_rows : nullptr),
+        in_q2(sums ? sums->q.second_rows : nullptr),
+        in_u(sums ? sums->u.first_rows : nullptr);
+    double *q1 = sums ? sums->q.first : nullptr, *q2 = sums ? sums->q.second : nullptr,
+           *y1 = sums ? sums->u.first : nullptr, *y2 = sums ? sums->u.second : nullptr;
+    for (int first = 0; first < n;)
     {
-      fresh_pass(base->begin(), c, rq, rv, RowRange{next, rows.first}, q, v, a);
-      std::copy(base->begin() + rows.first, base->begin() + rows.last, q + rows.first);
-      std::fill(v + rows.first, v + rows.last, 0.);
-      std::fill(a + rows.first, a + rows.last, 0.);
-      next = rows.last;
+      const int last = std::min({on_reach.next(first, n), in_q1.next(first, n),
+                                 in_q2.next(first, n), in_u.next(first, n)});
+      const std::array<bool, 4> flag{{in_q1.inside(first), in_q2.inside(first),
+                                      in_u.inside(first), !on_reach.inside(first)}};
+      form_pass_for<>(flag, base->begin(), q1, q2, y1, y2, c, rq, rv,
+                      RowRange{first, last}, q, v, a);
+      first = last;
     }
-    fresh_pass(base->begin(), c, rq, rv, RowRange{next, n}, q, v, a);
   }
   // On the rows the terms reach, passes of three terms (a contact with
   // force: lambda, eta, mu); then v and a on all rows. On each unknown the

@@ -142,6 +142,15 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
   }
 }
 
+GglFixedBlock::ForceSums
+GglFixedBlock::sum_forces(const std::vector<double>& lambda_plus_eta,
+                          const std::vector<double>& eta,
+                          const std::vector<double>& mu) const
+{
+  Assert(!solves_are_cheaper, dealii::ExcMessage("the forces are added by solves"));
+  return {X.sum_with_partners(lambda_plus_eta, mu), Y.sum(mu, eta)};
+}
+
 void GglFixedBlock::select(const std::vector<bool>& force,
                            const std::vector<bool>& engaged)
 {

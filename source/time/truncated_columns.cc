@@ -274,13 +274,35 @@ void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>&
                 nullptr);
 }
 
-void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
-                           const std::vector<double>& d, dealii::Vector<double>& z) const
+TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c,
+                                             const std::vector<double>& d) const
 {
   const ColumnRuns& x = column_runs[0];
   accumulate_runs(m, c.data(), d.data(), x.run_start.data(), x.runs.data(),
                   x.value.data(), acc.data(), acc_d.data());
-  add_and_clear(x.ranges.data(), x.ranges.size(), acc.data(), y.begin(), acc_d.data(),
+  return {acc.data(), acc_d.data(), &x.ranges, &x.ranges};
+}
+
+TruncatedColumns::Sums
+TruncatedColumns::sum_with_partners(const std::vector<double>& c,
+                                    const std::vector<double>& d) const
+{
+  Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
+  for (unsigned int set = 0; set < 2; ++set)
+  {
+    const ColumnRuns& x = column_runs[set];
+    accumulate_runs(m, (set == 0 ? c : d).data(), nullptr, x.run_start.data(),
+                    x.runs.data(), x.value.data(), (set == 0 ? acc : acc_d).data(),
+                    nullptr);
+  }
+  return {acc.data(), acc_d.data(), &column_runs[0].ranges, &column_runs[1].ranges};
+}
+
+void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
+                           const std::vector<double>& d, dealii::Vector<double>& z) const
+{
+  const Sums s = sum(c, d);
+  add_and_clear(s.first_rows->data(), s.first_rows->size(), s.first, y.begin(), s.second,
                 z.begin());
 }
 
@@ -288,15 +310,11 @@ void TruncatedColumns::add_with_partners(const std::vector<double>& c,
                                          const std::vector<double>& d,
                                          dealii::Vector<double>& y) const
 {
-  Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
   // On each unknown, y += the sum over X first, then y += that over X'.
-  for (unsigned int set = 0; set < 2; ++set)
-  {
-    const ColumnRuns& x = column_runs[set];
-    accumulate_runs(m, (set == 0 ? c : d).data(), nullptr, x.run_start.data(),
-                    x.runs.data(), x.value.data(), acc.data(), nullptr);
-    add_and_clear(x.ranges.data(), x.ranges.size(), acc.data(), y.begin(), nullptr,
-                  nullptr);
-  }
+  const Sums s = sum_with_partners(c, d);
+  add_and_clear(s.first_rows->data(), s.first_rows->size(), s.first, y.begin(), nullptr,
+                nullptr);
+  add_and_clear(s.second_rows->data(), s.second_rows->size(), s.second, y.begin(),
+                nullptr, nullptr);
 }
 } // namespace pantocat

@@ -124,13 +124,16 @@ private:
    * q += sum of the border terms on the rows @p reach that their columns
    * reach, then v = c q - rho_q - (v + their mass columns), a = c v - rho_v -
    * (a + theirs) in one pass over the unknowns (v and a hold u1, u2 of (38)'s
-   * BDF form on entry). With a @p base (no fixed forces), x's vectors hold
-   * nothing on entry: q starts from the base and u1 = u2 = 0.
+   * BDF form on entry). With a @p base, x's vectors hold nothing on entry: q
+   * starts from the base plus the fixed forces' @p sums (if any, zeroed on
+   * the way), u1 and u2 from their sums or 0; off the reach q, v and a are
+   * formed in that same pass.
    */
   static void combine_trial(const std::vector<BorderTerm>& terms, const RowRanges& reach,
                             double c, const dealii::Vector<double>& rho_q,
                             const dealii::Vector<double>& rho_v,
-                            const dealii::Vector<double>* base, DynamicState& x);
+                            const dealii::Vector<double>* base,
+                            const GglFixedBlock::ForceSums* sums, DynamicState& x);
 
   double dt;
   LinearSolverType linear_solver;

@@ -75,6 +75,31 @@ public:
                          dealii::Vector<double>& y) const;
 
   /**
+   * Sums left for the caller to add: first = sum_l c[l] X_l on the unknowns
+   * first_rows (the rows some column reaches), second = sum_l d[l] X_l (sum())
+   * or sum_l d[l] X'_l (sum_with_partners()) on second_rows; 0 elsewhere. The
+   * caller adds them (y_i += first_i, then y_i += second_i for a partner sum:
+   * what add() and add_with_partners() do) and sets them to 0 again.
+   */
+  struct Sums
+  {
+    double* first;
+    double* second;
+    const RowRanges* first_rows;
+    const RowRanges* second_rows;
+  };
+  /// The stretches of rows that the columns of each set reach, together.
+  std::size_t n_row_ranges() const
+  {
+    return column_runs[0].ranges.size() + column_runs[1].ranges.size();
+  }
+  /// The sums of add(c, y, d, z), not added.
+  Sums sum(const std::vector<double>& c, const std::vector<double>& d) const;
+  /// The sums of add_with_partners(c, d, y), not added.
+  Sums sum_with_partners(const std::vector<double>& c,
+                         const std::vector<double>& d) const;
+
+  /**
    * Four reached unknowns (-1: an unused lane) and the `length` columns that
    * reach any of them, ascending, at column[first ...]; the value of lane j,
    * the slice's k-th column, set s (0: X, 1: X') at value[offset + 4 (sets
