@@ -1124,6 +1124,78 @@ TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
   }
 }
 
+// X c goes by the slices when the columns' runs are short (an FDM's M^-1 G^T:
+// single nodes) and by the runs otherwise; either way each unknown's sum is
+// the dense sum in the order of the columns, to the bit, with and without
+// partners.
+TEST(TruncatedColumns, ShortAndLongRunsGiveTheDenseSums)
+{
+  const unsigned int n = 90, m = 7;
+  for (const unsigned int stride : {1u, 3u})
+  {
+    std::mt19937 random(41 + stride);
+    std::uniform_real_distribution<double> value(-1., 1.);
+    std::vector<SparseRow> columns(m), partners(m);
+    std::vector<std::vector<double>> dense(m, std::vector<double>(n, 0.)),
+        dense_partner(m, std::vector<double>(n, 0.));
+    for (unsigned int l = 0; l < m; ++l)
+      for (unsigned int k = 0; k < 8; ++k)
+      {
+        const unsigned int i = 5 * l + stride * k; // overlapping neighbours
+        columns[l].add(i, dense[l][i] = value(random));
+        partners[l].add(i + 1, dense_partner[l][i + 1] = value(random));
+      }
+    TruncatedColumns X;
+    X.initialize(columns, n, partners);
+    EXPECT_EQ(X.adds_by_runs(), stride == 1) << "stride " << stride;
+    std::vector<double> c(m), d(m);
+    for (unsigned int l = 0; l < m; ++l)
+    {
+      c[l] = value(random);
+      d[l] = value(random);
+    }
+    dealii::Vector<double> y(n), z(n), w(n);
+    for (unsigned int i = 0; i < n; ++i)
+      y[i] = z[i] = w[i] = value(random);
+    dealii::Vector<double> ey(y), ez(z), ew(w);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      double s = 0., t = 0., sp = 0.;
+      bool by_x = false, by_partner = false;
+      for (unsigned int l = 0; l < m; ++l)
+      {
+        if (dense[l][i] != 0.)
+        {
+          s += dense[l][i] * c[l];
+          t += dense[l][i] * d[l];
+          by_x = true;
+        }
+        if (dense_partner[l][i] != 0.)
+        {
+          sp += dense_partner[l][i] * d[l];
+          by_partner = true;
+        }
+      }
+      if (by_x)
+      {
+        ey[i] += s;
+        ez[i] += t;
+        ew[i] += s;
+      }
+      if (by_partner)
+        ew[i] += sp;
+    }
+    X.add(c, y, d, z);
+    X.add_with_partners(c, d, w);
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      EXPECT_EQ(y[i], ey[i]) << "stride " << stride << ", " << i;
+      EXPECT_EQ(z[i], ez[i]) << "stride " << stride << ", " << i;
+      EXPECT_EQ(w[i], ew[i]) << "stride " << stride << ", " << i;
+    }
+  }
+}
+
 // sum() and sum_with_partners() leave the sums of add() and
 // add_with_partners() for the caller (BDF-2 adds them in its one pass over the
 // unknowns). Added on their rows in the documented order they must give

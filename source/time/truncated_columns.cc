@@ -69,6 +69,75 @@ std::vector<UnknownEntries> entries_by_unknown(const std::vector<SparseRow>& col
   return by_unknown;
 }
 
+using Quad = double __attribute__((vector_size(32)));
+
+/// What the slices' sums s (of c) and t (of d) add to: y += s (set 0 reaches),
+/// y += s and z += t (set 0), or y += s (set 0), then y += t (set 1).
+enum class Target : int
+{
+  y,
+  y_and_z,
+  y_then_partners
+};
+
+/**
+ * The sums of every slice, four unknowns at once, and their additions
+ * (Target). The sum of lane j: its products in the order of the columns,
+ * zeros included (a zero product leaves a sum that starts at +0 as it is:
+ * it is never -0), so each unknown's sum is that over its entries alone.
+ */
+__attribute__((target_clones("avx2", "default"))) void
+add_slices(const TruncatedColumns::Slice* slices, const std::size_t count,
+           const unsigned int* __restrict column, const double* __restrict value,
+           const unsigned int sets, const unsigned int set_d, const double* __restrict c,
+           const double* __restrict d, const Target target, double* __restrict y,
+           double* __restrict z)
+{
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    const TruncatedColumns::Slice& slice = slices[k];
+    const double* v = value + slice.offset;
+    const unsigned int* l = column + slice.first;
+    Quad s = {0., 0., 0., 0.}, t = {0., 0., 0., 0.};
+    if (d)
+      for (unsigned int e = 0; e < slice.length; ++e)
+      {
+        Quad a, b;
+        std::memcpy(&a, v + 4 * sets * e, sizeof a);
+        std::memcpy(&b, v + 4 * (sets * e + set_d), sizeof b);
+        s += a * c[l[e]];
+        t += b * d[l[e]];
+      }
+    else
+      for (unsigned int e = 0; e < slice.length; ++e)
+      {
+        Quad a;
+        std::memcpy(&a, v + 4 * sets * e, sizeof a);
+        s += a * c[l[e]];
+      }
+    for (unsigned int j = 0; j < 4; ++j)
+    {
+      const int i = slice.unknown[j];
+      const unsigned char reached = slice.reached_by[j];
+      if (i < 0)
+        break;
+      if (target == Target::y_then_partners)
+      {
+        if (reached & 1u)
+          y[i] += s[j];
+        if (reached & 2u)
+          y[i] += t[j];
+      }
+      else if (reached & 1u)
+      {
+        y[i] += s[j];
+        if (target == Target::y_and_z)
+          z[i] += t[j];
+      }
+    }
+  }
+}
+
 /**
  * acc += c[l] X_l (and, with @p d, acc_d += d[l] X_l) over the columns l, by
  * their runs of consecutive unknowns: each unknown's sum takes its products
@@ -227,6 +296,12 @@ void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
     column_runs[1].initialize(partners, n_dofs);
   acc.assign(n_dofs, 0.);
   acc_d.assign(n_dofs, 0.);
+  // Runs of a few entries (an FDM's M^-1 G^T: a dropper's two nodes) cost
+  // more per entry than the slices.
+  const std::size_t run_count = column_runs[0].runs.size() + column_runs[1].runs.size();
+  const std::size_t run_entries =
+      column_runs[0].value.size() + column_runs[1].value.size();
+  by_runs = run_entries >= 4 * run_count;
 }
 
 std::size_t TruncatedColumns::n_slice_operations() const
@@ -266,6 +341,12 @@ void TruncatedColumns::row_products(const SparseRow& g, const unsigned int set,
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y) const
 {
+  if (!by_runs)
+  {
+    add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 0,
+               c.data(), nullptr, Target::y, y.begin(), nullptr);
+    return;
+  }
   // An unknown no column reaches is not touched (y_i += 0 would make a -0 +0).
   const ColumnRuns& x = column_runs[0];
   accumulate_runs(m, c.data(), nullptr, x.run_start.data(), x.runs.data(), x.value.data(),
@@ -288,6 +369,7 @@ TruncatedColumns::sum_with_partners(const std::vector<double>& c,
                                     const std::vector<double>& d) const
 {
   Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
+  Assert(by_runs, dealii::ExcMessage("sum_with_partners() needs the columns by runs"));
   for (unsigned int set = 0; set < 2; ++set)
   {
     const ColumnRuns& x = column_runs[set];
@@ -301,6 +383,12 @@ TruncatedColumns::sum_with_partners(const std::vector<double>& c,
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,
                            const std::vector<double>& d, dealii::Vector<double>& z) const
 {
+  if (!by_runs)
+  {
+    add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 0,
+               c.data(), d.data(), Target::y_and_z, y.begin(), z.begin());
+    return;
+  }
   const Sums s = sum(c, d);
   add_and_clear(s.first_rows->data(), s.first_rows->size(), s.first, y.begin(), s.second,
                 z.begin());
@@ -310,6 +398,12 @@ void TruncatedColumns::add_with_partners(const std::vector<double>& c,
                                          const std::vector<double>& d,
                                          dealii::Vector<double>& y) const
 {
+  if (!by_runs)
+  {
+    add_slices(slices.data(), slices.size(), column.data(), value.data(), sets, 1,
+               c.data(), d.data(), Target::y_then_partners, y.begin(), nullptr);
+    return;
+  }
   // On each unknown, y += the sum over X first, then y += that over X'.
   const Sums s = sum_with_partners(c, d);
   add_and_clear(s.first_rows->data(), s.first_rows->size(), s.first, y.begin(), nullptr,

@@ -29,7 +29,10 @@ SparseRow truncated(const dealii::Vector<double>& column);
  * same columns). For X c, each column is kept as runs of consecutive
  * unknowns (a column of a FEM wire is one or two runs): X c sums column by
  * column into an accumulator, four unknowns at once along a run, then adds
- * the accumulator to y on the reached unknowns and clears it. (Adding the
+ * the accumulator to y on the reached unknowns and clears it. Where the
+ * runs are short (under four entries on average: an FDM's M^-1 G^T, a
+ * dropper's two nodes), X c runs down the slices instead, four unknowns at
+ * once, each unknown's sum in the same order. (Adding the
  * products of unknowns that one column alone reaches straight into y was
  * tried: 135-138 instead of 125 us per FEM + BDF-2 step at 200 droppers
  * 5 m apart.) Each unknown's sum takes its products in
@@ -88,6 +91,9 @@ public:
     const RowRanges* first_rows;
     const RowRanges* second_rows;
   };
+  /// True if X c goes by the runs (their mean length is 4 or more); sum() and
+  /// sum_with_partners() are offered then only.
+  bool adds_by_runs() const { return by_runs; }
   /// The stretches of rows that the columns of each set reach, together.
   std::size_t n_row_ranges() const
   {
@@ -145,6 +151,8 @@ private:
   std::vector<unsigned int> column; ///< the slices' columns (Slice)
   std::vector<double> value;        ///< the slices' values (Slice)
   ColumnRuns column_runs[2];        ///< of X and of X'
+  /// add() and add_with_partners() by the runs (else by the slices).
+  bool by_runs = true;
 
   /// The sums of X c and X d (zero between calls).
   mutable std::vector<double> acc, acc_d;
