@@ -55,13 +55,15 @@ n_unknowns=$(grep -c '^"' "$work/unknowns.dat")
 constraints_dat="$work/$(basename "$constraints" .md).dat"
 section_dat="$work/$(basename "$section" .md).dat"
 n_constraints=$(grep -c '^"' "$constraints_dat")
-gnuplot <<EOF
-set terminal pngcairo size 1000,650 noenhanced
+# The settings all three plots share.
+preamble="set terminal pngcairo size 1000,650 noenhanced
 set colorsequence podo
 set logscale xy
 set format x '%g'
 set grid xtics ytics mxtics mytics
-set key top left
+set key top left"
+gnuplot <<EOF
+$preamble
 set output 'doc/figures/scaling-unknowns.png'
 set title "Time per step against unknowns n (bench_scaling: 20 m spans repeated, dx = 0.04 m, m = 3 per span)" font ',11'
 set xrange [500:200000]
@@ -79,12 +81,7 @@ echo "wrote doc/figures/scaling-unknowns.png doc/figures/scaling-constraints.png
 if [ -f "$section_dat" ]; then
   n_section=$(grep -c '^"' "$section_dat")
   gnuplot <<EOF
-set terminal pngcairo size 1000,650 noenhanced
-set colorsequence podo
-set logscale xy
-set format x '%g'
-set grid xtics ytics mxtics mytics
-set key top left
+$preamble
 set output 'doc/figures/scaling-constraints-section.png'
 set title "Time per step against fixed constraints m on a 1000 m span (m = 200: 5 m apart, a real section's density; m = 0 drawn at 1)" font ',11'
 set xlabel 'fixed constraints m (droppers)'

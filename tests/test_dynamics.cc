@@ -1052,6 +1052,27 @@ TEST(TruncatedColumns, ProductsAreTheDenseSumsInTheSameOrder)
     EXPECT_EQ(products[l], 0. + 2. * dense[l][3] + -1.5 * dense[l][12]) << l;
 }
 
+namespace
+{
+/// Six overlapping columns X_l (unknowns 0 .. 39) and partners X'_l (3 .. 46,
+/// every other unknown for odd l) with random entries in [-1, 1].
+void columns_with_partners(std::mt19937& random, std::vector<SparseRow>& columns,
+                           std::vector<SparseRow>& partners)
+{
+  std::uniform_real_distribution<double> value(-1., 1.);
+  const unsigned int m = 6;
+  columns.assign(m, SparseRow());
+  partners.assign(m, SparseRow());
+  for (unsigned int l = 0; l < m; ++l)
+  {
+    for (unsigned int i = 6 * l; i < 6 * l + 10; ++i)
+      columns[l].add(i, value(random));
+    for (unsigned int i = 6 * l + 3; i < 6 * l + 12 + l; i += (l % 2 ? 2 : 1))
+      partners[l].add(i, value(random));
+  }
+}
+} // namespace
+
 // Partner columns X'_l share the pattern of X_l (the union of both, a
 // missing entry stored as 0), so that one pass adds X c and then X' d. That
 // must be what two separate stores add, to the bit: the sums see the same
@@ -1063,14 +1084,8 @@ TEST(TruncatedColumns, PartnersOnTheUnionPatternAddWhatTwoStoresAdd)
   const unsigned int n = 70, m = 6;
   std::mt19937 random(23);
   std::uniform_real_distribution<double> value(-1., 1.);
-  std::vector<SparseRow> columns(m), partners(m);
-  for (unsigned int l = 0; l < m; ++l)
-  {
-    for (unsigned int i = 6 * l; i < 6 * l + 10; ++i) // X: unknowns 0 .. 39
-      columns[l].add(i, value(random));
-    for (unsigned int i = 6 * l + 3; i < 6 * l + 12 + l; i += (l % 2 ? 2 : 1))
-      partners[l].add(i, value(random)); // X': 3 .. 46, with gaps
-  }
+  std::vector<SparseRow> columns, partners;
+  columns_with_partners(random, columns, partners);
   TruncatedColumns X, X1, X2;
   X.initialize(columns, n, partners);
   X1.initialize(columns, n);
@@ -1206,14 +1221,8 @@ TEST(TruncatedColumns, SumsLeftToTheCallerAreTheAdditionsToTheBit)
   const unsigned int n = 70, m = 6;
   std::mt19937 random(31);
   std::uniform_real_distribution<double> value(-1., 1.);
-  std::vector<SparseRow> columns(m), partners(m);
-  for (unsigned int l = 0; l < m; ++l)
-  {
-    for (unsigned int i = 6 * l; i < 6 * l + 10; ++i)
-      columns[l].add(i, value(random));
-    for (unsigned int i = 6 * l + 3; i < 6 * l + 12 + l; i += (l % 2 ? 2 : 1))
-      partners[l].add(i, value(random));
-  }
+  std::vector<SparseRow> columns, partners;
+  columns_with_partners(random, columns, partners);
   TruncatedColumns X;
   X.initialize(columns, n, partners);
   std::vector<double> c(m), d(m);
