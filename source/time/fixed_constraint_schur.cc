@@ -47,51 +47,6 @@ std::vector<Entry> lower_entries(const std::vector<const SparseRow*>& rows,
   }
   return lower;
 }
-/**
- * y += f[k] A^-1 G_k^T over the columns k with f[k] != 0, the columns given by
- * their runs of consecutive unknowns (FixedConstraintSchur::Run): each entry as
- * the loop over the flat entries makes it, y_i += f[k] value (compiled for AVX2
- * beside the baseline, without fused multiply-add: the same bits either way).
- */
-__attribute__((target_clones("avx2", "default"))) void
-add_runs(const unsigned int m, const double* __restrict f,
-         const unsigned int* __restrict run_start,
-         const FixedConstraintSchur::Run* __restrict runs, const double* __restrict value,
-         double* __restrict y)
-{
-  for (unsigned int k = 0; k < m; ++k)
-    if (const double fk = f[k]; fk != 0.)
-      for (unsigned int r = run_start[k]; r < run_start[k + 1]; ++r)
-      {
-        const double* __restrict v = value + runs[r].offset;
-        double* __restrict out = y + runs[r].first;
-        for (unsigned int j = 0; j < runs[r].length; ++j)
-          out[j] += fk * v[j];
-      }
-}
-
-/// add_runs() into y with f and into z with g, in one pass over the columns.
-__attribute__((target_clones("avx2", "default"))) void
-add_runs_pair(const unsigned int m, const double* __restrict f,
-              const double* __restrict g, const unsigned int* __restrict run_start,
-              const FixedConstraintSchur::Run* __restrict runs,
-              const double* __restrict value, double* __restrict y, double* __restrict z)
-{
-  for (unsigned int k = 0; k < m; ++k)
-    if (const double fk = f[k], gk = g[k]; fk != 0. || gk != 0.)
-      for (unsigned int r = run_start[k]; r < run_start[k + 1]; ++r)
-      {
-        const double* __restrict v = value + runs[r].offset;
-        double* __restrict out_y = y + runs[r].first;
-        double* __restrict out_z = z + runs[r].first;
-        for (unsigned int j = 0; j < runs[r].length; ++j)
-        {
-          out_y[j] += fk * v[j];
-          out_z[j] += gk * v[j];
-        }
-      }
-}
-
 /// y += w, then w = 0, in one pass.
 void add_and_clear(dealii::Vector<double>& w, dealii::Vector<double>& y)
 {
@@ -175,15 +130,13 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     return;
   columns.clear();
   std::vector<Entry> lower = lower_entries(G, A, n_dofs, diagonal, columns);
-  flat_columns.clear();
-  for (const SparseRow& c : columns)
-    flat_columns.push_back(c);
+  column_runs.initialize(columns, n_dofs);
   rows.clear();
   if (!A.keep_columns && static_cast<double>(n_column_entries()) > A.solve_cost &&
       A.solve)
   {
     // One solve with G_F^T lambda reads fewer entries than the columns.
-    flat_columns.clear();
+    column_runs.clear();
     for (const SparseRow* g : G)
       rows.push_back(*g);
     solve_with_A = A.solve;
@@ -192,8 +145,7 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     work.reinit(n_dofs);
     work_pair.reinit(n_dofs);
   }
-  find_runs();
-  // add_columns() reads the flat copy; the rows are kept only when asked for.
+  // add_columns() reads the runs; the rows are kept only when asked for.
   if (!A.keep_columns)
     columns = {};
   for (unsigned int k = 0; k < n; ++k)
@@ -311,8 +263,7 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& factors,
     add_and_clear(work, y);
     return;
   }
-  add_runs(n, factors.data(), run_start.data(), runs.data(), flat_columns.value.data(),
-           y.begin());
+  column_runs.add(factors.data(), nullptr, y.begin(), nullptr);
 }
 
 void FixedConstraintSchur::add_columns(const std::vector<double>& f,
@@ -348,24 +299,7 @@ void FixedConstraintSchur::add_columns(const std::vector<double>& f,
     work_pair.clear();
     return;
   }
-  add_runs_pair(n, f.data(), g.data(), run_start.data(), runs.data(),
-                flat_columns.value.data(), y.begin(), z.begin());
-}
-
-void FixedConstraintSchur::find_runs()
-{
-  runs.clear();
-  run_start.assign(1, 0);
-  const std::vector<unsigned int>& index = flat_columns.index;
-  for (unsigned int k = 0; k < flat_columns.size(); ++k)
-  {
-    for (unsigned int e = flat_columns.start[k]; e < flat_columns.start[k + 1]; ++e)
-      if (e > flat_columns.start[k] && index[e] == index[e - 1] + 1)
-        ++runs.back().length;
-      else
-        runs.push_back({index[e], 1, e});
-    run_start.push_back(runs.size());
-  }
+  column_runs.add(f.data(), g.data(), y.begin(), z.begin());
 }
 
 void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
@@ -382,7 +316,7 @@ void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
 
 std::size_t FixedConstraintSchur::n_column_entries() const
 {
-  return flat_columns.index.size();
+  return column_runs.n_entries();
 }
 
 void FixedConstraintSchur::solve(dealii::Vector<double>& x) const

@@ -138,46 +138,6 @@ add_slices(const TruncatedColumns::Slice* slices, const std::size_t count,
   }
 }
 
-/**
- * acc += c[l] X_l (and, with @p d, acc_d += d[l] X_l) over the columns l, by
- * their runs of consecutive unknowns: each unknown's sum takes its products
- * in the order of the columns, from +0, as a sum over its entries alone
- * (compiled for AVX2 beside the baseline, without fused multiply-add: the
- * same bits either way). A column with c[l] = d[l] = 0 is skipped: its
- * products, +-0, leave a sum that is never -0 as it is.
- */
-__attribute__((target_clones("avx2", "default"))) void
-accumulate_runs(const unsigned int m, const double* __restrict c,
-                const double* __restrict d, const unsigned int* __restrict run_start,
-                const TruncatedColumns::Run* __restrict runs,
-                const double* __restrict value, double* __restrict acc,
-                double* __restrict acc_d)
-{
-  for (unsigned int l = 0; l < m; ++l)
-  {
-    const double cl = c[l], dl = d ? d[l] : 0.;
-    if (cl == 0. && dl == 0.)
-      continue;
-    for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
-    {
-      const double* __restrict v = value + runs[r].offset;
-      double* __restrict a = acc + runs[r].first;
-      if (d)
-      {
-        double* __restrict b = acc_d + runs[r].first;
-        for (unsigned int j = 0; j < runs[r].length; ++j)
-        {
-          a[j] += cl * v[j];
-          b[j] += dl * v[j];
-        }
-      }
-      else
-        for (unsigned int j = 0; j < runs[r].length; ++j)
-          a[j] += cl * v[j];
-    }
-  }
-}
-
 /// y += acc (and z += acc_z) on @p ranges, and acc (acc_z) = 0 there.
 __attribute__((target_clones("avx2", "default"))) void
 add_and_clear(const RowRange* ranges, const std::size_t count, double* __restrict acc,
@@ -196,37 +156,6 @@ add_and_clear(const RowRange* ranges, const std::size_t count, double* __restric
     }
 }
 } // namespace
-
-void TruncatedColumns::ColumnRuns::initialize(const std::vector<SparseRow>& columns,
-                                              const unsigned int n_dofs)
-{
-  runs.clear();
-  run_start.assign(1, 0);
-  value.clear();
-  std::vector<char> reached(n_dofs, 0);
-  for (const SparseRow& c : columns)
-  {
-    for (std::size_t k = 0; k < c.size(); ++k)
-    {
-      if (k > 0 && c.index[k] == c.index[k - 1] + 1)
-        ++runs.back().length;
-      else
-        runs.push_back({c.index[k], 1, value.size()});
-      value.push_back(c.value[k]);
-      reached[c.index[k]] = 1;
-    }
-    run_start.push_back(runs.size());
-  }
-  ranges.clear();
-  for (unsigned int i = 0; i < n_dofs; ++i)
-    if (reached[i])
-    {
-      if (!ranges.empty() && ranges.back().last == static_cast<int>(i))
-        ++ranges.back().last;
-      else
-        ranges.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
-    }
-}
 
 void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
                                   const unsigned int n_dofs,
@@ -291,16 +220,15 @@ void TruncatedColumns::initialize(const std::vector<SparseRow>& columns,
   }
   // add() and add_with_partners() read the columns by runs.
   column_runs[0].initialize(columns, n_dofs);
-  column_runs[1] = ColumnRuns();
+  column_runs[1].clear();
   if (sets == 2)
     column_runs[1].initialize(partners, n_dofs);
   acc.assign(n_dofs, 0.);
   acc_d.assign(n_dofs, 0.);
   // Runs of a few entries (an FDM's M^-1 G^T: a dropper's two nodes) cost
   // more per entry than the slices.
-  const std::size_t run_count = column_runs[0].runs.size() + column_runs[1].runs.size();
-  const std::size_t run_entries =
-      column_runs[0].value.size() + column_runs[1].value.size();
+  const std::size_t run_count = column_runs[0].n_runs() + column_runs[1].n_runs();
+  const std::size_t run_entries = column_runs[0].n_entries() + column_runs[1].n_entries();
   by_runs = run_entries >= 4 * run_count;
 }
 
@@ -349,19 +277,18 @@ void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>&
   }
   // An unknown no column reaches is not touched (y_i += 0 would make a -0 +0).
   const ColumnRuns& x = column_runs[0];
-  accumulate_runs(m, c.data(), nullptr, x.run_start.data(), x.runs.data(), x.value.data(),
-                  acc.data(), nullptr);
-  add_and_clear(x.ranges.data(), x.ranges.size(), acc.data(), y.begin(), nullptr,
+  x.add(c.data(), nullptr, acc.data(), nullptr);
+  add_and_clear(x.reached().data(), x.reached().size(), acc.data(), y.begin(), nullptr,
                 nullptr);
 }
 
 TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c,
                                              const std::vector<double>& d) const
 {
+  Assert(by_runs, dealii::ExcMessage("sum() needs the columns by runs"));
   const ColumnRuns& x = column_runs[0];
-  accumulate_runs(m, c.data(), d.data(), x.run_start.data(), x.runs.data(),
-                  x.value.data(), acc.data(), acc_d.data());
-  return {acc.data(), acc_d.data(), &x.ranges, &x.ranges};
+  x.add(c.data(), d.data(), acc.data(), acc_d.data());
+  return {acc.data(), acc_d.data(), &x.reached(), &x.reached()};
 }
 
 TruncatedColumns::Sums
@@ -370,14 +297,9 @@ TruncatedColumns::sum_with_partners(const std::vector<double>& c,
 {
   Assert(sets == 2, dealii::ExcMessage("no partner columns stored"));
   Assert(by_runs, dealii::ExcMessage("sum_with_partners() needs the columns by runs"));
-  for (unsigned int set = 0; set < 2; ++set)
-  {
-    const ColumnRuns& x = column_runs[set];
-    accumulate_runs(m, (set == 0 ? c : d).data(), nullptr, x.run_start.data(),
-                    x.runs.data(), x.value.data(), (set == 0 ? acc : acc_d).data(),
-                    nullptr);
-  }
-  return {acc.data(), acc_d.data(), &column_runs[0].ranges, &column_runs[1].ranges};
+  column_runs[0].add(c.data(), nullptr, acc.data(), nullptr);
+  column_runs[1].add(d.data(), nullptr, acc_d.data(), nullptr);
+  return {acc.data(), acc_d.data(), &column_runs[0].reached(), &column_runs[1].reached()};
 }
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/lac/column_runs.h>
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
@@ -113,14 +114,6 @@ public:
   /// Number of stored entries of the truncated columns.
   std::size_t n_column_entries() const;
 
-  /// A run of consecutive unknowns [first, first + length) of a truncated
-  /// column, its values at entries [offset, offset + length) of the flat copy.
-  struct Run
-  {
-    unsigned int first, length;
-    std::size_t offset;
-  };
-
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
   /// The same for several vectors, substituted side by side (four at a time).
@@ -130,13 +123,8 @@ private:
   unsigned int n = 0;
   std::string what;
   std::vector<SparseRow> columns; ///< A^-1 G_k^T, truncated (keep_columns only)
-  CompressedRows flat_columns;    ///< the same columns stored flat (or none)
-  /// The flat columns' runs: column k's are runs[run_start[k] .. run_start[k + 1]).
-  std::vector<Run> runs;
-  std::vector<unsigned int> run_start{0};
-  /// Splits the flat columns into their runs.
-  void find_runs();
-  std::vector<SparseRow> rows; ///< G_k, when the columns are dropped
+  ColumnRuns column_runs;         ///< the same columns by runs (or none)
+  std::vector<SparseRow> rows;    ///< G_k, when the columns are dropped
   std::function<void(dealii::Vector<double>&)> solve_with_A;
   std::function<void(InterleavedColumns&)> solve_columns_with_A;
   bool solve_one_at_a_time = false;     ///< ColumnSolver::solve_one_at_a_time

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/lac/sparse_direct_solver.h>
+#include <pantocat/lac/column_runs.h>
 #include <pantocat/system/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
@@ -97,7 +97,7 @@ public:
   /// The stretches of rows that the columns of each set reach, together.
   std::size_t n_row_ranges() const
   {
-    return column_runs[0].ranges.size() + column_runs[1].ranges.size();
+    return column_runs[0].reached().size() + column_runs[1].reached().size();
   }
   /// The sums of add(c, y, d, z), not added.
   Sums sum(const std::vector<double>& c, const std::vector<double>& d) const;
@@ -120,26 +120,7 @@ public:
     std::array<unsigned char, 4> reached_by{{0, 0, 0, 0}};
   };
 
-  /// A run of consecutive unknowns [first, first + length) of a column, its
-  /// values at [offset, offset + length) of ColumnRuns::value.
-  struct Run
-  {
-    unsigned int first, length;
-    std::size_t offset;
-  };
-
 private:
-  /// One set's columns by runs: column l's are runs[run_start[l] .. run_start[l + 1]);
-  /// ranges: the unknowns that some column reaches.
-  struct ColumnRuns
-  {
-    std::vector<Run> runs;
-    std::vector<unsigned int> run_start{0};
-    std::vector<double> value;
-    RowRanges ranges;
-    void initialize(const std::vector<SparseRow>& columns, unsigned int n_dofs);
-  };
-
   /// The entries of one set (0: X, 1: X') on the shared pattern.
   void row_products(const SparseRow& g, unsigned int set, std::vector<double>& out) const;
 
