@@ -526,12 +526,12 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       x.lambda[unknowns[u].constraint] = y(u);
 
   // q, v, a are formed from the base and the fixed forces' sums in
-  // combine_trial()'s pass (no copy, no zeroing), unless the forces come
-  // from solves (many constraints close together on a FEM grid) or their
-  // sums reach many short stretches of rows.
-  const bool forces_by_solves = mF > 0 && !block.sums_in_one_pass();
+  // combine_trial()'s pass (no copy, no zeroing), unless add_forces() adds
+  // them first: by solves (many constraints close together on a FEM grid) or
+  // when their sums reach many short stretches of rows.
+  const bool forces_added_first = mF > 0 && !block.sums_in_one_pass();
   GglFixedBlock::ForceSums sums;
-  if (forces_by_solves)
+  if (forces_added_first)
   {
     x.q = s.base;
     x.v.reinit(n);
@@ -564,8 +564,8 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
   combine_trial(border_terms, reach, c, rho_q, rho_v,
-                forces_by_solves ? nullptr : &s.base,
-                mF > 0 && !forces_by_solves ? &sums : nullptr, x);
+                forces_added_first ? nullptr : &s.base,
+                mF > 0 && !forces_added_first ? &sums : nullptr, x);
 }
 
 namespace
