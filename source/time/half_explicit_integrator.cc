@@ -390,11 +390,21 @@ void HalfExplicitIntegrator::compute_forces()
   predicted = false;
   if (free_acceleration_ready)
   {
-    std::copy(free_acceleration.begin(), free_acceleration.end(), out);
+    if (free_acceleration_taken)
+      solve_free_acceleration();
+    a.swap(free_acceleration);
+    free_acceleration_taken = true;
     return;
   }
   unscaled_forces(out);
   smoothed_mass_inverse.apply(a);
+}
+
+void HalfExplicitIntegrator::solve_free_acceleration()
+{
+  free_acceleration.reinit(system.n_dofs(), true);
+  unscaled_forces(free_acceleration.begin());
+  smoothed_mass_inverse.factorised()->solve(free_acceleration);
 }
 
 void HalfExplicitIntegrator::unscaled_forces(double* out)
@@ -1297,6 +1307,7 @@ void HalfExplicitIntegrator::prepare_step()
   }
   compute_moving_columns();
   free_acceleration_ready = fuse;
+  free_acceleration_taken = false;
 }
 
 void HalfExplicitIntegrator::advance()

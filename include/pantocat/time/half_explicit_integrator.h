@@ -231,12 +231,16 @@ private:
    * When M + dt/2 D is factorised, the acceleration without the rigid
    * constraints' forces, a* = (M + dt/2 D)^-1 (f - K q - D (v_prev + v)/2 +
    * G_c^T lambda_c), does not depend on the active set: advance() solves it
-   * once per step, in the same sweep over the band as the first moving
-   * constraint's column Y (the substitutions are latency-bound, so two
-   * right-hand sides cost about one), and compute_forces() copies it.
+   * once per step, with the first moving constraint's columns, and
+   * compute_forces() swaps it into a (no copy). A second trial of the step
+   * (an active-set iteration) finds it taken and solves it again
+   * (solve_free_acceleration(): the same operations, the same bits).
    */
   dealii::Vector<double> free_acceleration;
-  bool free_acceleration_ready = false;
+  bool free_acceleration_ready = false, free_acceleration_taken = false;
+  /// free_acceleration = (M + dt/2 D)^-1 (unscaled_forces()), as prepare_step()
+  /// and compute_moving_columns() make it.
+  void solve_free_acceleration();
   /// The rows at t_n, t_{n+1/2}, t_{n+1}, then the moving constraints' columns
   /// at t_n, with a* beside the first (see above).
   void prepare_step();
