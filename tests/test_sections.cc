@@ -5,6 +5,7 @@
 #include <pantocat/catenary/wave_speeds.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/run_statistics.h>
+#include <pantocat/system/pattern_operators.h>
 
 #include "support/case_files.h"
 
@@ -261,4 +262,29 @@ TEST(Sections, ASpeedRampStartsTheLeaderWithoutAShock)
             << " N at speed from t = 0, " << smooth << " N with a 2 s ramp\n";
   EXPECT_GT(shock, 3. * 169.);
   EXPECT_LT(smooth, 1.5 * 169.);
+}
+
+// A long section's FEM grid is as uniform as a short one's: every cell of the
+// same length adds the same cell matrices, so the rows of M, D and K repeat
+// to the bit along the whole wire and PatternOperators sums all but the
+// wires' ends and the pantograph from its stretches (the implicit methods'
+// history f + M h + D r), as on the paper's 20 m span (> 99 % of the rows,
+// test_dynamics). 30 of the paper's spans end to end (600 m, h = 0.04 m,
+// 45 001 unknowns): beyond x = 512 m two cells' lengths, each from its
+// rounded vertices, differ by up to ulp(x) = 1.1e-13 m = 2.8e-12 h. Compared
+// to 1e-12 of the length, those cells took matrices of their own, which
+// differ in the last bits: 38 397 rows (85 %) were in stretches, and at 10^5
+// unknowns half the rows, with a step two to three times dearer per unknown
+// (doc/benchmarks.md, "Cost per step against n and m").
+TEST(Sections, ALongUniformFemGridRepeatsItsRowsToTheBit)
+{
+  const ProgramParameters p = read_case(
+      source_file("prm/benchmark-32.prm"),
+      {"Catenary/Number of spans=30", "Pantograph/Final position=598",
+       "Discretisation/Method=fem", "Discretisation/Number of intervals=15000"});
+  CaseRunner simulation(p.make_case(), {});
+  const SemiDiscreteSystem& system = simulation.system();
+  PatternOperators operators(system);
+  EXPECT_GT(operators.rows_in_stretches(), 0.99 * system.n_dofs())
+      << "n = " << system.n_dofs();
 }
