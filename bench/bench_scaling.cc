@@ -9,7 +9,7 @@
 // and unknown. Steps: dt = 5e-5 s, and half the explicit stability limit for
 // FEM + half-explicit (the limit does not depend on s at a fixed h).
 // Usage: bench_scaling [spans ...] [--only=fem+half-explicit] (one column)
-// (default 1 3 10 30 100); prints a Markdown table.
+// (default 1 3 10 30 45 66 100); prints a Markdown table.
 #include "bench_error.h"
 
 #include <pantocat/app/program_parameters.h>
@@ -120,7 +120,7 @@ try
     else
       spans.push_back(std::atoi(argv[i]));
   if (spans.empty())
-    spans = {1, 3, 10, 30, 100};
+    spans = {1, 3, 10, 30, 45, 66, 100};
   std::vector<Column> columns = {{"fdm", "half-explicit"},
                                  {"fem", "half-explicit"},
                                  {"fem", "bdf2"},
