@@ -179,11 +179,11 @@ struct CellMatrices
 };
 /**
  * Whether a cell of @p length, whose vertices lie within @p reach of the
- * origin, has the length @p kept up to the rounding of its vertices: each
- * vertex is within half an ulp of its position, so two cells of one uniform
- * grid differ by at most 2 ulp(reach), about 4.4e-16 reach (on a 1320 m
- * wire with h = 0.04 m, 7e-12 h, more than a bound relative to h allows),
- * or by 1e-12 of their length.
+ * origin, has the length @p kept up to the rounding of its vertices, or to
+ * 1e-12 of its length. Each vertex is within half an ulp of its position,
+ * so two cells of one uniform grid differ by up to 2 ulp(reach) <= 4.4e-16
+ * reach (bound: 4 eps reach = 8.9e-16 reach). With h = 0.04 m one ulp is
+ * already 2.8e-12 h beyond 512 m, more than the relative bound allows.
  */
 bool same_cell_length(const double length, const double kept, const double reach)
 {
