@@ -3,8 +3,9 @@
 // the two droppers of each span, the two-mass pantograph at 32 m/s) repeated
 // over s spans with the grid spacing fixed at the paper's dx = 0.04 m
 // (N+1 = 500 s), so that n and the number m of constraints both grow with s.
-// For FDM + half-explicit, FEM + half-explicit, FEM + BDF-2 and FEM +
-// generalized-alpha: the time per step (integrator alone, start-up not
+// For FDM + half-explicit, FEM + half-explicit, FEM + BDF-2, FEM +
+// generalized-alpha, FDM + BDF-2 and FDM + generalized-alpha: the time per
+// step (integrator alone, start-up not
 // timed, the fastest of 3 batches of about 0.1 s each), and the time per step
 // and unknown. Steps: dt = 5e-5 s, and half the explicit stability limit for
 // FEM + half-explicit (the limit does not depend on s at a fixed h).
@@ -121,10 +122,9 @@ try
       spans.push_back(std::atoi(argv[i]));
   if (spans.empty())
     spans = {1, 3, 10, 30, 45, 66, 100};
-  std::vector<Column> columns = {{"fdm", "half-explicit"},
-                                 {"fem", "half-explicit"},
-                                 {"fem", "bdf2"},
-                                 {"fem", "generalized-alpha"}};
+  std::vector<Column> columns = {{"fdm", "half-explicit"}, {"fem", "half-explicit"},
+                                 {"fem", "bdf2"},          {"fem", "generalized-alpha"},
+                                 {"fdm", "bdf2"},          {"fdm", "generalized-alpha"}};
   if (!only.empty())
     columns.erase(std::remove_if(columns.begin(), columns.end(),
                                  [&](const Column& c)
@@ -133,7 +133,8 @@ try
   if (columns.empty())
     throw std::invalid_argument("--only=" + only +
                                 ": not a column (fdm+half-explicit, fem+half-explicit, "
-                                "fem+bdf2, fem+generalized-alpha)");
+                                "fem+bdf2, fem+generalized-alpha, fdm+bdf2, "
+                                "fdm+generalized-alpha)");
   std::vector<double> steps;
   for (const Column& c : columns)
     steps.push_back(c.method == "fem" && c.integrator == "half-explicit"
