@@ -110,16 +110,26 @@ sweep_by_diagonals(const Block& x, const std::vector<int>& k_offsets,
  * The rows [@p begin, @p end) of a run, from its two rows' coefficients (@p
  * kc, @p dc: [offset index][parity], parity 0 at @p begin; every offset
  * reaches inside the matrix): four rows at once, each row's terms summed in
- * a register until it is done (no partial sums through memory), the
- * velocity sums formed where they are read. The terms, their order and each
- * operation are those of sweep_by_diagonals(), so the bits are the same.
+ * a register until it is done (no partial sums through memory). The
+ * velocity sums v_{n-1} + v_n are formed once per row, a block of rows and
+ * its band's reach at a time into @p u (block + 6 entries, in the
+ * first-level cache), and each damping term reads them there: the row's
+ * seven damping terms then take a load each instead of two loads and an
+ * addition. Eight rows per iteration, in two independent vectors of four,
+ * so that two rows' chains of subtractions overlap. On rows in the
+ * second-level cache this sweep takes 0.82-0.89 of the time of the one
+ * before (four rows at once, velocity sums formed at every term; session
+ * 26, both kernels timed in one program, n = 1500 to 15 000). The terms,
+ * their order and each operation are those of
+ * sweep_by_diagonals(), so the bits are the same. Compiled for AVX2 beside
+ * the baseline (no fused multiply-add).
  */
 __attribute__((target_clones("avx2", "default"))) void sweep_run(
     const int begin, const int end, const double* __restrict f,
     const double* __restrict q, const double* __restrict vp, const double* __restrict v,
     double* __restrict out, const std::vector<int>& k_offsets,
     const std::array<std::array<double, 2>, 7>& kc, const std::vector<int>& d_offsets,
-    const std::array<std::array<double, 2>, 7>& dc)
+    const std::array<std::array<double, 2>, 7>& dc, double* __restrict u)
 {
   using Quad = double __attribute__((vector_size(32)));
   const auto load = [](const double* x)
@@ -136,30 +146,61 @@ __attribute__((target_clones("avx2", "default"))) void sweep_run(
     ko[j] = k_offsets[j];
     kq[j] = Quad{kc[j][0], kc[j][1], kc[j][0], kc[j][1]};
   }
+  int reach = 0; // the damping offsets lie in [-reach, reach]
   for (int j = 0; j < nd; ++j)
   {
     dof[j] = d_offsets[j];
     dq[j] = Quad{dc[j][0], dc[j][1], dc[j][0], dc[j][1]};
+    reach = std::max(reach, std::abs(dof[j]));
   }
-  int i = begin;
-  for (; i + 4 <= end; i += 4)
+  // Blocks of an even number of rows: the parity of a row is its distance
+  // from begin.
+  for (int first = begin; first < end; first += block)
   {
-    Quad s = load(f + i);
-    for (int j = 0; j < nk; ++j)
-      s -= kq[j] * load(q + i + ko[j]);
-    for (int j = 0; j < nd; ++j)
-      s -= dq[j] * (load(vp + i + dof[j]) + load(v + i + dof[j]));
-    std::memcpy(out + i, &s, sizeof s);
-  }
-  for (; i < end; ++i)
-  {
-    const int p = (i - begin) % 2;
-    double s = f[i];
-    for (int j = 0; j < nk; ++j)
-      s -= kc[j][p] * q[i + ko[j]];
-    for (int j = 0; j < nd; ++j)
-      s -= dc[j][p] * (vp[i + dof[j]] + v[i + dof[j]]);
-    out[i] = s;
+    const int last = std::min(end, first + block);
+    // u[j - first + reach] = v_{n-1} + v_n of row j.
+    if (nd > 0)
+      for (int j = first - reach; j < last + reach; ++j)
+        u[j - first + reach] = vp[j] + v[j];
+    const double* __restrict uu = u + reach; // row i at uu[i - first]
+    int i = first;
+    // Eight rows at once, two chains of subtractions side by side (each row's
+    // terms still one after the other, in the offsets' order).
+    for (; i + 8 <= last; i += 8)
+    {
+      Quad s0 = load(f + i), s1 = load(f + i + 4);
+      for (int j = 0; j < nk; ++j)
+      {
+        s0 -= kq[j] * load(q + i + ko[j]);
+        s1 -= kq[j] * load(q + i + 4 + ko[j]);
+      }
+      for (int j = 0; j < nd; ++j)
+      {
+        s0 -= dq[j] * load(uu + (i - first) + dof[j]);
+        s1 -= dq[j] * load(uu + (i + 4 - first) + dof[j]);
+      }
+      std::memcpy(out + i, &s0, sizeof s0);
+      std::memcpy(out + i + 4, &s1, sizeof s1);
+    }
+    for (; i + 4 <= last; i += 4)
+    {
+      Quad s = load(f + i);
+      for (int j = 0; j < nk; ++j)
+        s -= kq[j] * load(q + i + ko[j]);
+      for (int j = 0; j < nd; ++j)
+        s -= dq[j] * load(uu + (i - first) + dof[j]);
+      std::memcpy(out + i, &s, sizeof s);
+    }
+    for (; i < last; ++i)
+    {
+      const int p = (i - begin) % 2;
+      double s = f[i];
+      for (int j = 0; j < nk; ++j)
+        s -= kc[j][p] * q[i + ko[j]];
+      for (int j = 0; j < nd; ++j)
+        s -= dc[j][p] * uu[i - first + dof[j]];
+      out[i] = s;
+    }
   }
 }
 } // namespace
@@ -326,7 +367,7 @@ void DiagonalForceSweep::apply(const double* f, const double* q, const double* v
   for (const Run& r : runs)
   {
     sweep(row, r.first);
-    sweep_run(r.first, r.last, f, q, vp, v, out, *k_offsets, r.k, *d_offsets, r.d);
+    sweep_run(r.first, r.last, f, q, vp, v, out, *k_offsets, r.k, *d_offsets, r.d, u);
     row = r.last;
   }
   sweep(row, n);
