@@ -116,11 +116,11 @@ sweep_by_diagonals(const Block& x, const std::vector<int>& k_offsets,
  * first-level cache), and each damping term reads them there: the row's
  * seven damping terms then take a load each instead of two loads and an
  * addition. Eight rows per iteration, in two independent vectors of four,
- * so that two rows' chains of subtractions overlap. On rows in the
- * second-level cache this sweep takes 0.82-0.89 of the time of the one
- * before (four rows at once, velocity sums formed at every term; session
- * 26, both kernels timed in one program, n = 1500 to 15 000). The terms,
- * their order and each operation are those of
+ * so that two rows' chains of subtractions overlap. This sweep takes 0.80
+ * to 0.88 of the time of the one before it (four rows at once, velocity
+ * sums formed at every term), both timed in one program on 1500 to 150 000
+ * rows (doc/benchmarks.md, session 26). The terms, their order and each
+ * operation are those of
  * sweep_by_diagonals(), so the bits are the same. Compiled for AVX2 beside
  * the baseline (no fused multiply-add).
  */
