@@ -116,8 +116,8 @@ sweep_by_diagonals(const Block& x, const std::vector<int>& k_offsets,
  * first-level cache), and each damping term reads them there: the row's
  * seven damping terms then take a load each instead of two loads and an
  * addition. Eight rows per iteration, in two independent vectors of four,
- * so that two rows' chains of subtractions overlap. This sweep takes 0.80
- * to 0.88 of the time of the one before it (four rows at once, velocity
+ * so that two rows' chains of subtractions overlap. This sweep takes 0.77
+ * to 0.98 of the time of the one before it (four rows at once, velocity
  * sums formed at every term), both timed in one program on 1500 to 150 000
  * rows (doc/benchmarks.md, session 26). The terms, their order and each
  * operation are those of
@@ -182,16 +182,7 @@ __attribute__((target_clones("avx2", "default"))) void sweep_run(
       std::memcpy(out + i, &s0, sizeof s0);
       std::memcpy(out + i + 4, &s1, sizeof s1);
     }
-    for (; i + 4 <= last; i += 4)
-    {
-      Quad s = load(f + i);
-      for (int j = 0; j < nk; ++j)
-        s -= kq[j] * load(q + i + ko[j]);
-      for (int j = 0; j < nd; ++j)
-        s -= dq[j] * load(uu + (i - first) + dof[j]);
-      std::memcpy(out + i, &s, sizeof s);
-    }
-    for (; i < last; ++i)
+    for (; i < last; ++i) // the last rows of a run, fewer than eight
     {
       const int p = (i - begin) % 2;
       double s = f[i];
