@@ -271,7 +271,8 @@ TEST(Sections, ASpeedRampStartsTheLeaderWithoutAShock)
 // history f + M h + D r), as on the paper's 20 m span (> 99 % of the rows,
 // test_dynamics). 30 of the paper's spans end to end (600 m, h = 0.04 m,
 // 45 001 unknowns): beyond x = 512 m two cells' lengths, each from its
-// rounded vertices, differ by up to ulp(x) = 1.1e-13 m = 2.8e-12 h. Compared
+// rounded vertices, differ by up to 2 ulp(x), one ulp being 1.1e-13 m =
+// 2.8e-12 h. Compared
 // to 1e-12 of the length, those cells took matrices of their own, which
 // differ in the last bits: 38 397 rows (85 %) were in stretches, and at 10^5
 // unknowns half the rows, with a step two to three times dearer per unknown

@@ -109,20 +109,18 @@ sweep_by_diagonals(const Block& x, const std::vector<int>& k_offsets,
 /**
  * The rows [@p begin, @p end) of a run, from its two rows' coefficients (@p
  * kc, @p dc: [offset index][parity], parity 0 at @p begin; every offset
- * reaches inside the matrix): four rows at once, each row's terms summed in
- * a register until it is done (no partial sums through memory). The
- * velocity sums v_{n-1} + v_n are formed once per row, a block of rows and
- * its band's reach at a time into @p u (block + 6 entries, in the
- * first-level cache), and each damping term reads them there: the row's
- * seven damping terms then take a load each instead of two loads and an
- * addition. Eight rows per iteration, in two independent vectors of four,
- * so that two rows' chains of subtractions overlap. This sweep takes 0.77
- * to 0.98 of the time of the one before it (four rows at once, velocity
- * sums formed at every term), both timed in one program on 1500 to 150 000
- * rows (doc/benchmarks.md, session 26). The terms, their order and each
- * operation are those of
- * sweep_by_diagonals(), so the bits are the same. Compiled for AVX2 beside
- * the baseline (no fused multiply-add).
+ * reaches inside the matrix): eight rows at once in two independent
+ * four-double vectors, so that two rows' chains of subtractions overlap,
+ * each row's terms summed in a register until it is done (no partial sums
+ * through memory). The velocity sums v_{n-1} + v_n are formed once per row,
+ * a block of rows and its band's reach at a time into @p u (block + 2 b
+ * entries, in the first-level cache), and each damping term reads them
+ * there: one load per term instead of two loads and an addition. This takes
+ * 0.77 to 0.98 of the time of the sweep before it (four rows at once,
+ * velocity sums formed at every term), both timed in one program on 1500 to
+ * 150 000 rows (doc/benchmarks.md, session 26). The terms, their order and
+ * each operation are those of sweep_by_diagonals(), so the bits are the
+ * same. Compiled for AVX2 beside the baseline (no fused multiply-add).
  */
 __attribute__((target_clones("avx2", "default"))) void sweep_run(
     const int begin, const int end, const double* __restrict f,

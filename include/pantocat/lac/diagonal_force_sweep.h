@@ -36,13 +36,13 @@ struct ForceDiagonals
  * sweep reads the two rows' coefficients kept aside instead of streaming the
  * 2 (2b + 1) diagonals from memory: with S55's 14 diagonals the streams,
  * not the arithmetic, set the pace once the grid outgrows the caches. It
- * sums four rows at once, each row's terms in a register until the row is
- * done. Rows of a run with coefficients of their own (point masses,
- * supports) are its exceptions: swept with the run's, then again from their
- * own coefficients, four exceptions at once (one per vector lane). The
- * other rows (the ends, the pantograph) read the diagonals. Every row's terms come in the
- * order of the offsets, from the same coefficient values, so the result is the same to
- * the bit whichever way a row is swept.
+ * sums eight rows at once (two four-double vectors), each row's terms in a
+ * register until the row is done, with v_{n-1} + v_n formed once per row. Rows of a run
+ * with coefficients of their own (point masses, supports) are its exceptions: swept with
+ * the run's, then again from their own coefficients, four exceptions at once (one per
+ * vector lane). The other rows (the ends, the pantograph) read the diagonals. Every row's
+ * terms come in the order of the offsets, from the same coefficient values, so the result
+ * is the same to the bit whichever way a row is swept.
  */
 class DiagonalForceSweep
 {
