@@ -166,4 +166,10 @@ char* write_csv_number(char* first, const double x)
     *p++ = '-';
   return layout_g10(p, n, e);
 }
+
+void append_csv_number(std::string& text, const double x)
+{
+  char digits[24];
+  text.append(digits, write_csv_number(digits, x));
+}
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/io/csv_number.h>
 #include <pantocat/io/plot_data.h>
 
 #include <algorithm>
@@ -101,11 +102,17 @@ PlotCurve envelope(const std::vector<double>& x, const std::vector<double>& y,
 
 void write_datablock(std::ostream& gp, const std::string& name, const PlotCurve& curve)
 {
-  const auto precision = gp.precision(10);
-  gp << '$' << name << " << EOD\n";
+  // The numbers as a stream with precision 10 writes them (append_csv_number()).
+  std::string block = '$' + name + " << EOD\n";
+  block.reserve(block.size() + 36 * curve.x.size() + 4);
   for (std::size_t i = 0; i < curve.x.size(); ++i)
-    gp << curve.x[i] << ' ' << curve.y[i] << '\n';
-  gp << "EOD\n";
-  gp.precision(precision);
+  {
+    append_csv_number(block, curve.x[i]);
+    block += ' ';
+    append_csv_number(block, curve.y[i]);
+    block += '\n';
+  }
+  block += "EOD\n";
+  gp.write(block.data(), static_cast<std::streamsize>(block.size()));
 }
 } // namespace pantocat

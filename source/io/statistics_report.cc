@@ -1,4 +1,5 @@
 #include <pantocat/io/atomic_file.h>
+#include <pantocat/io/csv_number.h>
 #include <pantocat/io/statistics_report.h>
 
 #include <pantocat/base/input_error.h>
@@ -105,23 +106,29 @@ contact_force_column_names(const std::vector<ContactForceColumns>& pantographs)
 void write_contact_force(const std::string& file,
                          const std::vector<ContactForceColumns>& pantographs)
 {
-  std::ostringstream csv;
+  // The numbers as a stream with precision 10 writes them (append_csv_number()).
+  std::string csv;
   const std::vector<std::string> names = contact_force_column_names(pantographs);
   for (std::size_t c = 0; c < names.size(); ++c)
-    csv << (c ? "," : "") << names[c];
-  csv << '\n' << std::setprecision(10);
+    csv.append(c ? "," : "").append(names[c]);
+  csv += '\n';
   const std::size_t n_points =
       pantographs.empty() ? 0 : pantographs.front().statistics->series().t.size();
+  csv.reserve(csv.size() + n_points * (18 + 54 * pantographs.size()));
   for (std::size_t n = 0; n < n_points; ++n)
   {
-    csv << pantographs.front().statistics->series().t[n];
+    append_csv_number(csv, pantographs.front().statistics->series().t[n]);
     for (const ContactForceColumns& p : pantographs)
-      csv << ',' << p.statistics->series().x_p[n] << ','
-          << p.statistics->series().lambda_p[n] << ','
-          << p.statistics->filtered_force()[n];
-    csv << '\n';
+      for (const double x :
+           {p.statistics->series().x_p[n], p.statistics->series().lambda_p[n],
+            p.statistics->filtered_force()[n]})
+      {
+        csv += ',';
+        append_csv_number(csv, x);
+      }
+    csv += '\n';
   }
-  write_file_atomically(file, csv.str());
+  write_file_atomically(file, csv);
 }
 
 std::string describe_slack_events(const DropperSlackEvents& events)
