@@ -488,6 +488,26 @@ std::size_t csv_number_mismatches(const std::vector<double>& xs)
   }
   return mismatches;
 }
+
+/// Appends @p scaled random significands in [1, 10) times 10^-30 ... 10^30
+/// (alternating signs), then @p patterns random bit patterns (subnormals,
+/// infinities and NaN among them) to @p xs.
+void add_random_values(std::mt19937_64& random, const int scaled, const int patterns,
+                       std::vector<double>& xs)
+{
+  std::uniform_real_distribution<double> significand(1., 10.);
+  std::uniform_int_distribution<int> exponent(-30, 30);
+  for (int i = 0; i < scaled; ++i)
+    xs.push_back((i % 2 ? -1. : 1.) * significand(random) *
+                 std::pow(10., exponent(random)));
+  for (int i = 0; i < patterns; ++i)
+  {
+    const std::uint64_t bits = random();
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    xs.push_back(x);
+  }
+}
 } // namespace
 
 // The time series' number text is printf's "%.10g" to the character (the
@@ -498,19 +518,9 @@ std::size_t csv_number_mismatches(const std::vector<double>& xs)
 TEST(CsvNumber, IsPrintfsTenDigitTextForEveryValue)
 {
   std::mt19937_64 random(20261124);
-  std::uniform_real_distribution<double> significand(1., 10.);
-  std::uniform_int_distribution<int> exponent(-30, 30);
   std::vector<double> xs;
-  for (int i = 0; i < 600000; ++i)
-    xs.push_back((i % 2 ? -1. : 1.) * significand(random) *
-                 std::pow(10., exponent(random)));
-  for (int i = 0; i < 200000; ++i)
-  {
-    const std::uint64_t bits = random();
-    double x;
-    std::memcpy(&x, &bits, sizeof x);
-    xs.push_back(x);
-  }
+  add_random_values(random, 600000, 200000, xs);
+  std::uniform_int_distribution<int> exponent(-30, 30);
   std::uniform_int_distribution<std::uint64_t> ten_digits(1000000000ULL, 9999999999ULL);
   for (int i = 0; i < 100000; ++i)
   {
@@ -545,8 +555,6 @@ TEST(CsvNumber, IsPrintfsTenDigitTextForEveryValue)
 TEST(CsvNumber, AppendedTextIsTheStreamsAtPrecisionTen)
 {
   std::mt19937_64 random(20261128);
-  std::uniform_real_distribution<double> significand(1., 10.);
-  std::uniform_int_distribution<int> exponent(-30, 30);
   std::vector<double> xs = {0.,
                             -0.,
                             1e-5,
@@ -561,16 +569,7 @@ TEST(CsvNumber, AppendedTextIsTheStreamsAtPrecisionTen)
                             std::numeric_limits<double>::infinity(),
                             -std::numeric_limits<double>::infinity(),
                             std::numeric_limits<double>::quiet_NaN()};
-  for (int i = 0; i < 200000; ++i)
-    xs.push_back((i % 2 ? -1. : 1.) * significand(random) *
-                 std::pow(10., exponent(random)));
-  for (int i = 0; i < 20000; ++i)
-  {
-    const std::uint64_t bits = random();
-    double x;
-    std::memcpy(&x, &bits, sizeof x);
-    xs.push_back(x);
-  }
+  add_random_values(random, 200000, 20000, xs);
   std::ostringstream stream;
   stream << std::setprecision(10) << "t,x";
   std::string appended = "t,x";
