@@ -36,6 +36,7 @@ struct PlotCurve
 PlotCurve envelope(const std::vector<double>& x, const std::vector<double>& y,
                    unsigned int bins);
 
-/// The points of @p curve as the gnuplot datablock $@p name (two columns).
+/// The points of @p curve as the gnuplot datablock $@p name (two columns,
+/// each number as printf's "%.10g" writes it: write_csv_number()).
 void write_datablock(std::ostream& gp, const std::string& name, const PlotCurve& curve);
 } // namespace pantocat

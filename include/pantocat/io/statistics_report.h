@@ -41,7 +41,8 @@ contact_force_column_names(const std::vector<ContactForceColumns>& pantographs);
  * contact_force.csv: t, then per pantograph in contact x_p, lambda_p and
  * lambda_p_filtered (after the low pass; equal to lambda_p without one), each
  * with the pantograph's column suffix ("" with one, "[k]" with several), at
- * every time point of the run.
+ * every time point of the run; each number as printf's "%.10g" writes it
+ * (write_csv_number(), as in time_series.csv).
  */
 void write_contact_force(const std::string& file,
                          const std::vector<ContactForceColumns>& pantographs);
