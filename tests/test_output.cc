@@ -579,10 +579,10 @@ TEST(CsvNumber, AppendedTextIsTheStreamsAtPrecisionTen)
     appended += ',';
     append_csv_number(appended, x);
   }
-  EXPECT_TRUE(stream.str() == appended)
+  const std::string streamed = stream.str();
+  EXPECT_TRUE(streamed == appended)
       << "the first difference at character "
-      << std::mismatch(appended.begin(), appended.end(), stream.str().begin(),
-                       stream.str().end())
+      << std::mismatch(appended.begin(), appended.end(), streamed.begin(), streamed.end())
                  .first -
              appended.begin();
 }
