@@ -6,6 +6,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/pantograph/two_mass_pantograph.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/event_log.h>
@@ -1360,6 +1361,111 @@ TEST(PatternOperators, RunsGiveTheRowLoopsSumsToTheBit)
       EXPECT_EQ(r_q[i], fq) << i;
       EXPECT_EQ(r_v[i], fv) << i;
     }
+  }
+}
+
+// The damping split of PatternOperators (issue 16): for S = c^2 M + c D + K
+// (BDF-2, c = 1.5 / dt), D r = mu M r + gamma S r + E r on each block where D
+// = alpha M + beta K, so S^-1 (f + M h + D r) = gamma r + S^-1 (f + M (h + mu
+// r) + E r), with E zero but on the rows that break the law. Both sides are
+// solved here with the same factorisation of S, on random h and r; they
+// agree to 1e-11 of the largest entry (the identity is exact; the sums round
+// differently, and E's entries below 1e-12 of their terms are dropped as
+// round-off). The split must find the law: the viscous damping of Eq. (2)
+// (D = beta M of each wire: mu = that beta, gamma = 0) and Rayleigh damping
+// (alpha M + beta K: gamma = beta / (1 + c beta)); E is then zero on all rows
+// but the pantograph's (a block of 3 rows keeps D) and, with the clamp
+// masses' inertia in M but not in the viscous D, the rows those masses
+// reach. Without a split every damped row has D's entries.
+TEST(PatternOperators, TheDampingSplitGivesTheSameSolutionWithHalfTheTerms)
+{
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> value(-1., 1.);
+  struct Case
+  {
+    SpaceMethod method;
+    bool rayleigh, masses;
+    unsigned int max_damped_rows; ///< rows where E has entries
+  };
+  for (const Case c :
+       {Case{SpaceMethod::fem, false, false, 3}, Case{SpaceMethod::fdm, false, false, 3},
+        Case{SpaceMethod::fem, true, false, 3}, Case{SpaceMethod::fdm, true, true, 3},
+        Case{SpaceMethod::fem, false, true, 3 + 40 * 6}})
+  {
+    ProgramParameters p = benchmark(32., c.method, "bdf2");
+    if (c.rayleigh)
+    {
+      p.catenary.damping = CatenaryDamping::rayleigh;
+      p.catenary.rayleigh_alpha = 0.0125;
+      p.catenary.rayleigh_beta = 1e-4;
+    }
+    if (c.masses)
+    {
+      p.catenary.span = 100.;
+      p.discretisation.n_intervals = 500;
+      p.catenary.dropper_positions.clear();
+      for (unsigned int j = 0; j < 40; ++j)
+        p.catenary.dropper_positions.push_back(2.5 * j + 1.27);
+      p.catenary.dropper_lengths.assign(40, 0.95);
+      p.catenary.dropper_spans.assign(40, 0);
+      p.catenary.point_mass_inertia = true;
+    }
+    CaseRunner simulation(p.make_case(), {});
+    const SemiDiscreteSystem& sys = simulation.system();
+    const unsigned int n = sys.n_dofs();
+    const double cf = 1.5 / 5e-5;
+    const PatternOperators plain(sys), split(sys, {cf * cf, cf, 1.});
+    const std::string what = std::string(c.method == SpaceMethod::fem ? "FEM" : "FDM") +
+                             (c.rayleigh ? " Rayleigh" : " viscous") +
+                             (c.masses ? " with clamp masses" : "");
+    EXPECT_LE(split.rows_with_damping_entries(), c.max_damped_rows) << what;
+    EXPECT_GT(plain.rows_with_damping_entries(), 0.9 * n) << what;
+    // The wires' blocks split, with gamma = 0 exactly for the viscous damping.
+    unsigned int wires = 0;
+    for (const PatternOperators::Shift& b : split.shifts())
+      if (b.last - b.first >= PatternOperators::minimum_stretch)
+      {
+        ++wires;
+        EXPECT_NE(b.mu, 0.) << what;
+        if (c.rayleigh)
+          EXPECT_NEAR(b.gamma, 1e-4 / (1. + cf * 1e-4), 1e-12 * b.gamma) << what;
+        else
+          EXPECT_EQ(b.gamma, 0.) << what;
+      }
+    EXPECT_EQ(wires, 2u) << what;
+    EXPECT_EQ(split.shifts_solution(), c.rayleigh) << what;
+
+    dealii::SparseMatrix<double> S;
+    assemble_iteration_matrix(sys, cf, cf * cf, S);
+    SparseDirectSolver solver;
+    solver.factorize(S, "S");
+    dealii::Vector<double> h(n), r(n), shifted(n), reference(n), solution(n);
+    for (auto* x : {&h, &r})
+      for (unsigned int i = 0; i < n; ++i)
+        (*x)[i] = value(random);
+    for (const PatternOperators::Shift& b : split.shifts())
+      for (unsigned int i = b.first; i < b.last; ++i)
+        shifted[i] = h[i] + b.mu * r[i];
+    plain.history(h, r, reference);
+    solver.solve(reference);
+    split.history(shifted, r, solution);
+    solver.solve(solution);
+    split.add_shift(r, solution);
+    double largest = 0., difference = 0.;
+    for (unsigned int i = 0; i < n; ++i)
+    {
+      largest = std::max(largest, std::abs(reference[i]));
+      difference = std::max(difference, std::abs(solution[i] - reference[i]));
+    }
+    std::cout << "  " << what << ": rows with damping entries "
+              << split.rows_with_damping_entries() << " of " << n
+              << " (without the split " << plain.rows_with_damping_entries()
+              << "), solutions differ by " << difference / largest
+              << " of the largest entry\n";
+    EXPECT_LT(difference, 1e-11 * largest) << what;
+    EXPECT_THROW(split.motion(h.begin(), r.begin(), h.begin(), r.begin(), shifted.begin(),
+                              solution.begin()),
+                 std::logic_error);
   }
 }
 

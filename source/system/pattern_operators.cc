@@ -2,13 +2,184 @@
 #include <pantocat/system/pattern_operators.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <optional>
+#include <stdexcept>
+#include <tuple>
 #include <type_traits>
 
 namespace pantocat
 {
 PatternOperators::PatternOperators(const SemiDiscreteSystem& system)
     : system(system), load(system.load)
+{
+  block_shifts.push_back(Shift{0, system.n_dofs(), 0., 0.});
+  build();
+}
+
+PatternOperators::PatternOperators(const SemiDiscreteSystem& system,
+                                   const IterationFactors& s)
+    : system(system), split(true), factors(s), load(system.load)
+{
+  split_damping(s);
+  build();
+}
+
+namespace
+{
+/// Relative size below which an entry of E = D - mu M - gamma S is round-off.
+constexpr double split_tolerance = 1e-12;
+
+/// The terms of E_ij = D_ij - mu M_ij - gamma S_ij, S_ij formed as
+/// assemble_iteration_matrix() forms it (K, then + s_D D, then + s_M M).
+struct SplitTerms
+{
+  double e, scale; ///< E_ij, and |D_ij| + |mu M_ij| + |gamma S_ij|
+};
+SplitTerms split_terms(const PatternOperators::IterationFactors& s, const double mu,
+                       const double gamma, const double m, const double d, const double k)
+{
+  const double s_ij = (k + s.damping * d) + s.mass * m;
+  return {d - mu * m - gamma * s_ij,
+          std::abs(d) + std::abs(mu * m) + std::abs(gamma * s_ij)};
+}
+
+/// E's entries of row @p i (in the pattern's order), 0 where one is
+/// round-off: below split_tolerance of the largest terms of the row (an
+/// entry that assembly cancels to round-off, as a Hermite node's value-slope
+/// mass, is round-off in M and D alike).
+std::vector<double> split_row(const SemiDiscreteSystem& sys,
+                              const PatternOperators::IterationFactors& s,
+                              const double mu, const double gamma, const unsigned int i)
+{
+  std::vector<double> e;
+  double scale = 0.;
+  auto d = sys.damping.begin(i), k = sys.stiffness.begin(i);
+  for (auto m = sys.mass.begin(i); m != sys.mass.end(i); ++m, ++d, ++k)
+  {
+    const SplitTerms t = split_terms(s, mu, gamma, m->value(), d->value(), k->value());
+    e.push_back(t.e);
+    scale = std::max(scale, t.scale);
+  }
+  for (double& x : e)
+    if (std::abs(x) <= split_tolerance * scale)
+      x = 0.;
+  return e;
+}
+
+/// mu and gamma of D = alpha M + beta K for the factors @p s (class comment).
+std::pair<double, double> shift_factors(const PatternOperators::IterationFactors& s,
+                                        const double alpha, const double beta)
+{
+  const double gamma = beta / (s.stiffness + s.damping * beta);
+  return {alpha - gamma * (s.mass + s.damping * alpha), gamma};
+}
+} // namespace
+
+const PatternOperators::Shift& PatternOperators::shift_of(const unsigned int i) const
+{
+  const auto at = std::upper_bound(block_shifts.begin(), block_shifts.end(), i,
+                                   [](const unsigned int row, const Shift& b)
+                                   { return row < b.first; });
+  return *(at - 1);
+}
+
+std::vector<double> PatternOperators::damping_row(const unsigned int i) const
+{
+  const Shift& shift = shift_of(i);
+  if (split && (shift.mu != 0. || shift.gamma != 0.))
+    return split_row(system, factors, shift.mu, shift.gamma, i);
+  std::vector<double> d;
+  for (auto e = system.damping.begin(i); e != system.damping.end(i); ++e)
+    d.push_back(e->value());
+  return d;
+}
+
+void PatternOperators::split_damping(const IterationFactors& s)
+{
+  const SemiDiscreteSystem& sys = system;
+  // Rows of a block that break the law D = alpha M + beta K (E not zero).
+  const auto breaking_rows = [&](const DofBlock& b, const double alpha, const double beta)
+  {
+    const auto [mu, gamma] = shift_factors(s, alpha, beta);
+    unsigned int rows = 0;
+    for (unsigned int i = b.first; i < b.first + b.size; ++i)
+    {
+      const std::vector<double> e = split_row(sys, s, mu, gamma, i);
+      rows += std::any_of(e.begin(), e.end(), [](const double x) { return x != 0.; });
+    }
+    return rows;
+  };
+  // The laws that fit a row's entries exactly: beta = 0 first (viscous
+  // damping), then alpha and beta by least squares.
+  const auto fits = [&](const unsigned int i, const double alpha, const double beta)
+  {
+    double scale = 0., worst = 0.;
+    auto d = sys.damping.begin(i), k = sys.stiffness.begin(i);
+    for (auto m = sys.mass.begin(i); m != sys.mass.end(i); ++m, ++d, ++k)
+    {
+      worst =
+          std::max(worst, std::abs(d->value() - alpha * m->value() - beta * k->value()));
+      scale = std::max(scale, std::abs(d->value()) + std::abs(alpha * m->value()) +
+                                  std::abs(beta * k->value()));
+    }
+    return worst <= split_tolerance * scale;
+  };
+  const auto law_of_row =
+      [&](const unsigned int i) -> std::optional<std::pair<double, double>>
+  {
+    double mm = 0., mk = 0., kk = 0., dm = 0., dk = 0.;
+    unsigned int entries = 0;
+    auto d = sys.damping.begin(i), k = sys.stiffness.begin(i);
+    for (auto m = sys.mass.begin(i); m != sys.mass.end(i); ++m, ++d, ++k, ++entries)
+    {
+      mm += m->value() * m->value();
+      mk += m->value() * k->value();
+      kk += k->value() * k->value();
+      dm += d->value() * m->value();
+      dk += d->value() * k->value();
+    }
+    if (entries < 2 || mm == 0.)
+      return std::nullopt;
+    if (fits(i, dm / mm, 0.))
+      return std::make_pair(dm / mm, 0.);
+    const double det = mm * kk - mk * mk;
+    if (!(std::abs(det) > 1e-8 * mm * kk))
+      return std::nullopt;
+    const double alpha = (dm * kk - dk * mk) / det, beta = (dk * mm - dm * mk) / det;
+    if (fits(i, alpha, beta))
+      return std::make_pair(alpha, beta);
+    return std::nullopt;
+  };
+  for (const DofBlock& b : sys.blocks)
+  {
+    Shift shift{b.first, b.first + b.size, 0., 0.};
+    if (b.size >= minimum_stretch)
+    {
+      // Candidate laws from the block's rows (distinct ones, at most 4); the
+      // one that fewest rows break, if fewer than half of them do.
+      std::vector<std::pair<double, double>> laws;
+      for (unsigned int i = b.first; i < b.first + b.size && laws.size() < 4; ++i)
+        if (const auto law = law_of_row(i))
+          if (std::none_of(laws.begin(), laws.end(),
+                           [&](const auto& l) { return fits(i, l.first, l.second); }))
+            laws.push_back(*law);
+      unsigned int fewest = (b.size + 1) / 2;
+      for (const auto& [alpha, beta] : laws)
+        if (const unsigned int rows = breaking_rows(b, alpha, beta); rows < fewest)
+        {
+          fewest = rows;
+          std::tie(shift.mu, shift.gamma) = shift_factors(s, alpha, beta);
+        }
+    }
+    block_shifts.push_back(shift);
+  }
+  if (block_shifts.empty() || block_shifts.back().last != sys.n_dofs())
+    throw std::logic_error("PatternOperators: the system's blocks do not cover its rows");
+}
+
+void PatternOperators::build()
 {
   const unsigned int n = system.n_dofs();
   // Each row's offsets j - i in the pattern's order; consecutive rows with
@@ -51,14 +222,14 @@ PatternOperators::PatternOperators(const SemiDiscreteSystem& system)
     {
       const unsigned int row = i + r * stride;
       taken[row] = 1;
-      auto d = system.damping.begin(row);
+      const std::vector<double> d = damping_row(row);
       auto k = system.stiffness.begin(row);
       unsigned int e = 0;
-      for (auto m = system.mass.begin(row); m != system.mass.end(row); ++m, ++d, ++k, ++e)
+      for (auto m = system.mass.begin(row); m != system.mass.end(row); ++m, ++k, ++e)
       {
         const std::size_t at = run.values + static_cast<std::size_t>(e) * run.rows + r;
         mass[at] = m->value();
-        damping[at] = d->value();
+        damping[at] = d[e];
         stiffness[at] = k->value();
       }
     }
@@ -66,17 +237,42 @@ PatternOperators::PatternOperators(const SemiDiscreteSystem& system)
   }
   find_stretches();
   cut_runs_at_stretches();
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const RowEntries r = row_entries(i);
+    damped_rows += std::any_of(r.damping.begin(), r.damping.end(),
+                               [](const double d) { return d != 0.; });
+  }
+}
+
+bool PatternOperators::shifts_solution() const
+{
+  return std::any_of(block_shifts.begin(), block_shifts.end(),
+                     [](const Shift& b) { return b.gamma != 0.; });
+}
+
+void PatternOperators::add_shift(const dealii::Vector<double>& r,
+                                 dealii::Vector<double>& x) const
+{
+  for (const Shift& b : block_shifts)
+    if (b.gamma != 0.)
+      for (unsigned int i = b.first; i < b.last; ++i)
+        x[i] += b.gamma * r[i];
+}
+
+unsigned int PatternOperators::rows_with_damping_entries() const
+{
+  return damped_rows;
 }
 
 PatternOperators::RowEntries PatternOperators::row_entries(const unsigned int i) const
 {
   RowEntries r;
-  auto d = system.damping.begin(i);
-  for (auto m = system.mass.begin(i); m != system.mass.end(i); ++m, ++d)
+  r.damping = damping_row(i);
+  for (auto m = system.mass.begin(i); m != system.mass.end(i); ++m)
   {
     r.offsets.push_back(static_cast<int>(m->column()) - static_cast<int>(i));
     r.mass.push_back(m->value());
-    r.damping.push_back(d->value());
   }
   return r;
 }
@@ -170,6 +366,8 @@ void PatternOperators::find_stretches()
         exception_entries.push_back(entries[i]);
       }
     st.group(grouped, grouped_entries);
+    st.undamped = std::all_of(st.damping.begin(), st.damping.end(),
+                              [](const double d) { return d == 0.; });
     stretches.push_back(std::move(st));
   }
 }
@@ -327,6 +525,46 @@ __attribute__((target_clones("avx2", "default"))) void stretch_history(
   }
 }
 
+/**
+ * out = f + M h on the rows [@p first, @p last) of a stretch whose damping
+ * coefficients are all zero (the damping split, or D = 0): stretch_history()
+ * without the damping's terms.
+ */
+template <unsigned int E>
+__attribute__((target_clones("avx2", "default"))) void
+stretch_mass_history(const unsigned int first, const unsigned int last,
+                     const int* __restrict offsets, const double* __restrict m,
+                     const double* __restrict f, const double* __restrict h,
+                     double* __restrict out)
+{
+  using Quad = double __attribute__((vector_size(32)));
+  const auto load = [](const double* x)
+  {
+    Quad v;
+    std::memcpy(&v, x, sizeof v);
+    return v;
+  };
+  Quad mq[E];
+  for (unsigned int e = 0; e < E; ++e)
+    mq[e] = Quad{m[2 * e], m[2 * e + 1], m[2 * e], m[2 * e + 1]};
+  unsigned int i = first;
+  for (; i + 4 <= last; i += 4)
+  {
+    Quad s = load(f + i);
+    for (unsigned int e = 0; e < E; ++e)
+      s += mq[e] * load(h + i + offsets[e]);
+    std::memcpy(out + i, &s, sizeof s);
+  }
+  for (; i < last; ++i)
+  {
+    const unsigned int p = (i - first) % 2;
+    double s = f[i];
+    for (unsigned int e = 0; e < E; ++e)
+      s += m[2 * e + p] * h[i + offsets[e]];
+    out[i] = s;
+  }
+}
+
 /// f(std::integral_constant<unsigned int, E>) for E = @p n_offsets (1 to 8):
 /// the kernels' loops over the offsets unrolled.
 template <typename F>
@@ -421,19 +659,23 @@ void PatternOperators::history(const dealii::Vector<double>& h,
   for (const Stretch& st : stretches)
   {
     const std::size_t groups = st.grouped_rows.size() / 4;
-    with_offsets(st.offsets.size(),
-                 [&](auto E)
-                 {
-                   constexpr unsigned int e = decltype(E)::value;
-                   stretch_history<e>(st.first, st.last, st.offsets.data(),
-                                      st.mass.data(), st.damping.data(), load.begin(),
-                                      h.begin(), r.begin(), out.begin());
-                   if (groups > 0)
-                     exception_history<e>(groups, st.grouped_rows.data(),
-                                          st.offsets.data(), st.grouped_mass.data(),
-                                          st.grouped_damping.data(), load.begin(),
-                                          h.begin(), r.begin(), out.begin());
-                 });
+    with_offsets(
+        st.offsets.size(),
+        [&](auto E)
+        {
+          constexpr unsigned int e = decltype(E)::value;
+          if (st.undamped)
+            stretch_mass_history<e>(st.first, st.last, st.offsets.data(), st.mass.data(),
+                                    load.begin(), h.begin(), out.begin());
+          else
+            stretch_history<e>(st.first, st.last, st.offsets.data(), st.mass.data(),
+                               st.damping.data(), load.begin(), h.begin(), r.begin(),
+                               out.begin());
+          if (groups > 0)
+            exception_history<e>(groups, st.grouped_rows.data(), st.offsets.data(),
+                                 st.grouped_mass.data(), st.grouped_damping.data(),
+                                 load.begin(), h.begin(), r.begin(), out.begin());
+        });
   }
   for (std::size_t x = 0; x < exceptions.size(); ++x)
   {
@@ -449,6 +691,8 @@ void PatternOperators::history(const dealii::Vector<double>& h,
 void PatternOperators::motion(const double* q, const double* v, const double* qp,
                               const double* vp, double* r_q, double* r_v) const
 {
+  if (split)
+    throw std::logic_error("PatternOperators::motion() with the damping split");
   double fq[block], fv[block];
   for (const Run& run : runs)
     for (unsigned int first = 0; first < run.rows; first += block)

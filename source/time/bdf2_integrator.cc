@@ -52,6 +52,14 @@ struct Bdf2Integrator::Stage : IterationMatrix
   {
   }
 
+  /// The right-hand side's operators of this c with the damping split
+  /// (PatternOperators), for the BDF-2 steps.
+  void split_damping()
+  {
+    split_operators = std::make_unique<PatternOperators>(
+        system, PatternOperators::IterationFactors{c * c, c, 1.});
+  }
+
   /**
    * The columns of a constraint with rows @p r: the S batch @p X
    * (X^lambda, X^eta, X^mu) and the M batch @p U (Y, Z), on the rows they
@@ -138,6 +146,9 @@ struct Bdf2Integrator::Stage : IterationMatrix
   const MassInverse& mass_inverse;
   const DampingOverMass& damping_over_mass;
   double c;
+  /// With split_damping(): f + M h' + E r for this c (else the integrator's
+  /// operators give f + M h + D r).
+  std::unique_ptr<PatternOperators> split_operators;
   SparseRow DY, DZ; ///< workspace
   GglFixedBlock block;
   /// The rows [first, last) of each fixed constraint's G (block order).
@@ -212,9 +223,16 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     s.initialize_block(rows);
   // Base solution S^-1 (f + M history + D rho_q); the moving constraints'
   // columns on the rows they reach.
-  operators.set_time(t1);
-  operators.history(history, rho_q, s.base);
-  s.inverse.solve(s.base);
+  const PatternOperators& ops = s.split_operators ? *s.split_operators : operators;
+  ops.set_time(t1);
+  const auto solve_base = [&]
+  {
+    s.base.reinit(system.n_dofs(), true);
+    ops.history(history, rho_q, s.base);
+    s.inverse.solve(s.base);
+    ops.add_shift(rho_q, s.base);
+  };
+  solve_base();
   for (unsigned int k = 0; k < s.moving.size(); ++k)
     s.compute_columns(s.S_columns[k], s.M_columns[k], rows[s.moving[k]]);
   s.touching_columns.clear();
@@ -253,6 +271,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
     ++stats.active_set_iterations;
+    solve_base(); // the trial took the base's vector for q: the same bits again
   }
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();
@@ -525,22 +544,23 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     if (unknowns[u].kind == lambda)
       x.lambda[unknowns[u].constraint] = y(u);
 
-  // q, v, a are formed from the base and the fixed forces' sums in
-  // combine_trial()'s pass (no copy, no zeroing), unless add_forces() adds
-  // them first: by solves (many constraints close together on a FEM grid) or
-  // when their sums reach many short stretches of rows.
+  // q takes the base's vector (no copy; implicit_step() solves for the base
+  // again before another trial). q, v, a are formed from the base and the
+  // fixed forces' sums in combine_trial()'s pass (no zeroing), unless
+  // add_forces() adds them first: by solves (many constraints close together
+  // on a FEM grid) or when their sums reach many short stretches of rows.
   const bool forces_added_first = mF > 0 && !block.sums_in_one_pass();
   GglFixedBlock::ForceSums sums;
+  x.q.swap(s.base);
   if (forces_added_first)
   {
-    x.q = s.base;
     x.v.reinit(n);
     x.a.reinit(n);
     block.add_forces(lambda_eta, eta_F, mu_F, x.q, x.v, x.a); // x.v, x.a: u1, u2
   }
   else
   {
-    for (dealii::Vector<double>* y : {&x.q, &x.v, &x.a})
+    for (dealii::Vector<double>* y : {&x.v, &x.a})
       y->reinit(n, true);
     if (mF > 0)
       sums = block.sum_forces(lambda_eta, eta_F, mu_F);
@@ -563,13 +583,46 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
     border_terms.push_back({X->data() + kind, U->data(), f, kind == mu ? f : 0.,
                             kind == eta ? f : 0., kind == eta ? f : 0.});
   }
-  combine_trial(border_terms, reach, c, rho_q, rho_v,
-                forces_added_first ? nullptr : &s.base,
-                mF > 0 && !forces_added_first ? &sums : nullptr, x);
+  combine_trial(border_terms, reach, c, rho_q, rho_v, !forces_added_first,
+                mF > 0 && !forces_added_first ? &sums : nullptr,
+                &s == bdf2.get() ? next_history : nullptr, x);
 }
 
 namespace
 {
+/**
+ * The next step's history on a block's rows, formed in the step's last pass
+ * from the q_{n+1}, v_{n+1} it has just stored: rho_q' = f q_{n+1} + fp q_n,
+ * rho_v' = f v_{n+1} + fp v_n, h' = rho_v' + kappa rho_q' (kappa = c + mu of
+ * the block), each entry as bdf2_history() forms it at the next step.
+ */
+struct NextPiece
+{
+  const double* q_n = nullptr;
+  const double* v_n = nullptr;
+  double f = 0., fp = 0., kappa = 0.;
+  double *rho_q = nullptr, *rho_v = nullptr, *h = nullptr;
+};
+
+/// @p pass(piece, next) on the pieces of @p rows in each block of @p next's
+/// (all of @p rows with an empty NextPiece without @p next).
+template <typename Pass>
+void by_blocks(const Bdf2Integrator::NextHistory* next, const RowRange rows,
+               const Pass& pass)
+{
+  if (!next)
+    return pass(rows, NextPiece{});
+  for (const PatternOperators::Shift& b : *next->blocks)
+  {
+    const int first = std::max<int>(rows.first, b.first),
+              last = std::min<int>(rows.last, b.last);
+    if (first < last)
+      pass(RowRange{first, last},
+           NextPiece{next->q_n, next->v_n, next->f, next->fp, next->c + b.mu, next->rho_q,
+                     next->rho_v, next->h});
+  }
+}
+
 /**
  * q, v, a += P border terms (Bdf2Integrator::BorderTerm) in one pass; in the
  * last pass also v = c q - rho_q - v, a = c v - rho_v - a. Without branches:
@@ -577,12 +630,19 @@ namespace
  * none; v and a are never -0 (they start at +0 and take sums that start at
  * +0), so adding 0 U leaves them as they are.
  */
-template <unsigned int P, bool last, typename Term>
+template <unsigned int P, bool last, typename Term, bool next = false>
 __attribute__((target_clones("avx2", "default"))) void
 combine_pass(const Term* terms, const double c, const double* __restrict rq,
              const double* __restrict rv, const RowRange rows, double* __restrict q,
-             double* __restrict v, double* __restrict a)
+             double* __restrict v, double* __restrict a, const NextPiece nx = {})
 {
+  // The next history's arrays as restricted locals (GCC does not take the
+  // restriction of a struct's members): the loop stays vectorised.
+  const double* __restrict q_n = nx.q_n;
+  const double* __restrict v_n = nx.v_n;
+  double* __restrict next_rq = nx.rho_q;
+  double* __restrict next_rv = nx.rho_v;
+  double* __restrict next_h = nx.h;
   constexpr unsigned int w = InterleavedColumns::width;
   const double* X[P > 0 ? P : 1];
   const double* U[P > 0 ? P : 1];
@@ -614,27 +674,39 @@ combine_pass(const Term* terms, const double c, const double* __restrict rq,
     }
     v[i] = vi;
     a[i] = ai;
+    if (next)
+    {
+      const double rq2 = nx.f * qi + nx.fp * q_n[i], rv2 = nx.f * vi + nx.fp * v_n[i];
+      next_rq[i] = rq2;
+      next_rv[i] = rv2;
+      next_h[i] = rv2 + nx.kappa * rq2;
+    }
   }
 }
 
 /**
- * On @p rows: q = base (+ q1, then + q2 where they reach), u1 = 0 (+ y1),
- * u2 = 0 (+ y2) where the fixed forces' mass sums reach; the sums read are
- * set to 0. With @p last (rows off the border's reach), also v = c q - rho_q -
- * u1, a = c v - rho_v - u2, else v = u1, a = u2 for the border passes. Each
- * entry as the copy, the zeroing, the additions of the sums and
- * combine_pass<0, true>() made it (x - (+0) = x where a sum does not reach).
+ * On @p rows: q = base (held by q on entry; + q1, then + q2 where they reach), u1 = 0 (+
+ * y1), u2 = 0 (+ y2) where the fixed forces' mass sums reach; the sums read are set to 0.
+ * With @p last (rows off the border's reach), also v = c q - rho_q - u1, a = c v - rho_v
+ * - u2, else v = u1, a = u2 for the border passes. Each entry as the copy, the zeroing,
+ * the additions of the sums and combine_pass<0, true>() made it (x - (+0) = x where a sum
+ * does not reach).
  */
-template <bool with_q1, bool with_q2, bool with_u, bool last>
+template <bool with_q1, bool with_q2, bool with_u, bool last, bool next>
 __attribute__((target_clones("avx2", "default"))) void
-form_pass(const double* __restrict base, double* __restrict q1, double* __restrict q2,
-          double* __restrict y1, double* __restrict y2, const double c,
-          const double* __restrict rq, const double* __restrict rv, const RowRange rows,
-          double* __restrict q, double* __restrict v, double* __restrict a)
+form_pass(double* __restrict q1, double* __restrict q2, double* __restrict y1,
+          double* __restrict y2, const double c, const double* __restrict rq,
+          const double* __restrict rv, const RowRange rows, double* __restrict q,
+          double* __restrict v, double* __restrict a, const NextPiece nx)
 {
+  const double* __restrict q_n = nx.q_n; // as in combine_pass()
+  const double* __restrict v_n = nx.v_n;
+  double* __restrict next_rq = nx.rho_q;
+  double* __restrict next_rv = nx.rho_v;
+  double* __restrict next_h = nx.h;
   for (int i = rows.first; i < rows.last; ++i)
   {
-    double qi = base[i], u1 = 0., u2 = 0.;
+    double qi = q[i], u1 = 0., u2 = 0.;
     if (with_q1)
     {
       qi += q1[i];
@@ -658,6 +730,13 @@ form_pass(const double* __restrict base, double* __restrict q1, double* __restri
       const double vi = with_u ? c * qi - rq[i] - u1 : c * qi - rq[i];
       v[i] = vi;
       a[i] = with_u ? c * vi - rv[i] - u2 : c * vi - rv[i];
+      if (next)
+      {
+        const double rq2 = nx.f * qi + nx.fp * q_n[i], rv2 = nx.f * vi + nx.fp * v_n[i];
+        next_rq[i] = rq2;
+        next_rv[i] = rv2;
+        next_h[i] = rv2 + nx.kappa * rq2;
+      }
     }
     else
     {
@@ -669,17 +748,22 @@ form_pass(const double* __restrict base, double* __restrict q1, double* __restri
 
 /// form_pass() with its template arguments from @p flag.
 template <bool... Known>
-void form_pass_for(const std::array<bool, 4>& flag, const double* base, double* q1,
-                   double* q2, double* y1, double* y2, const double c, const double* rq,
-                   const double* rv, const RowRange rows, double* q, double* v, double* a)
+void form_pass_for(const std::array<bool, 5>& flag, double* q1, double* q2, double* y1,
+                   double* y2, const double c, const double* rq, const double* rv,
+                   const RowRange rows, double* q, double* v, double* a,
+                   const NextPiece& nx)
 {
   constexpr std::size_t k = sizeof...(Known);
-  if constexpr (k == 4)
-    form_pass<Known...>(base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+  if constexpr (k == 5)
+  {
+    constexpr std::array<bool, 5> known{{Known...}};
+    if constexpr (known[3] || !known[4]) // a next history on the last pass only
+      form_pass<Known...>(q1, q2, y1, y2, c, rq, rv, rows, q, v, a, nx);
+  }
   else if (flag[k])
-    form_pass_for<Known..., true>(flag, base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+    form_pass_for<Known..., true>(flag, q1, q2, y1, y2, c, rq, rv, rows, q, v, a, nx);
   else
-    form_pass_for<Known..., false>(flag, base, q1, q2, y1, y2, c, rq, rv, rows, q, v, a);
+    form_pass_for<Known..., false>(flag, q1, q2, y1, y2, c, rq, rv, rows, q, v, a, nx);
 }
 
 /// Walks sorted disjoint ranges (or none) along increasing rows: inside()
@@ -716,13 +800,14 @@ void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
                                    const RowRanges& reach, const double c,
                                    const dealii::Vector<double>& rho_q,
                                    const dealii::Vector<double>& rho_v,
-                                   const dealii::Vector<double>* base,
-                                   const GglFixedBlock::ForceSums* sums, DynamicState& x)
+                                   const bool from_base,
+                                   const GglFixedBlock::ForceSums* sums,
+                                   const NextHistory* next, DynamicState& x)
 {
   const int n = x.q.size();
   double *q = x.q.begin(), *v = x.v.begin(), *a = x.a.begin();
   const double *rq = rho_q.begin(), *rv = rho_v.begin();
-  if (base)
+  if (from_base)
   {
     // Stretches of rows on which the border's reach and the rows of each sum
     // do not change: q, v, a from the base and the sums, all of it off the
@@ -736,10 +821,14 @@ void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
     {
       const int last = std::min({on_reach.next(first, n), in_q1.next(first, n),
                                  in_q2.next(first, n), in_u.next(first, n)});
-      const std::array<bool, 4> flag{{in_q1.inside(first), in_q2.inside(first),
-                                      in_u.inside(first), !on_reach.inside(first)}};
-      form_pass_for<>(flag, base->begin(), q1, q2, y1, y2, c, rq, rv,
-                      RowRange{first, last}, q, v, a);
+      const bool off_reach = !on_reach.inside(first);
+      const std::array<bool, 5> flag{{in_q1.inside(first), in_q2.inside(first),
+                                      in_u.inside(first), off_reach,
+                                      next != nullptr && off_reach}};
+      by_blocks(off_reach ? next : nullptr, RowRange{first, last},
+                [&](const RowRange piece, const NextPiece& nx) {
+                  form_pass_for<>(flag, q1, q2, y1, y2, c, rq, rv, piece, q, v, a, nx);
+                });
       first = last;
     }
   }
@@ -759,11 +848,24 @@ void Bdf2Integrator::combine_trial(const std::vector<BorderTerm>& terms,
       default:
         combine_pass<3, false>(terms.data() + k, c, rq, rv, rows, q, v, a);
       }
-  if (!base)
-    combine_pass<0, true>(terms.data(), c, rq, rv, RowRange{0, n}, q, v, a);
+  // The last pass, and with @p next the next step's history on its rows.
+  const auto last_pass = [&](const RowRange rows)
+  {
+    by_blocks(next, rows,
+              [&](const RowRange piece, const NextPiece& nx)
+              {
+                if (next)
+                  combine_pass<0, true, BorderTerm, true>(terms.data(), c, rq, rv, piece,
+                                                          q, v, a, nx);
+                else
+                  combine_pass<0, true>(terms.data(), c, rq, rv, piece, q, v, a);
+              });
+  };
+  if (!from_base)
+    last_pass(RowRange{0, n});
   else
     for (const RowRange& rows : reach)
-      combine_pass<0, true>(terms.data(), c, rq, rv, rows, q, v, a);
+      last_pass(rows);
 }
 
 void Bdf2Integrator::form_history(const double c, const dealii::Vector<double>& rho_q,
@@ -781,10 +883,12 @@ void Bdf2Integrator::initialize(const DynamicState& initial)
   previous = DynamicState();
   step_number = 0;
   restart = false;
+  history_ready = false;
 }
 
 void Bdf2Integrator::richardson_start()
 {
+  history_ready = false;
   // Backward Euler with dt, and twice with dt/2; extrapolate (2nd order), Sec. 5.2.
   const DynamicState x0 = current;
   if (!start_full) // kept: a restart after an impact uses them again
@@ -837,26 +941,49 @@ void Bdf2Integrator::advance()
   else
   {
     if (!bdf2)
+    {
       bdf2 = std::make_unique<Stage>(system, mass_inverse, damping_over_mass, 1.5 / dt,
                                      linear_solver);
-    // rho = (4 x_n - x_{n-1}) / (2 dt) and the history rho_v + c rho_q, in
-    // one pass
+      bdf2->split_damping();
+    }
+    // rho = (4 x_n - x_{n-1}) / (2 dt) and the history h' = rho_v + (c + mu)
+    // rho_q of the damping split (PatternOperators), in one pass per block,
+    // unless the last step's final pass formed them (NextHistory)
     const unsigned int n = system.n_dofs();
-    step_rho_q.reinit(n, true);
-    step_rho_v.reinit(n, true);
-    history.reinit(n, true);
-    bdf2_history(n, 2. / dt, -0.5 / dt, bdf2->c, current.q.begin(), previous.q.begin(),
-                 current.v.begin(), previous.v.begin(), step_rho_q.begin(),
-                 step_rho_v.begin(), history.begin());
+    const std::vector<PatternOperators::Shift>& blocks = bdf2->split_operators->shifts();
+    if (!history_ready)
+    {
+      step_rho_q.reinit(n, true);
+      step_rho_v.reinit(n, true);
+      history.reinit(n, true);
+      for (const PatternOperators::Shift& b : blocks)
+        bdf2_history(b.last - b.first, 2. / dt, -0.5 / dt, bdf2->c + b.mu,
+                     current.q.begin() + b.first, previous.q.begin() + b.first,
+                     current.v.begin() + b.first, previous.v.begin() + b.first,
+                     step_rho_q.begin() + b.first, step_rho_v.begin() + b.first,
+                     history.begin() + b.first);
+    }
+    for (auto* y : {&next_rho_q, &next_rho_v, &next_h})
+      y->reinit(n, true);
+    NextHistory request{
+        current.q.begin(),  current.v.begin(), 2. / dt, -0.5 / dt, next_rho_q.begin(),
+        next_rho_v.begin(), next_h.begin(),    &blocks, bdf2->c};
+    next_history = &request;
     DynamicState next = implicit_step(*bdf2, step_rho_q, step_rho_v, current.t + dt,
                                       current.active, std::move(spare));
+    next_history = nullptr;
     spare = std::move(previous);
     previous = std::move(current);
     current = std::move(next);
+    step_rho_q.swap(next_rho_q);
+    step_rho_v.swap(next_rho_v);
+    history.swap(next_h);
+    history_ready = true;
   }
   // After an impact the BDF-2 history (x_n, x_{n-1}) spans the jump of the
   // velocities: start afresh from the state after it (Sec. 5.2's start).
   restart = !current.impulse.empty();
+  history_ready = history_ready && !restart;
   ++step_number;
   ++stats.steps;
 }
@@ -870,6 +997,7 @@ void Bdf2Integrator::save(CheckpointOut& archive) const
 void Bdf2Integrator::load(CheckpointIn& archive)
 {
   archive >> step_number >> previous >> current >> restart;
+  history_ready = false;
   load_statistics(archive);
   check_loaded(previous, "x_{n-1}");
   check_loaded(current, "x_n");

@@ -18,27 +18,29 @@ struct PredictorFactors
 
 /**
  * The predictors q^ = q + h v + hq a_n, v^ = v + hv a_n, w = wm a_n + wf a and
- * the right-hand side's parts c_q q^ - w, c_v q^ - v^, in one pass (each
- * entry as deal.II's add(), equ() and -= make it; compiled for AVX2 beside
- * the baseline, without fused multiply-add: the same bits either way).
+ * the right-hand side's parts r = c_q q^ - w + mu (c_v q^ - v^) (the damping
+ * split of PatternOperators: mu of the rows' block) and c_v q^ - v^, in one
+ * pass (compiled for AVX2 beside the baseline, without fused multiply-add:
+ * the same bits either way).
  */
 __attribute__((target_clones("avx2", "default"))) void
-predict(const unsigned int n, const PredictorFactors f, const double* __restrict q,
-        const double* __restrict v, const double* __restrict a_n,
-        const double* __restrict a, double* __restrict q_hat, double* __restrict v_hat,
-        double* __restrict w, double* __restrict mass_part,
-        double* __restrict damping_part)
+predict(const unsigned int n, const PredictorFactors f, const double mu,
+        const double* __restrict q, const double* __restrict v,
+        const double* __restrict a_n, const double* __restrict a,
+        double* __restrict q_hat, double* __restrict v_hat, double* __restrict w,
+        double* __restrict mass_part, double* __restrict damping_part)
 {
   for (unsigned int i = 0; i < n; ++i)
   {
     const double qh = q[i] + f.h * v[i] + f.hq * a_n[i];
     const double vh = v[i] + f.hv * a_n[i];
     const double wi = f.wm * a_n[i] + f.wf * a[i];
+    const double dp = f.c_v * qh - vh;
     q_hat[i] = qh;
     v_hat[i] = vh;
     w[i] = wi;
-    mass_part[i] = f.c_q * qh - wi;
-    damping_part[i] = f.c_v * qh - vh;
+    mass_part[i] = f.c_q * qh - wi + mu * dp;
+    damping_part[i] = dp;
   }
 }
 
@@ -78,7 +80,7 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
       c_v(k.gamma / (k.beta * h)),
       S(system, c_v, c_q, "generalized-alpha iteration matrix K + c_v D + c_q M",
         linear_solver),
-      operators(system), at_next(system),
+      operators(system, {c_q, c_v, 1.}), at_next(system),
       active_set(system, max_iterations, ActiveSetIteration::ClosingConstraint::touching),
       impacts(system, mass_inverse)
 {
@@ -150,8 +152,10 @@ void GeneralizedAlphaIntegrator::advance()
     initialize_fixed(rows);
   // Predictors: q^ = q_n + h v_n + h^2 (1/2 - beta) a_n, v^ = v_n + h (1 - gamma) a_n,
   // w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f). Then
-  // S q0 = f + M (c_q q^ - w) + D (c_v q^ - v^).
-  // In one pass (each entry as deal.II's add(), equ() and -= make it).
+  // S q0 = f + M (c_q q^ - w) + D (c_v q^ - v^), formed with the damping
+  // split (PatternOperators) as q0 = gamma (c_v q^ - v^) + S^-1 (f + M (c_q q^
+  // - w + mu (c_v q^ - v^)) + E (c_v q^ - v^)). The predictors in one pass
+  // per block.
   const dealii::Vector<double>& a_n = pseudo_acceleration;
   for (auto* x : {&q_hat, &v_hat, &w, &mass_part, &damping_part})
     x->reinit(n, true);
@@ -162,12 +166,17 @@ void GeneralizedAlphaIntegrator::advance()
                            -k.alpha_f / (1. - k.alpha_f),
                            c_q,
                            c_v};
-  predict(n, f, current.q.begin(), current.v.begin(), a_n.begin(), current.a.begin(),
-          q_hat.begin(), v_hat.begin(), w.begin(), mass_part.begin(),
-          damping_part.begin());
+  for (const PatternOperators::Shift& b : operators.shifts())
+  {
+    const unsigned int i = b.first;
+    predict(b.last - i, f, b.mu, current.q.begin() + i, current.v.begin() + i,
+            a_n.begin() + i, current.a.begin() + i, q_hat.begin() + i, v_hat.begin() + i,
+            w.begin() + i, mass_part.begin() + i, damping_part.begin() + i);
+  }
   operators.set_time(t1);
   operators.history(mass_part, damping_part, S.base);
   S.inverse.solve(S.base);
+  operators.add_shift(damping_part, S.base);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     compute_moving_columns(c, rows[S.moving[c]]);
   const dealii::Vector<double>& q0 = S.base; // the base solution

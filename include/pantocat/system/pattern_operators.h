@@ -26,18 +26,64 @@ namespace pantocat
  * after the other, several rows at once, and each row's sum still takes its
  * entries in the pattern's order (the same value, to the bit, as a loop over
  * the row's entries).
+ *
+ * **The damping split** (issue 16: fewer terms per row). Given the factors
+ * of an integrator's iteration matrix S = s_M M + s_D D + s_K K (BDF-2 of
+ * (38): c^2, c, 1), the operators split D on each block where the damping
+ * is proportional, D = alpha M + beta K (the viscous beta w_t of Eq. (2):
+ * D = beta M of the wire; Rayleigh damping), but for the rows E that break
+ * the law (point masses outside it, springs):
+ *
+ *     D r = mu M r + gamma S r + E r,   gamma = beta / (s_K + s_D beta),
+ *     mu = alpha - gamma (s_M + s_D alpha),   E = D - mu M - gamma S,
+ *
+ * so that S^-1 (f + M h + D r) = gamma r + S^-1 (f + M (h + mu r) + E r).
+ * history() then sums f + M h' + E r, where the caller passes h' = h + mu r
+ * (shifts() gives mu and gamma of each block's rows) and adds gamma r to the
+ * solution (add_shift()). On the rows where E is zero, the stretches' passes
+ * sum the mass's entries alone: half the terms of f + M h + D r. Entries of
+ * E below 1e-12 of the largest terms of their row are round-off and taken as
+ * zero. Blocks where half the rows or more break every law tried,
+ * or of fewer than 32 rows, keep D (mu = gamma = 0).
  */
 class PatternOperators
 {
 public:
+  /// The factors of S = mass M + damping D + stiffness K.
+  struct IterationFactors
+  {
+    double mass, damping, stiffness;
+  };
+  /// Rows [first, last) of one block and its split of the damping.
+  struct Shift
+  {
+    unsigned int first, last;
+    double mu, gamma;
+  };
+
+  /// history() with D (no split).
   explicit PatternOperators(const SemiDiscreteSystem& system);
+  /// history() with the damping split for the iteration matrix @p split
+  /// (see the class comment); motion() is not available.
+  PatternOperators(const SemiDiscreteSystem& system, const IterationFactors& split);
 
   /// Uses f(@p t) from now on; nothing to do if the system's load is constant.
   void set_time(double t) const;
 
-  /// @p out = f + M h + D r.
+  /// @p out = f + M h + D r; with the damping split, f + M h + E r (h = h' of
+  /// the class comment).
   void history(const dealii::Vector<double>& h, const dealii::Vector<double>& r,
                dealii::Vector<double>& out) const;
+
+  /// The blocks' rows with their mu and gamma, in order, covering all rows
+  /// (mu = gamma = 0 without the split and on the blocks that keep D).
+  const std::vector<Shift>& shifts() const { return block_shifts; }
+  /// True if some block has gamma != 0 (add_shift() has work to do).
+  bool shifts_solution() const;
+  /// x += gamma r on the rows of each block with gamma != 0.
+  void add_shift(const dealii::Vector<double>& r, dealii::Vector<double>& x) const;
+  /// Rows whose E (or D without the split) has an entry that is not zero.
+  unsigned int rows_with_damping_entries() const;
 
   /// r_q = M (qp - v), r_v = M vp + D v + K q - f (arrays of length n).
   void motion(const double* q, const double* v, const double* qp, const double* vp,
@@ -81,6 +127,8 @@ private:
     unsigned int first, last, n_exceptions;
     std::vector<int> offsets;
     std::vector<double> mass, damping; ///< [offset index * 2 + parity], 0 where absent
+    /// All damping coefficients zero: history() sums the mass's terms alone.
+    bool undamped = false;
     /// The exceptions whose offsets are among the stretch's, four per group
     /// (the last group repeats its last row): rows [group][lane], their M and
     /// D values [group][offset index][lane] (0 where absent).
@@ -91,6 +139,14 @@ private:
                const std::vector<const RowEntries*>& entries);
   };
   RowEntries row_entries(unsigned int i) const;
+  void build();
+  /// mu and gamma of each block for the iteration matrix @p s (see the class comment).
+  void split_damping(const IterationFactors& s);
+  /// The damping entries stored for row @p i in the pattern's order: D's, or
+  /// E's with the split.
+  std::vector<double> damping_row(unsigned int i) const;
+  /// The shift of the block that holds row @p i.
+  const Shift& shift_of(unsigned int i) const;
   void find_stretches();
   /// The runs without the stretches' rows: history()'s pieces of runs.
   void cut_runs_at_stretches();
@@ -98,6 +154,11 @@ private:
   void for_each_block(const std::vector<Run>& pieces, const Pass& pass) const;
 
   const SemiDiscreteSystem& system;
+  std::vector<Shift> block_shifts;
+  /// With the split: S's factors.
+  bool split = false;
+  IterationFactors factors{0., 0., 0.};
+  unsigned int damped_rows = 0;
   mutable dealii::Vector<double> load; ///< f(t) of the latest set_time()
   std::vector<Run> runs;
   std::vector<int> offsets;

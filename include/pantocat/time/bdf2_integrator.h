@@ -111,6 +111,24 @@ private:
   void solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                    const dealii::Vector<double>& rho_q,
                    const dealii::Vector<double>& rho_v, DynamicState& x);
+
+public:
+  /**
+   * The next BDF-2 step's history, formed in a step's last pass over q, v, a
+   * (combine_trial) instead of a pass of its own at the next step: rho_q =
+   * f q_{n+1} + fp q_n, rho_v likewise, h = rho_v + (c + mu) rho_q with mu of
+   * each block of the damping split (PatternOperators::shifts()).
+   */
+  struct NextHistory
+  {
+    const double *q_n, *v_n;
+    double f, fp;
+    double *rho_q, *rho_v, *h;
+    const std::vector<PatternOperators::Shift>* blocks;
+    double c;
+  };
+
+private:
   /// A border unknown's share of q, v, a: f times its column X (stride
   /// InterleavedColumns::width), and its mass columns U (Y, Z) with the
   /// factors its kind gives them in v (Y for mu, Z for eta) and a (Y for eta).
@@ -124,16 +142,17 @@ private:
    * q += sum of the border terms on the rows @p reach that their columns
    * reach, then v = c q - rho_q - (v + their mass columns), a = c v - rho_v -
    * (a + theirs) in one pass over the unknowns (v and a hold u1, u2 of (38)'s
-   * BDF form on entry). With a @p base, x's vectors hold nothing on entry: q
-   * starts from the base plus the fixed forces' @p sums (if any, zeroed on
-   * the way), u1 and u2 from their sums or 0; off the reach q, v and a are
-   * formed in that same pass.
+   * BDF form on entry). With @p from_base, q holds the base solution on
+   * entry (its vector taken from the stage) and v, a nothing: q adds the
+   * fixed forces' @p sums (if any, zeroed on the way), u1 and u2 start from
+   * their sums or 0; off the reach q, v and a are formed in that same pass.
+   * With @p next, the last pass also forms the next step's history.
    */
   static void combine_trial(const std::vector<BorderTerm>& terms, const RowRanges& reach,
                             double c, const dealii::Vector<double>& rho_q,
-                            const dealii::Vector<double>& rho_v,
-                            const dealii::Vector<double>* base,
-                            const GglFixedBlock::ForceSums* sums, DynamicState& x);
+                            const dealii::Vector<double>& rho_v, bool from_base,
+                            const GglFixedBlock::ForceSums* sums, const NextHistory* next,
+                            DynamicState& x);
 
   double dt;
   LinearSolverType linear_solver;
@@ -150,8 +169,16 @@ private:
   bool restart = false;
   DynamicState previous, current;
   DynamicState spare; ///< x_{n-2}: its vectors' memory for the next step
-  /// Workspace of a step: rho_q, rho_v of the BDF-2 step, rho_v + c rho_q.
+  /// Workspace of a step: rho_q, rho_v of the BDF-2 step, rho_v + c rho_q
+  /// (+ mu rho_q of the damping split).
   dealii::Vector<double> step_rho_q, step_rho_v, history;
+  /// The next step's rho_q, rho_v and history, formed by the step's last pass.
+  dealii::Vector<double> next_rho_q, next_rho_v, next_h;
+  /// step_rho_q, step_rho_v and history hold the next BDF-2 step's (formed by
+  /// the last step; false after a start, an impact or a checkpoint's load).
+  bool history_ready = false;
+  /// The request of the BDF-2 step under way (advance()), else nullptr.
+  const NextHistory* next_history = nullptr;
   unsigned long step_number = 0;
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
   std::vector<BorderTerm> border_terms;           ///< workspace of solve_trial()

@@ -131,8 +131,8 @@ private:
   Coefficients k;
   double c_q, c_v; ///< S = K + c_v D + c_q M
   MassInverse mass_inverse;
-  IterationMatrix S; ///< K + c_v D + c_q M and the column batches
-  PatternOperators operators;
+  IterationMatrix S;          ///< K + c_v D + c_q M and the column batches
+  PatternOperators operators; ///< f + M h + E r with the damping split for S
   ConstraintEvaluator at_next;
   ActiveSetIteration active_set;
   ImpactProjection impacts; ///< velocities at an impact
