@@ -174,9 +174,14 @@ void GeneralizedAlphaIntegrator::advance()
             w.begin() + i, mass_part.begin() + i, damping_part.begin() + i);
   }
   operators.set_time(t1);
-  operators.history(mass_part, damping_part, S.base);
-  S.inverse.solve(S.base);
-  operators.add_shift(damping_part, S.base);
+  const auto solve_base = [&]
+  {
+    S.base.reinit(n, true);
+    operators.history(mass_part, damping_part, S.base);
+    S.inverse.solve(S.base);
+    operators.add_shift(damping_part, S.base);
+  };
+  solve_base();
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     compute_moving_columns(c, rows[S.moving[c]]);
   const dealii::Vector<double>& q0 = S.base; // the base solution
@@ -201,13 +206,14 @@ void GeneralizedAlphaIntegrator::advance()
   x.t = t1;
   x.lambda.assign(m_all, 0.);
   x.impulse.clear();
-  x.q.reinit(n, true);
   gaps.resize(m_all);
   rates.resize(m_all);
   active_set.start(current.active);
   bool touching = false;
-  for (;;)
+  for (bool first_trial = true;; first_trial = false)
   {
+    if (!first_trial)
+      solve_base(); // the last trial took the base's vector: the same bits again
     solve_position_level(rows, x.lambda);
     assemble_positions(x.lambda, x.q);
     touching = active_set.force_indices().size() != active_set.active_indices().size();
@@ -353,9 +359,9 @@ void GeneralizedAlphaIntegrator::solve_position_level(
 }
 
 void GeneralizedAlphaIntegrator::assemble_positions(const std::vector<double>& lambda,
-                                                    dealii::Vector<double>& q) const
+                                                    dealii::Vector<double>& q)
 {
-  q = S.base; // q0
+  q.swap(S.base); // q0, its vector taken (advance() solves for it again if needed)
   fixed_S.add_columns(factors, q);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     if (lambda[S.moving[c]] != 0.)

@@ -113,9 +113,9 @@ private:
    */
   void solve_position_level(const std::vector<ConstraintState>& rows,
                             std::vector<double>& lambda);
-  /// q = q0 + S^-1 G^T lambda (truncated columns of the fixed constraints).
-  void assemble_positions(const std::vector<double>& lambda,
-                          dealii::Vector<double>& q) const;
+  /// q = q0 + S^-1 G^T lambda (truncated columns of the fixed constraints); q
+  /// takes the base solution's vector (S.base is left with q's old one).
+  void assemble_positions(const std::vector<double>& lambda, dealii::Vector<double>& q);
   /**
    * x <- x + M^-1 G^T y with residual(i) + G_i M^-1 G^T y = 0 on the
    * constraints that hold (active and touching): the projection of the
