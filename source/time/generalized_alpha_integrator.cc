@@ -3,6 +3,8 @@
 #include <pantocat/time/generalized_alpha_integrator.h>
 #include <pantocat/time/multiplier_system.h>
 
+#include <tuple>
+
 namespace pantocat
 {
 namespace
@@ -16,51 +18,80 @@ struct PredictorFactors
   double h, hq, hv, wm, wf, c_q, c_v;
 };
 
+/// The predictor q^ = q + h v + hq a_n of one unknown (every pass and dot
+/// product forms it so: the same bits).
+inline double q_hat(const PredictorFactors& f, const double q, const double v,
+                    const double a_n)
+{
+  return q + f.h * v + f.hq * a_n;
+}
+/// The predictor v^ = v + hv a_n of one unknown.
+inline double v_hat(const PredictorFactors& f, const double v, const double a_n)
+{
+  return v + f.hv * a_n;
+}
+/// w = wm a_n + wf a of one unknown.
+inline double w_of(const PredictorFactors& f, const double a_n, const double a)
+{
+  return f.wm * a_n + f.wf * a;
+}
+
 /**
- * The predictors q^ = q + h v + hq a_n, v^ = v + hv a_n, w = wm a_n + wf a and
- * the right-hand side's parts r = c_q q^ - w + mu (c_v q^ - v^) (the damping
- * split of PatternOperators: mu of the rows' block) and c_v q^ - v^, in one
- * pass (compiled for AVX2 beside the baseline, without fused multiply-add:
- * the same bits either way).
+ * The right-hand side's parts r = c_q q^ - w + mu (c_v q^ - v^) (the damping
+ * split of PatternOperators: mu of the rows' block) and c_v q^ - v^ from the
+ * predictors q^, v^, w, in one pass; the predictors are not stored
+ * (newmark_update() forms them again). Compiled for AVX2 beside the
+ * baseline, without fused multiply-add: the same bits either way.
  */
 __attribute__((target_clones("avx2", "default"))) void
 predict(const unsigned int n, const PredictorFactors f, const double mu,
         const double* __restrict q, const double* __restrict v,
         const double* __restrict a_n, const double* __restrict a,
-        double* __restrict q_hat, double* __restrict v_hat, double* __restrict w,
         double* __restrict mass_part, double* __restrict damping_part)
 {
   for (unsigned int i = 0; i < n; ++i)
   {
-    const double qh = q[i] + f.h * v[i] + f.hq * a_n[i];
-    const double vh = v[i] + f.hv * a_n[i];
-    const double wi = f.wm * a_n[i] + f.wf * a[i];
-    const double dp = f.c_v * qh - vh;
-    q_hat[i] = qh;
-    v_hat[i] = vh;
-    w[i] = wi;
-    mass_part[i] = f.c_q * qh - wi + mu * dp;
+    const double qh = q_hat(f, q[i], v[i], a_n[i]);
+    const double dp = f.c_v * qh - v_hat(f, v[i], a_n[i]);
+    mass_part[i] = f.c_q * qh - w_of(f, a_n[i], a[i]) + mu * dp;
     damping_part[i] = dp;
   }
 }
 
+/// G q^ and G v^ of a constraint's row, summed as SparseRow::dot() sums them.
+std::pair<double, double> predicted_dots(const SparseRow& G, const PredictorFactors& f,
+                                         const double* q, const double* v,
+                                         const double* a_n)
+{
+  double gq = 0., gv = 0.;
+  for (std::size_t k = 0; k < G.index.size(); ++k)
+  {
+    const unsigned int j = G.index[k];
+    gq += G.value[k] * q_hat(f, q[j], v[j], a_n[j]);
+    gv += G.value[k] * v_hat(f, v[j], a_n[j]);
+  }
+  return {gq, gv};
+}
+
 /**
  * The Newmark relations in one pass: a_next = (q - q^) fa, v = v^ + fv
- * a_next, a = fw a_next + w (each entry as deal.II's add(), *=, equ() and +=
- * make it; AVX2 beside the baseline, the same bits).
+ * a_next, a = fw a_next + w, with the predictors q^, v^, w formed again from
+ * the state x_n (q_n, v_n, a_n, a_c,n) as predict() formed them (AVX2 beside
+ * the baseline, the same bits).
  */
 __attribute__((target_clones("avx2", "default"))) void
-newmark_update(const unsigned int n, const double fa, const double fv, const double fw,
-               const double* __restrict q, const double* __restrict q_hat,
-               const double* __restrict v_hat, const double* __restrict w,
+newmark_update(const unsigned int n, const PredictorFactors f, const double fa,
+               const double fv, const double fw, const double* __restrict q,
+               const double* __restrict q_n, const double* __restrict v_n,
+               const double* __restrict a_n, const double* __restrict a_c,
                double* __restrict a_next, double* __restrict v, double* __restrict a)
 {
   for (unsigned int i = 0; i < n; ++i)
   {
-    const double ai = (q[i] + -1. * q_hat[i]) * fa;
+    const double ai = (q[i] + -1. * q_hat(f, q_n[i], v_n[i], a_n[i])) * fa;
     a_next[i] = ai;
-    v[i] = v_hat[i] + fv * ai;
-    a[i] = fw * ai + w[i];
+    v[i] = v_hat(f, v_n[i], a_n[i]) + fv * ai;
+    a[i] = fw * ai + w_of(f, a_n[i], a_c[i]);
   }
 }
 } // namespace
@@ -157,7 +188,7 @@ void GeneralizedAlphaIntegrator::advance()
   // - w + mu (c_v q^ - v^)) + E (c_v q^ - v^)). The predictors in one pass
   // per block.
   const dealii::Vector<double>& a_n = pseudo_acceleration;
-  for (auto* x : {&q_hat, &v_hat, &w, &mass_part, &damping_part})
+  for (auto* x : {&mass_part, &damping_part})
     x->reinit(n, true);
   const PredictorFactors f{h,
                            h * h * (0.5 - k.beta),
@@ -170,8 +201,8 @@ void GeneralizedAlphaIntegrator::advance()
   {
     const unsigned int i = b.first;
     predict(b.last - i, f, b.mu, current.q.begin() + i, current.v.begin() + i,
-            a_n.begin() + i, current.a.begin() + i, q_hat.begin() + i, v_hat.begin() + i,
-            w.begin() + i, mass_part.begin() + i, damping_part.begin() + i);
+            a_n.begin() + i, current.a.begin() + i, mass_part.begin() + i,
+            damping_part.begin() + i);
   }
   operators.set_time(t1);
   const auto solve_base = [&]
@@ -196,8 +227,8 @@ void GeneralizedAlphaIntegrator::advance()
   {
     const ConstraintState& r = rows[i];
     const double Gq0 = r.G.dot(q0);
-    G_q_hat[i] = r.G.dot(q_hat);
-    G_v_hat[i] = r.G.dot(v_hat);
+    std::tie(G_q_hat[i], G_v_hat[i]) =
+        predicted_dots(r.G, f, current.q.begin(), current.v.begin(), a_n.begin());
     base_gap[i] = Gq0 + r.z;
     base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - G_q_hat[i]) + G_v_hat[i] + r.z_t;
   }
@@ -248,10 +279,10 @@ void GeneralizedAlphaIntegrator::advance()
   dealii::Vector<double>& a_next = next_pseudo_acceleration;
   for (auto* y : {&a_next, &x.v, &x.a})
     y->reinit(n, true);
-  newmark_update(n, 1. / (h * h * k.beta), h * k.gamma,
-                 (1. - k.alpha_m) / (1. - k.alpha_f),
-                 (touching ? q_newmark : x.q).begin(), q_hat.begin(), v_hat.begin(),
-                 w.begin(), a_next.begin(), x.v.begin(), x.a.begin());
+  newmark_update(
+      n, f, 1. / (h * h * k.beta), h * k.gamma, (1. - k.alpha_m) / (1. - k.alpha_f),
+      (touching ? q_newmark : x.q).begin(), current.q.begin(), current.v.begin(),
+      a_n.begin(), current.a.begin(), a_next.begin(), x.v.begin(), x.a.begin());
   if (active_set.impact_in_step())
   {
     // The impact: velocities onto dg/dt = 0 with the complementary impulses

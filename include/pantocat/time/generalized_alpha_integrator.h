@@ -143,10 +143,11 @@ private:
   /// G_F M^-1 G_F^T of the fixed constraints.
   FixedConstraintSchur fixed_S, fixed_M;
   bool fixed_ready = false;
-  dealii::Vector<double> q_hat, v_hat; ///< predictors (the base solution q0: S.base)
-  /// w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f), and the parts
-  /// c_q q^ - w, c_v q^ - v^ of the right-hand side (workspace of a step).
-  dealii::Vector<double> w, mass_part, damping_part;
+  /// The parts c_q q^ - w + mu (c_v q^ - v^) and c_v q^ - v^ of the
+  /// right-hand side (workspace of a step; the predictors q^, v^ and w =
+  /// (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f) are not stored: each pass
+  /// forms them from x_n; the base solution q0 is S.base).
+  dealii::Vector<double> mass_part, damping_part;
   /// Per constraint at t_{n+1} for q = q0, v = v^ + c_v (q0 - q^): g and dg/dt.
   std::vector<double> base_gap, base_rate;
   /// G q^ and G v^ of every constraint (the rates of the step's trials).
