@@ -1467,6 +1467,18 @@ TEST(PatternOperators, TheDampingSplitGivesTheSameSolutionWithHalfTheTerms)
                               solution.begin()),
                  std::logic_error);
   }
+  // A system whose blocks do not tile its rows (built without them) keeps D
+  // on every row; with its two wires' blocks the same system splits.
+  const SemiDiscreteSystem with_blocks = two_dropper_system();
+  SemiDiscreteSystem bare = two_dropper_system();
+  bare.blocks.clear();
+  const PatternOperators::IterationFactors factors{9e8, 3e4, 1.};
+  const unsigned int damped = PatternOperators(bare).rows_with_damping_entries();
+  EXPECT_GT(damped, 0.9 * bare.n_dofs());
+  EXPECT_EQ(PatternOperators(bare, factors).shifts().size(), 1u);
+  EXPECT_EQ(PatternOperators(bare, factors).rows_with_damping_entries(), damped);
+  EXPECT_EQ(PatternOperators(with_blocks, factors).shifts().size(), 2u);
+  EXPECT_EQ(PatternOperators(with_blocks, factors).rows_with_damping_entries(), 0u);
 }
 
 // GglFixedBlock::add_forces() adds the fixed constraints' multipliers to a

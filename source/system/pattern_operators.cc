@@ -175,8 +175,14 @@ void PatternOperators::split_damping(const IterationFactors& s)
     }
     block_shifts.push_back(shift);
   }
-  if (block_shifts.empty() || block_shifts.back().last != sys.n_dofs())
-    throw std::logic_error("PatternOperators: the system's blocks do not cover its rows");
+  // Blocks that do not tile the rows in order (a system built without them):
+  // no split, D on every row.
+  bool tiled = !block_shifts.empty() && block_shifts.front().first == 0 &&
+               block_shifts.back().last == sys.n_dofs();
+  for (std::size_t b = 1; b < block_shifts.size(); ++b)
+    tiled = tiled && block_shifts[b].first == block_shifts[b - 1].last;
+  if (!tiled)
+    block_shifts.assign(1, Shift{0, sys.n_dofs(), 0., 0.});
 }
 
 void PatternOperators::build()

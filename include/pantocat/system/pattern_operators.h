@@ -43,8 +43,9 @@ namespace pantocat
  * solution (add_shift()). On the rows where E is zero, the stretches' passes
  * sum the mass's entries alone: half the terms of f + M h + D r. Entries of
  * E below 1e-12 of the largest terms of their row are round-off and taken as
- * zero. Blocks where half the rows or more break every law tried,
- * or of fewer than 32 rows, keep D (mu = gamma = 0).
+ * zero. Blocks where half the rows or more break every law tried, or of
+ * fewer than 32 rows, keep D (mu = gamma = 0), and so does a system whose
+ * blocks do not tile its rows.
  */
 class PatternOperators
 {
