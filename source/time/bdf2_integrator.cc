@@ -685,12 +685,13 @@ combine_pass(const Term* terms, const double c, const double* __restrict rq,
 }
 
 /**
- * On @p rows: q = base (held by q on entry; + q1, then + q2 where they reach), u1 = 0 (+
- * y1), u2 = 0 (+ y2) where the fixed forces' mass sums reach; the sums read are set to 0.
- * With @p last (rows off the border's reach), also v = c q - rho_q - u1, a = c v - rho_v
- * - u2, else v = u1, a = u2 for the border passes. Each entry as the copy, the zeroing,
- * the additions of the sums and combine_pass<0, true>() made it (x - (+0) = x where a sum
- * does not reach).
+ * On @p rows: q = base (which q holds on entry), + q1, then + q2 where they
+ * reach; u1 = 0 (+ y1), u2 = 0 (+ y2) where the fixed forces' mass sums
+ * reach; the sums read are set to 0. With @p last (rows off the border's
+ * reach), also v = c q - rho_q - u1, a = c v - rho_v - u2, and with @p next
+ * the next step's history (NextPiece); else v = u1, a = u2 for the border
+ * passes. Each entry as the zeroing, the additions of the sums and
+ * combine_pass<0, true>() made it (x - (+0) = x where a sum does not reach).
  */
 template <bool with_q1, bool with_q2, bool with_u, bool last, bool next>
 __attribute__((target_clones("avx2", "default"))) void
