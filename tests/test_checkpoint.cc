@@ -117,7 +117,7 @@ TEST(Checkpoint, HalfExplicitResumesBitForBit)
 
 // The BDF-2 steps form the next step's history (rho_q, rho_v, h) in their
 // last pass over q, v, a; a loaded run forms it from x_n, x_{n-1} in a pass
-// of its own. Both must give the same bits (issue 16, session 29).
+// of its own. Both must give the same bits.
 TEST(Checkpoint, Bdf2ResumesBitForBitFem)
 {
   expect_resume_bit_for_bit(case_48(SpaceMethod::fem, "bdf2"), 5150, 200);

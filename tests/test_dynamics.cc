@@ -1364,7 +1364,7 @@ TEST(PatternOperators, RunsGiveTheRowLoopsSumsToTheBit)
   }
 }
 
-// The damping split of PatternOperators (issue 16): for S = c^2 M + c D + K
+// The damping split of PatternOperators: for S = c^2 M + c D + K
 // (BDF-2, c = 1.5 / dt), D r = mu M r + gamma S r + E r on each block where D
 // = alpha M + beta K, so S^-1 (f + M h + D r) = gamma r + S^-1 (f + M (h + mu
 // r) + E r), with E zero but on the rows that break the law. Both sides are
@@ -1433,7 +1433,10 @@ TEST(PatternOperators, TheDampingSplitGivesTheSameSolutionWithHalfTheTerms)
           EXPECT_EQ(b.gamma, 0.) << what;
       }
     EXPECT_EQ(wires, 2u) << what;
-    EXPECT_EQ(split.shifts_solution(), c.rayleigh) << what;
+    EXPECT_EQ(std::any_of(split.shifts().begin(), split.shifts().end(),
+                          [](const PatternOperators::Shift& b) { return b.gamma != 0.; }),
+              c.rayleigh)
+        << what;
 
     dealii::SparseMatrix<double> S;
     assemble_iteration_matrix(sys, cf, cf * cf, S);
@@ -1448,9 +1451,7 @@ TEST(PatternOperators, TheDampingSplitGivesTheSameSolutionWithHalfTheTerms)
         shifted[i] = h[i] + b.mu * r[i];
     plain.history(h, r, reference);
     solver.solve(reference);
-    split.history(shifted, r, solution);
-    solver.solve(solution);
-    split.add_shift(r, solution);
+    split.solve_history(shifted, r, solver, solution);
     double largest = 0., difference = 0.;
     for (unsigned int i = 0; i < n; ++i)
     {

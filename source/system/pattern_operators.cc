@@ -243,18 +243,6 @@ void PatternOperators::build()
   }
   find_stretches();
   cut_runs_at_stretches();
-  for (unsigned int i = 0; i < n; ++i)
-  {
-    const RowEntries r = row_entries(i);
-    damped_rows += std::any_of(r.damping.begin(), r.damping.end(),
-                               [](const double d) { return d != 0.; });
-  }
-}
-
-bool PatternOperators::shifts_solution() const
-{
-  return std::any_of(block_shifts.begin(), block_shifts.end(),
-                     [](const Shift& b) { return b.gamma != 0.; });
 }
 
 void PatternOperators::add_shift(const dealii::Vector<double>& r,
@@ -264,6 +252,17 @@ void PatternOperators::add_shift(const dealii::Vector<double>& r,
     if (b.gamma != 0.)
       for (unsigned int i = b.first; i < b.last; ++i)
         x[i] += b.gamma * r[i];
+}
+
+void PatternOperators::solve_history(const dealii::Vector<double>& h,
+                                     const dealii::Vector<double>& r,
+                                     const SparseDirectSolver& inverse,
+                                     dealii::Vector<double>& out) const
+{
+  out.reinit(system.n_dofs(), true);
+  history(h, r, out);
+  inverse.solve(out);
+  add_shift(r, out);
 }
 
 unsigned int PatternOperators::rows_with_damping_entries() const
@@ -321,7 +320,11 @@ void PatternOperators::find_stretches()
   const int n = system.n_dofs();
   std::vector<RowEntries> entries(n);
   for (int i = 0; i < n; ++i)
+  {
     entries[i] = row_entries(i);
+    damped_rows += std::any_of(entries[i].damping.begin(), entries[i].damping.end(),
+                               [](const double d) { return d != 0.; });
+  }
   const auto merged = [&](const int s)
   { return merged_offsets(entries[s].offsets, entries[s + 1].offsets); };
   int lowest = 0, highest = 0; // the offsets of the stretch opened last

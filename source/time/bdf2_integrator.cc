@@ -225,14 +225,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   // columns on the rows they reach.
   const PatternOperators& ops = s.split_operators ? *s.split_operators : operators;
   ops.set_time(t1);
-  const auto solve_base = [&]
-  {
-    s.base.reinit(system.n_dofs(), true);
-    ops.history(history, rho_q, s.base);
-    s.inverse.solve(s.base);
-    ops.add_shift(rho_q, s.base);
-  };
-  solve_base();
+  ops.solve_history(history, rho_q, s.inverse, s.base);
   for (unsigned int k = 0; k < s.moving.size(); ++k)
     s.compute_columns(s.S_columns[k], s.M_columns[k], rows[s.moving[k]]);
   s.touching_columns.clear();
@@ -271,7 +264,8 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
     ++stats.active_set_iterations;
-    solve_base(); // the trial took the base's vector for q: the same bits again
+    // the trial took the base's vector for q: solved again, the same bits
+    ops.solve_history(history, rho_q, s.inverse, s.base);
   }
   stats.active_set_changes += active_set.changes_in_step();
   x.active = active_set.active();

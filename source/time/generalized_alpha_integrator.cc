@@ -205,14 +205,7 @@ void GeneralizedAlphaIntegrator::advance()
             damping_part.begin() + i);
   }
   operators.set_time(t1);
-  const auto solve_base = [&]
-  {
-    S.base.reinit(n, true);
-    operators.history(mass_part, damping_part, S.base);
-    S.inverse.solve(S.base);
-    operators.add_shift(damping_part, S.base);
-  };
-  solve_base();
+  operators.solve_history(mass_part, damping_part, S.inverse, S.base);
   for (unsigned int c = 0; c < S.moving.size(); ++c)
     compute_moving_columns(c, rows[S.moving[c]]);
   const dealii::Vector<double>& q0 = S.base; // the base solution
@@ -243,8 +236,9 @@ void GeneralizedAlphaIntegrator::advance()
   bool touching = false;
   for (bool first_trial = true;; first_trial = false)
   {
+    // The last trial took the base's vector: solved again, the same bits.
     if (!first_trial)
-      solve_base(); // the last trial took the base's vector: the same bits again
+      operators.solve_history(mass_part, damping_part, S.inverse, S.base);
     solve_position_level(rows, x.lambda);
     assemble_positions(x.lambda, x.q);
     touching = active_set.force_indices().size() != active_set.active_indices().size();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/lac/interleaved_columns.h>
+#include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/semi_discrete_system.h>
 
 #include <deal.II/lac/vector.h>
@@ -27,7 +28,7 @@ namespace pantocat
  * entries in the pattern's order (the same value, to the bit, as a loop over
  * the row's entries).
  *
- * **The damping split** (issue 16: fewer terms per row). Given the factors
+ * **The damping split** (fewer terms per row). Given the factors
  * of an integrator's iteration matrix S = s_M M + s_D D + s_K K (BDF-2 of
  * (38): c^2, c, 1), the operators split D on each block where the damping
  * is proportional, D = alpha M + beta K (the viscous beta w_t of Eq. (2):
@@ -79,10 +80,14 @@ public:
   /// The blocks' rows with their mu and gamma, in order, covering all rows
   /// (mu = gamma = 0 without the split and on the blocks that keep D).
   const std::vector<Shift>& shifts() const { return block_shifts; }
-  /// True if some block has gamma != 0 (add_shift() has work to do).
-  bool shifts_solution() const;
   /// x += gamma r on the rows of each block with gamma != 0.
   void add_shift(const dealii::Vector<double>& r, dealii::Vector<double>& x) const;
+  /// @p out = S^-1 (f + M h + D r): history(), the solve with @p inverse (the
+  /// factorisation of S; of the S the split was made for, with the split) and
+  /// add_shift() in turn; @p h is h' with the split.
+  void solve_history(const dealii::Vector<double>& h, const dealii::Vector<double>& r,
+                     const SparseDirectSolver& inverse,
+                     dealii::Vector<double>& out) const;
   /// Rows whose E (or D without the split) has an entry that is not zero.
   unsigned int rows_with_damping_entries() const;
 
@@ -159,7 +164,8 @@ private:
   /// With the split: S's factors.
   bool split = false;
   IterationFactors factors{0., 0., 0.};
-  unsigned int damped_rows = 0;
+  unsigned int damped_rows =
+      0; ///< rows_with_damping_entries(), counted by find_stretches()
   mutable dealii::Vector<double> load; ///< f(t) of the latest set_time()
   std::vector<Run> runs;
   std::vector<int> offsets;
