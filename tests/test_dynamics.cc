@@ -595,9 +595,9 @@ namespace
  * (Bdf2Integrator's documentation). The integrator reduces it by block
  * elimination with batched banded solves; here the same system is assembled
  * densely and solved by Gauss-Jordan. Both must agree to round-off of the
- * dense solve (measured with FEM: 1e-14 relative in q, 2e-12 in v, whose
- * equations carry the factor c = 3/(2 dt) = 3e4; 1e-14 and 9e-13 today, FDM
- * 7e-16 and 3e-12). @p intervals = N+1, 48 m/s, after the Richardson start.
+ * dense solve (measured: FEM 1e-14 relative in q and 9e-13 to 2e-12 in v,
+ * whose equations carry the factor c = 3/(2 dt) = 3e4; FDM 7e-16 and 3e-12).
+ * @p intervals = N+1, 48 m/s, after the Richardson start.
  */
 void expect_block_elimination_solves_the_full_step_system(const SpaceMethod method,
                                                           const unsigned int intervals)
@@ -708,7 +708,7 @@ TEST(Bdf2, BlockEliminationSolvesTheFullStepSystem)
 
 TEST(Bdf2, BlockEliminationSolvesTheFullStepSystemFdm)
 {
-  // FDM, N+1 = 100 (a diagonal M, its own fixed block and columns).
+  // FDM, N+1 = 100 (a diagonal M).
   expect_block_elimination_solves_the_full_step_system(SpaceMethod::fdm, 100);
 }
 

@@ -164,8 +164,8 @@ private:
   /// With the split: S's factors.
   bool split = false;
   IterationFactors factors{0., 0., 0.};
-  unsigned int damped_rows =
-      0; ///< rows_with_damping_entries(), counted by find_stretches()
+  /// rows_with_damping_entries(), counted by find_stretches().
+  unsigned int damped_rows = 0;
   mutable dealii::Vector<double> load; ///< f(t) of the latest set_time()
   std::vector<Run> runs;
   std::vector<int> offsets;
