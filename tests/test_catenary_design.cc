@@ -3,6 +3,8 @@
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/scene/clamp_and_dropper_masses.h>
+#include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/case_runner.h>
 
 #include "support/case_files.h"
@@ -94,6 +96,51 @@ TEST(CatenaryDesign, ASectionWithSteadyArmsAndSprungCarrierRestsOnItsDesign)
           << method << x;
     }
   }
+}
+
+TEST(CatenaryDesign, TheDropperWeightChangeIsTheLoadOfTheLengthChange)
+{
+  // The design assembles the held catenary once and moves its load by
+  // add_dropper_weight_change() as the lengths change. That must be the
+  // difference of two assemblies' loads: f is linear in l_j (Eq. (4)), so the
+  // two agree to the round-off of the loads' sums (asserted: 1e-12 of the
+  // largest load entry), on both wires, for FDM and FEM. With the clamp and
+  // dropper masses left out, there is no change at all.
+  for (const std::string method : {"fdm", "fem"})
+    for (const bool masses : {true, false})
+    {
+      const ProgramParameters p = fig3(
+          {"Discretisation/Method=" + method, "Discretisation/Number of intervals=260",
+           "Catenary/Droppers/Pre-sag=0.065",
+           std::string("Scene/Clamp and dropper masses=") + (masses ? "true" : "false")});
+      const CaseRunner runner(p.make_case());
+      const SceneParameters& scene = runner.case_data().scene;
+      CatenaryParameters c = runner.case_data().catenary;
+      const BuiltScene before = build_catenary(scene, c, runner.discretisation());
+      std::vector<double> changes;
+      for (unsigned int j = 0; j < c.n_droppers(); ++j)
+      {
+        changes.push_back(0.1 * (j + 1) - 0.35); // longer and shorter
+        c.dropper_lengths[j] += changes.back();
+      }
+      const BuiltScene after = build_catenary(scene, c, runner.discretisation());
+      dealii::Vector<double> moved = before.catenary_only.load;
+      add_dropper_weight_change(scene, c, runner.discretisation(), before.catenary_only,
+                                changes, moved);
+      dealii::Vector<double> difference = after.catenary_only.load;
+      difference -= moved;
+      const double scale = after.catenary_only.load.linfty_norm();
+      EXPECT_LT(difference.linfty_norm(), 1e-12 * scale) << method << masses;
+      dealii::Vector<double> change(moved.size());
+      add_dropper_weight_change(scene, c, runner.discretisation(), before.catenary_only,
+                                changes, change);
+      // Up to 0.35 m of dropper at 0.14 kg/m: 0.24 N on each wire, shared by
+      // the point row's nodes.
+      if (masses)
+        EXPECT_GT(change.linfty_norm(), 1e-3 * scale) << method;
+      else
+        EXPECT_EQ(change.linfty_norm(), 0.) << method;
+    }
 }
 
 TEST(CatenaryDesign, LengthsConvergeUnderGridRefinement)

@@ -89,6 +89,37 @@ void StaticEquilibriumSolver::add_columns_formed_again(
   }
 }
 
+const dealii::FullMatrix<double>&
+StaticEquilibriumSolver::S_inverse_of(const std::vector<bool>& active,
+                                      const std::vector<unsigned int>& act) const
+{
+  if (active == inverse_active)
+    return S_inverse;
+  const unsigned int m = act.size();
+  inverse_active.clear(); // until S_inverse holds this set's inverse
+  S_inverse.reinit(m, m);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    for (unsigned int l = 0; l < m; ++l)
+      S_inverse(k, l) = schur(act[k], act[l]);
+    // An engaged compliant constraint is a spring, lambda = -k g: the row
+    // g + lambda/k = 0, the compliance 1/k on the diagonal of G K^-1 G^T.
+    const Compliance& law = system.constraints[act[k]]->compliance();
+    if (law.stiffness > 0.)
+      S_inverse(k, k) += 1. / law.stiffness;
+  }
+  try
+  {
+    S_inverse.gauss_jordan(); // small and dense
+  }
+  catch (const dealii::ExceptionBase&)
+  {
+    throw SimulationError(dependent_constraints);
+  }
+  inverse_active = active;
+  return S_inverse;
+}
+
 void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& active,
                                                     const dealii::Vector<double>& q_free,
                                                     StaticEquilibrium& out) const
@@ -98,30 +129,12 @@ void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& act
     if (active[i])
       act.push_back(i);
   const unsigned int m = act.size();
-  dealii::FullMatrix<double> S(m, m);
   dealii::Vector<double> rhs(m), lambda(m);
   for (unsigned int k = 0; k < m; ++k)
-  {
-    for (unsigned int l = 0; l < m; ++l)
-      S(k, l) = schur(act[k], act[l]);
-    // An engaged compliant constraint is a spring, lambda = -k g: the row
-    // g + lambda/k = 0, the compliance 1/k on the diagonal of G K^-1 G^T.
-    const Compliance& law = system.constraints[act[k]]->compliance();
-    if (law.stiffness > 0.)
-      S(k, k) += 1. / law.stiffness;
     rhs(k) = -states[act[k]].position_residual(q_free);
-  }
   if (m > 0)
   {
-    try
-    {
-      S.gauss_jordan(); // small and dense
-    }
-    catch (const dealii::ExceptionBase&)
-    {
-      throw SimulationError(dependent_constraints);
-    }
-    S.vmult(lambda, rhs);
+    S_inverse_of(active, act).vmult(lambda, rhs);
     for (unsigned int k = 0; k < m; ++k)
       if (!std::isfinite(lambda(k)))
         throw SimulationError(dependent_constraints);

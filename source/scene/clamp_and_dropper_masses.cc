@@ -33,4 +33,24 @@ std::string ClampAndDropperMasses::describe(const SceneAssembly& a) const
                                                    : "loads, Eq. (4),") +
          " at " + std::to_string(a.catenary.n_droppers()) + " droppers";
 }
+
+void add_dropper_weight_change(const SceneParameters& scene,
+                               const CatenaryParameters& catenary,
+                               const CatenaryDiscretisation& space,
+                               const SemiDiscreteSystem& system,
+                               const std::vector<double>& length_changes,
+                               dealii::Vector<double>& load)
+{
+  if (!ClampAndDropperMasses().enabled(scene, catenary))
+    return;
+  for (unsigned int j = 0; j < catenary.n_droppers(); ++j)
+  {
+    // clamp_load(j, .) less its clamp part: half the dropper's weight per wire.
+    const double weight =
+        0.5 * length_changes[j] * catenary.dropper_mass_per_length * catenary.gravity;
+    for (const Wire wire : {Wire::carrier, Wire::contact_wire})
+      wire_point_row(space, system, wire, catenary.dropper_positions[j])
+          .add_transpose_to(load, -weight);
+  }
+}
 } // namespace pantocat

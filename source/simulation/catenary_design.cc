@@ -2,6 +2,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
 #include <pantocat/scene/carrier_supports.h>
+#include <pantocat/scene/clamp_and_dropper_masses.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/catenary_design.h>
@@ -109,15 +110,22 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
   std::vector<double> steady_arm_preloads, carrier_support_preloads;
   const bool designing =
       catenary.design == DropperDesign::designed && scene.has_droppers();
+  // The held catenary is built and factorised once, with the lengths it
+  // starts from (l0); only the dropper weights depend on the lengths, and
+  // they enter each iteration as a change of the load.
+  const HeldCatenary h = held_catenary(scene, c, space, designing);
+  const StaticEquilibriumSolver solver(h.system);
+  const std::vector<double> l0 = c.dropper_lengths;
   double previous_change = std::numeric_limits<double>::infinity();
   for (unsigned int it = 0; it < 50; ++it)
   {
     r.iterations = it + 1;
-    HeldCatenary h = held_catenary(scene, c, space, designing);
-    const dealii::Vector<double> none(h.system.n_dofs());
-    // One factorisation of K and one set of columns K^-1 G^T for both loads.
-    const StaticEquilibriumSolver solver(h.system);
-    StaticEquilibrium s = solver.solve(none);
+    dealii::Vector<double> weights(h.system.n_dofs());
+    std::vector<double> length_changes(c.n_droppers());
+    for (unsigned int j = 0; j < c.n_droppers(); ++j)
+      length_changes[j] = c.dropper_lengths[j] - l0[j];
+    add_dropper_weight_change(scene, c, space, h.system, length_changes, weights);
+    StaticEquilibrium s = solver.solve(weights);
     if (!designing)
     {
       r.dropper_forces.clear();
@@ -127,7 +135,7 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     }
     // Step 2: the droppers' tensions pull the carrier down.
     r.dropper_forces = multipliers_of(s, h.heights);
-    dealii::Vector<double> pull(h.system.n_dofs());
+    dealii::Vector<double> pull = weights;
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
       wire_point_row(space, h.system, Wire::carrier, c.dropper_positions[j])
           .add_transpose_to(pull, -r.dropper_forces[j]);

@@ -43,9 +43,12 @@ struct StaticEquilibrium
  * back-substitution for its load plus, per active-set iteration, a small dense
  * solve with the rows and columns of S of the active constraints. K, G and z
  * do not depend on the load, so any number of loads (the static elasticity:
- * one per load point and force) share this work.
+ * one per load point and force; the dropper design's iterations) share this
+ * work, and the inverse of the last active set's S is kept for the next
+ * solve with the same set.
  *
- * Keeps a reference to @p system, which must outlive it.
+ * Keeps a reference to @p system, which must outlive it. Not for solve()
+ * calls from several threads at once (the kept inverse).
  */
 class StaticEquilibriumSolver
 {
@@ -102,8 +105,21 @@ private:
   void add_columns_formed_again(const std::vector<unsigned int>& act,
                                 const dealii::Vector<double>& lambda,
                                 dealii::Vector<double>& q) const;
+  /**
+   * (G K^-1 G^T + C)^-1 of the constraints @p act (the flags @p active), C
+   * the engaged compliances; inverted when the active set differs from the
+   * last one's, else kept: solves under several loads with one active set
+   * (the dropper design's iterations) invert it once. Throws SimulationError
+   * if it is singular.
+   */
+  const dealii::FullMatrix<double>&
+  S_inverse_of(const std::vector<bool>& active,
+               const std::vector<unsigned int>& act) const;
+
   std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i, or empty
   dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
+  mutable std::vector<bool> inverse_active;     ///< the set S_inverse belongs to
+  mutable dealii::FullMatrix<double> S_inverse; ///< see S_inverse_of()
 };
 
 /**

@@ -2,6 +2,10 @@
 
 #include <pantocat/scene/scene_effect.h>
 
+#include <deal.II/lac/vector.h>
+
+#include <vector>
+
 namespace pantocat
 {
 /**
@@ -16,4 +20,18 @@ public:
   void add_terms(SceneAssembly& assembly) const override;
   std::string describe(const SceneAssembly& assembly) const override;
 };
+
+/**
+ * Adds to @p load (of @p system, built on @p space) the change of the load f
+ * in (17) when the dropper lengths l_j change by @p length_changes: the
+ * dropper weights l_j rho_d A_d g / 2 on each wire, Eq. (4), are linear in
+ * l_j. Nothing if the scene has no ClampAndDropperMasses. The static design
+ * (design_catenary()) iterates on the lengths with one assembled system.
+ */
+void add_dropper_weight_change(const SceneParameters& scene,
+                               const CatenaryParameters& catenary,
+                               const CatenaryDiscretisation& space,
+                               const SemiDiscreteSystem& system,
+                               const std::vector<double>& length_changes,
+                               dealii::Vector<double>& load);
 } // namespace pantocat

@@ -29,7 +29,10 @@ struct CatenaryDesignResult
  *    are the dropper tensions F_j. Step 2 loads the carrier with -F_j at the
  *    droppers. Then l_j = w_c(x_j) - z_j (less F_j / k_d for an elastic
  *    dropper). The dropper weights depend on l_j: repeated until l_j changes
- *    by less than 1e-12 m.
+ *    by less than 1e-10 m (or stops shrinking below 1e-8 m, at the static
+ *    solves' round-off). The held catenary is assembled and K factorised
+ *    once; each iteration changes only the load by the dropper weights
+ *    (add_dropper_weight_change()).
  *  - Springs at the supports (steady arms, carrier springs): their preloads
  *    are the reactions of the supports held fixed in that static state, so
  *    that the sprung catenary is at rest in exactly the same state.
