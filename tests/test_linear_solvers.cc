@@ -428,6 +428,15 @@ TEST(LinearSolvers, TwistedFactorOfTheFemIterationMatrixSolvesToRoundOff)
     const TwistedDifferences d = twisted_differences(banded, umfpack, b, x);
     EXPECT_LT(d.from_umfpack, 1e-12 * d.solution);
     EXPECT_LT(d.from_plain, 1e-12 * d.solution);
+    // A uniform wire's factor settles to records that repeat to the bit
+    // (period 1 on the string, 4 on the twisted Hermite beam), stored once:
+    // measured 5.4 % (S) and 6.4 % (M) of the steps on these short wires (the
+    // factor settles over its first rows); 10 % asserted, which the storage
+    // without the repeats (100 %) fails.
+    std::cout << "  distinct twisted records: " << 100. * banded.twisted_record_fraction()
+              << " % of the steps\n";
+    EXPECT_LT(banded.twisted_record_fraction(), 0.1);
+    EXPECT_GT(banded.twisted_record_fraction(), 0.);
   }
 }
 

@@ -614,6 +614,17 @@ SparseDirectSolver::ScaledBand SparseDirectSolver::scaled_band() const
   return {lower_scaled.data(), upper_scaled.data(), reciprocal.data(), kd};
 }
 
+double SparseDirectSolver::twisted_record_fraction() const
+{
+  double records = 0., steps = 0.;
+  for (const TwistedBand& t : twisted)
+  {
+    records += t.distinct_records();
+    steps += t.substitution_steps();
+  }
+  return steps > 0. ? records / steps : 0.;
+}
+
 void SparseDirectSolver::solve(dealii::Vector<double>& x) const
 {
   if (!banded)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <type_traits>
 
 extern "C"
@@ -33,7 +34,8 @@ using Pair = TwistedBand::Pair;
 template <int KD, int Dir>
 struct PairedLane
 {
-  const Pair* record;
+  const Pair* records;
+  const unsigned int* at; ///< the next step's record: records + *at
   double* top;
   double* bottom;
   int length;
@@ -41,6 +43,7 @@ struct PairedLane
 
   [[gnu::always_inline]] void step()
   {
+    const Pair* record = records + *at;
     const Pair x = {*top, *bottom};
     Pair s = x * record[0];
     for (int m = KD; m >= 1; --m)
@@ -52,7 +55,7 @@ struct PairedLane
     w[0] = s;
     top += Dir;
     bottom -= Dir;
-    record += KD + 1;
+    ++at;
   }
 };
 
@@ -60,10 +63,11 @@ struct PairedLane
 /// on the KD rows before them in their directions: zeros (the chains' first
 /// rows have zero coefficients beyond the block) or @p x's values.
 template <int KD, int Dir>
-PairedLane<KD, Dir> lane(const std::vector<Pair>& records, double* x, const int top,
+PairedLane<KD, Dir> lane(const std::vector<Pair>& records,
+                         const std::vector<unsigned int>& at, double* x, const int top,
                          const int bottom, const int length, const bool window_from_x)
 {
-  PairedLane<KD, Dir> l{records.data(), x + top, x + bottom, length, {}};
+  PairedLane<KD, Dir> l{records.data(), at.data(), x + top, x + bottom, length, {}};
   if (window_from_x)
     for (int m = 1; m <= KD; ++m)
       l.w[m - 1] = Pair{x[top - Dir * m], x[bottom + Dir * m]};
@@ -84,6 +88,39 @@ void side_by_side(Lanes&... lanes)
   const int end = std::max({lanes.length...});
   for (int t = common; t < end; ++t)
     ((t < lanes.length ? lanes.step() : void()), ...);
+}
+
+/**
+ * Keeps each of the @p steps records of @p size pairs in @p records once:
+ * a record equal, to the bit, to that of one of the four steps before (a
+ * uniform grid's factor settles to rows that repeat with period 1, 2 or 4)
+ * takes that step's place. Returns where each step's record starts.
+ */
+std::vector<unsigned int> store_distinct(std::vector<Pair>& records, const int steps,
+                                         const int size)
+{
+  std::vector<unsigned int> at(steps);
+  std::vector<Pair> distinct;
+  const auto same = [&](const Pair* a, const Pair* b)
+  { return std::memcmp(a, b, sizeof(Pair) * size) == 0; };
+  for (int s = 0; s < steps; ++s)
+  {
+    const Pair* record = records.data() + static_cast<std::size_t>(s) * size;
+    int found = -1;
+    for (int p = 1; p <= 4 && p <= s && found < 0; ++p)
+      if (same(distinct.data() + at[s - p], record))
+        found = static_cast<int>(at[s - p]);
+    if (found >= 0)
+      at[s] = found;
+    else
+    {
+      at[s] = distinct.size();
+      distinct.insert(distinct.end(), record, record + size);
+    }
+  }
+  distinct.shrink_to_fit();
+  records.swap(distinct);
+  return at;
 }
 
 /// body(std::integral_constant<int, bw>{}) for a half bandwidth 1 to 4.
@@ -191,6 +228,8 @@ bool TwistedBand::factorize(const int first_row, const int last_row, const int b
     add_record(forward, first_row + s, last_row - 1 - s, +1);
   for (int s = 0; s < half; ++s) // R x = y: the top up, the bottom down
     add_record(backward, twist - 1 - s, middle_end + s, -1);
+  forward_at = store_distinct(forward, half, KD + 1);
+  backward_at = store_distinct(backward, half, KD + 1);
   for (int j = twist; j < middle_end; ++j)
   {
     const double d = 1. / R(j, j);
@@ -238,11 +277,11 @@ void TwistedBand::substitute(const TwistedBand& a, const TwistedBand* b, double*
   // R^T y = b towards the middles.
   {
     auto in_a =
-        lane<KA, +1>(a.forward, x, a.first, a.t + a.middle_size + a.rows_per_lane - 1,
-                     a.rows_per_lane, false);
+        lane<KA, +1>(a.forward, a.forward_at, x, a.first,
+                     a.t + a.middle_size + a.rows_per_lane - 1, a.rows_per_lane, false);
     if constexpr (KB > 0)
     {
-      auto in_b = lane<KB, +1>(b->forward, x, b->first,
+      auto in_b = lane<KB, +1>(b->forward, b->forward_at, x, b->first,
                                b->t + b->middle_size + b->rows_per_lane - 1,
                                b->rows_per_lane, false);
       side_by_side(in_a, in_b);
@@ -254,12 +293,12 @@ void TwistedBand::substitute(const TwistedBand& a, const TwistedBand* b, double*
   if constexpr (KB > 0)
     b->substitute_middle<KB>(x);
   // R x = y from the middles outwards.
-  auto out_a =
-      lane<KA, -1>(a.backward, x, a.t - 1, a.t + a.middle_size, a.rows_per_lane, true);
+  auto out_a = lane<KA, -1>(a.backward, a.backward_at, x, a.t - 1, a.t + a.middle_size,
+                            a.rows_per_lane, true);
   if constexpr (KB > 0)
   {
-    auto out_b = lane<KB, -1>(b->backward, x, b->t - 1, b->t + b->middle_size,
-                              b->rows_per_lane, true);
+    auto out_b = lane<KB, -1>(b->backward, b->backward_at, x, b->t - 1,
+                              b->t + b->middle_size, b->rows_per_lane, true);
     side_by_side(out_a, out_b);
   }
   else

@@ -128,6 +128,9 @@ public:
 
   /// The uncoupled blocks of the banded factor (empty on the UMFPACK path).
   const std::vector<Block>& blocks() const { return independent_blocks; }
+  /// The twisted factors' distinct records over their substitution steps
+  /// (TwistedBand::distinct_records()); 0 without twisted blocks.
+  double twisted_record_fraction() const;
 
 private:
   bool try_banded_cholesky(const dealii::SparseMatrix<double>& matrix, int max_bandwidth);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace pantocat
@@ -50,6 +51,16 @@ public:
 
   /// The first of the middle rows.
   int twist() const { return t; }
+  /// The records the chains read, each stored once (0 without a factor).
+  std::size_t distinct_records() const
+  {
+    return (forward.size() + backward.size()) / (kd_block + 1);
+  }
+  /// The chains' steps: two per row of the top (or bottom), down and up.
+  std::size_t substitution_steps() const
+  {
+    return forward_at.size() + backward_at.size();
+  }
 
   /// x <- A^{-1} x on the block's rows of @p x (the whole vector's entries).
   void solve(double* x) const;
@@ -67,6 +78,10 @@ private:
   /// before it in the chain's direction (zero beyond the block). R^T y = b:
   /// the top down and the bottom up; R x = y: the top up and the bottom down.
   std::vector<Pair> forward, backward;
+  /// Where step s's record starts in forward (backward): a record equal to
+  /// one of the four steps before, to the bit, is stored once (on a uniform
+  /// grid nearly all are), so the chains stream offsets, not records.
+  std::vector<unsigned int> forward_at, backward_at;
   /// The middle rows' records: 1 / R(j, j), the KD rows before it (top and
   /// middle) and the KD after it (bottom) for R^T y = b, and the KD after
   /// it (middle) for R x = y, each over R(j, j), zero where there is no row.
