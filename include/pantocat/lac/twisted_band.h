@@ -30,7 +30,12 @@ namespace pantocat
  * C_B^T C_B. The coefficients are stored in the order the chains read
  * them, the top's and the bottom's side by side in one record per step
  * (1 / R(i, i), then R's row over R(i, i)): a step of both chains is one
- * SSE2 operation per term.
+ * SSE2 operation per term. A record equal to the bit to one of the four
+ * steps before is stored once, and the chains read each step's record
+ * through a 4-byte offset: on a uniform wire the factor settles to records
+ * that repeat (period 1 on a string, 4 on a twisted Hermite beam), so a
+ * solve streams the offsets instead of 64 bytes of record per step
+ * (doc/benchmarks.md, session 31).
  */
 class TwistedBand
 {
