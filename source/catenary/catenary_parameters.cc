@@ -21,7 +21,7 @@ double WireParameters::wave_speed() const
 double CatenaryParameters::point_mass(const unsigned int j, const bool carrier_side) const
 {
   return (carrier_side ? clamp_mass : contact_wire_clamp_mass) +
-         0.5 * dropper_lengths[j] * dropper_mass_per_length;
+         half_dropper_mass(dropper_lengths[j]);
 }
 
 double CatenaryParameters::clamp_load(const unsigned int j, const bool carrier_side) const

@@ -47,7 +47,7 @@ void add_dropper_weight_change(const SceneParameters& scene,
   {
     // clamp_load(j, .) less its clamp part: half the dropper's weight per wire.
     const double weight =
-        0.5 * length_changes[j] * catenary.dropper_mass_per_length * catenary.gravity;
+        catenary.half_dropper_mass(length_changes[j]) * catenary.gravity;
     for (const Wire wire : {Wire::carrier, Wire::contact_wire})
       wire_point_row(space, system, wire, catenary.dropper_positions[j])
           .add_transpose_to(load, -weight);

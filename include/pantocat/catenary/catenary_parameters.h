@@ -131,6 +131,12 @@ struct CatenaryParameters
   double clamp_load(unsigned int j, bool carrier_side = true) const;
   /// Mass of a clamp and half a dropper at dropper j on the carrier or the contact wire.
   double point_mass(unsigned int j, bool carrier_side) const;
+  /// Mass of half a dropper of @p length, l rho_d A_d / 2: what each wire
+  /// carries of it at its clamp, Eq. (4).
+  double half_dropper_mass(const double length) const
+  {
+    return 0.5 * length * dropper_mass_per_length;
+  }
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
