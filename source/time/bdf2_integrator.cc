@@ -198,6 +198,9 @@ struct Bdf2Integrator::TrialWorkspace
 {
   std::vector<double> gaps, rates;
   std::vector<Role> role;
+  /// Per constraint: held at every history point of the step; per fixed
+  /// constraint: settled in the trial (GglFixedBlock::select()).
+  std::vector<bool> settled_at_start, settled;
   std::vector<bool> force, engaged;
   std::vector<Slot> unknowns, equations;
   std::vector<unsigned int> border;
@@ -214,6 +217,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
                                            const dealii::Vector<double>& rho_v,
                                            const double t1,
                                            const std::vector<bool>& active_at_start,
+                                           const std::vector<bool>* held_before,
                                            DynamicState storage)
 {
   const unsigned int m_all = system.n_constraints();
@@ -253,6 +257,10 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   gaps.resize(m_all);
   rates.resize(m_all);
   active_set.start(active_at_start);
+  std::vector<bool>& settled = work->settled_at_start;
+  settled.resize(m_all);
+  for (unsigned int k = 0; k < m_all; ++k)
+    settled[k] = settling && held_before && active_at_start[k] && (*held_before)[k];
   for (;;)
   {
     solve_trial(s, rows, rho_q, rho_v, x);
@@ -329,6 +337,23 @@ euler_history(const unsigned int n, const double c, const double* __restrict rho
 }
 } // namespace
 
+namespace
+{
+/// True if @p X's reach holds one of @p row's entries (a span's test is too
+/// coarse for a dropper's row: its carrier and contact wire entries lie in
+/// two blocks of unknowns).
+bool reaches_entries(const LocalColumns& X, const SparseRow& row)
+{
+  for (std::size_t e = 0; e < row.size(); ++e)
+  {
+    const int i = row.index[e];
+    if (X.reaches(RowRange{i, i + 1}))
+      return true;
+  }
+  return false;
+}
+} // namespace
+
 void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                                  const dealii::Vector<double>& rho_q,
                                  const dealii::Vector<double>& rho_v, DynamicState& x)
@@ -382,7 +407,23 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       s.compute_columns(X, U, rows[i]);
     }
   }
-  s.block.select(force, engaged);
+  // Settled: held at the history points and out of the reach of the border's
+  // mass columns, whose mu and eta (moving contacts, touching constraints)
+  // would otherwise change its levels 1 and 2 (GglFixedBlock::select()).
+  std::vector<bool>& settled = w.settled;
+  settled.assign(mF, false);
+  for (unsigned int k = 0; k < mF; ++k)
+    settled[k] = force[k] && w.settled_at_start[s.fixed[k]];
+  for (const unsigned int i : border)
+    if (role[i] != Role::engaged)
+    {
+      const LocalColumns* U = s.batches(i).second;
+      for (unsigned int k = 0; k < mF; ++k)
+        settled[k] = settled[k] && !(U->reaches(s.fixed_span[k]) &&
+                                     reaches_entries(*U, rows[s.fixed[k]].G));
+    }
+  s.block.select(force, engaged, settled);
+  settled_count = s.block.n_settled();
   const unsigned int p = unknowns.size();
 
   // Levels of row k against the column of border unknown u.
@@ -964,8 +1005,13 @@ void Bdf2Integrator::advance()
         current.q.begin(),  current.v.begin(), 2. / dt, -0.5 / dt, next_rho_q.begin(),
         next_rho_v.begin(), next_h.begin(),    &blocks, bdf2->c};
     next_history = &request;
-    DynamicState next = implicit_step(*bdf2, step_rho_q, step_rho_v, current.t + dt,
-                                      current.active, std::move(spare));
+    // x_{n-1} made by the start (the initial state, or the state after an
+    // impact) may hold its constraints less tightly than a step does (the
+    // static solution to about 1e-13 m): no constraint is settled then.
+    const bool history_from_steps = step_number > 1 && previous.impulse.empty();
+    DynamicState next =
+        implicit_step(*bdf2, step_rho_q, step_rho_v, current.t + dt, current.active,
+                      history_from_steps ? &previous.active : nullptr, std::move(spare));
     next_history = nullptr;
     spare = std::move(previous);
     previous = std::move(current);

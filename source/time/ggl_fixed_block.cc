@@ -107,8 +107,13 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
                                dealii::Vector<double>& u1,
                                dealii::Vector<double>& u2) const
 {
-  if (!solves_are_cheaper)
+  if (!solves_are_cheaper || !with_eta_mu)
   {
+    if (!with_eta_mu)
+    {
+      X.add(lambda_plus_eta, q);
+      return;
+    }
     X.add_with_partners(lambda_plus_eta, mu, q);
     Y.add(mu, u1, eta, u2);
     return;
@@ -148,19 +153,43 @@ GglFixedBlock::sum_forces(const std::vector<double>& lambda_plus_eta,
                           const std::vector<double>& mu) const
 {
   Assert(!solves_are_cheaper, dealii::ExcMessage("the forces are added by solves"));
+  if (!with_eta_mu)
+    return {X.sum(lambda_plus_eta), {nullptr, nullptr, nullptr, nullptr}};
   return {X.sum_with_partners(lambda_plus_eta, mu), Y.sum(mu, eta)};
 }
 
 void GglFixedBlock::select(const std::vector<bool>& force,
-                           const std::vector<bool>& engaged)
+                           const std::vector<bool>& engaged,
+                           const std::vector<bool>& settled)
 {
   force_set = force;
   engaged_set = engaged;
   std::vector<bool> with_lambda(m);
+  eta_mu_set.resize(m);
+  with_eta_mu = false;
   for (unsigned int k = 0; k < m; ++k)
+  {
     with_lambda[k] = force[k] || engaged[k];
+    eta_mu_set[k] = force[k] && (settled.empty() || !settled[k]);
+  }
+  // A settled constraint that N couples to one with eta, mu keeps its own: the
+  // other's M^-1 G^T mu, M^-1 G^T eta would change its levels 1 and 2.
+  for (unsigned int k = 0; k < m; ++k)
+    if (force[k] && !settled.empty() && !settled[k])
+      N.for_each_coupled(k,
+                         [&](const unsigned int l)
+                         {
+                           if (force[l])
+                             eta_mu_set[l] = true;
+                         });
+  settled_count = 0;
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    with_eta_mu = with_eta_mu || eta_mu_set[k];
+    settled_count += force[k] && !eta_mu_set[k];
+  }
   P.select(with_lambda);
-  N.select(force);
+  N.select(eta_mu_set);
 }
 
 void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
@@ -185,8 +214,8 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     bool mu_nonzero = false, eta_nonzero = false;
     for (unsigned int k = 0; k < m; ++k)
     {
-      mu[j][k] = force_set[k] ? -(*xs[j])[3 * k + 2] : 0.;
-      eta[j][k] = force_set[k] ? -(*xs[j])[3 * k] : 0.;
+      mu[j][k] = eta_mu_set[k] ? -(*xs[j])[3 * k + 2] : 0.;
+      eta[j][k] = eta_mu_set[k] ? -(*xs[j])[3 * k] : 0.;
       mu_nonzero = mu_nonzero || mu[j][k] != 0.;
       eta_nonzero = eta_nonzero || eta[j][k] != 0.;
     }
@@ -256,8 +285,8 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     for (unsigned int k = 0; k < m; ++k)
     {
       x[3 * k] = rhs[j][k];
-      x[3 * k + 1] = force_set[k] ? eta[j][k] : 0.;
-      x[3 * k + 2] = force_set[k] ? mu[j][k] : 0.;
+      x[3 * k + 1] = eta_mu_set[k] ? eta[j][k] : 0.;
+      x[3 * k + 2] = eta_mu_set[k] ? mu[j][k] : 0.;
     }
   }
 }

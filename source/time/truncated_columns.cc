@@ -282,6 +282,14 @@ void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>&
                 nullptr);
 }
 
+TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c) const
+{
+  Assert(by_runs, dealii::ExcMessage("sum() needs the columns by runs"));
+  const ColumnRuns& x = column_runs[0];
+  x.add(c.data(), nullptr, acc.data(), nullptr);
+  return {acc.data(), nullptr, &x.reached(), nullptr};
+}
+
 TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c,
                                              const std::vector<double>& d) const
 {

@@ -48,7 +48,11 @@ namespace pantocat
  * a block of the multiplier system that GglFixedBlock solves in O(m) by
  * banded Schur complements, factorised when the active set changes; the
  * contacts and the touching fixed constraints border it. A step costs
- * O(n + m).
+ * O(n + m). A fixed constraint that held at both history points of a BDF-2
+ * step keeps levels 1 and 2 from its level 0 alone (the BDF weights sum to
+ * c): its eta and mu vanish in exact arithmetic, and the block takes its
+ * lambda alone (settled, GglFixedBlock::select()), which spares their
+ * columns' passes.
  *
  * Compliant constraints (Constraint::is_compliant) are implicit forces at
  * t_{n+1}: an engaged one adds its lambda (column X^lambda) and the row
@@ -82,6 +86,12 @@ public:
   void initialize(const DynamicState& initial) override;
   void advance() override;
   const DynamicState& latest() const override { return current; }
+
+  /// Settled fixed constraints take lambda alone (true, the default) or all
+  /// three multipliers (false: the GGL block in full, for the tests).
+  void settle_fixed_constraints(bool on) { settling = on; }
+  /// Number of fixed constraints that were settled in the latest step's last trial.
+  unsigned int settled_in_latest_step() const { return settled_count; }
   double time() const override { return current.t; }
   /// x_n, x_{n-1} (with J_n), the step number (the Richardson start is step 0) and
   /// the counters.
@@ -94,10 +104,14 @@ private:
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s
   /// (into @p storage's vectors, if it has them); `history` must hold
-  /// rho_v + c rho_q (form_history(), or the BDF-2 step's pass).
+  /// rho_v + c rho_q (form_history(), or the BDF-2 step's pass). With
+  /// @p held_before (the flags of x_{n-1} of a BDF-2 step whose history the
+  /// steps made), a fixed constraint that holds at t_n and t_{n-1} is settled
+  /// (GglFixedBlock::select()); without it none is.
   DynamicState implicit_step(Stage& s, const dealii::Vector<double>& rho_q,
                              const dealii::Vector<double>& rho_v, double t1,
                              const std::vector<bool>& active_at_start,
+                             const std::vector<bool>* held_before = nullptr,
                              DynamicState storage = {});
   void richardson_start();
   /// history = rho_v + c rho_q.
@@ -180,6 +194,8 @@ private:
   /// The request of the BDF-2 step under way (advance()), else nullptr.
   const NextHistory* next_history = nullptr;
   unsigned long step_number = 0;
+  bool settling = true;                           ///< settle_fixed_constraints()
+  unsigned int settled_count = 0;                 ///< settled_in_latest_step()
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
   std::vector<BorderTerm> border_terms;           ///< workspace of solve_trial()
 };

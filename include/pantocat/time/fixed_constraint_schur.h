@@ -113,6 +113,13 @@ public:
   void vmult(dealii::Vector<double>& out, const dealii::Vector<double>& in) const;
   /// Number of stored entries of the truncated columns.
   std::size_t n_column_entries() const;
+  /// Calls @p f(l) for each constraint l with a stored entry S_kl (k too).
+  template <typename F>
+  void for_each_coupled(const unsigned int k, const F& f) const
+  {
+    for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
+      f(row_column[e]);
+  }
 
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;

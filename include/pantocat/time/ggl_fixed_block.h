@@ -61,8 +61,31 @@ public:
 
   unsigned int size() const { return m; }
 
-  /// The constraints with force (@p force) and the engaged elastic ones (@p engaged).
-  void select(const std::vector<bool>& force, const std::vector<bool>& engaged);
+  /**
+   * The constraints with force (@p force) and the engaged elastic ones
+   * (@p engaged). Of those with force, the settled ones (@p settled, empty:
+   * none) take lambda alone: their eta = mu = 0 and their levels 1 and 2 are
+   * not equations of the block.
+   *
+   * Why that is the same step: a constraint with a constant row (G_t = G_tt =
+   * 0) that held at the step's history points (G q = z, G v = 0 there) gets
+   * G v = c G q - G rho_q = 0 and G a = c G v - G rho_v = 0 from its
+   * position level alone, since the BDF formulas' weights sum to c; so
+   * eta = mu = 0 solve levels 1 and 2 in exact arithmetic. In floating point
+   * they only carried the round-off of the history, amplified by c and c^2
+   * (about 1e-8 of lambda at dt = 5e-5 s), which the BDF formulas keep
+   * bounded without them (it does not accumulate: each level is formed from
+   * the positions anew). Bdf2Integrator calls a constraint settled if it held
+   * at every history point of the step and no moving or touching
+   * constraint's columns M^-1 G^T reach its row; a settled constraint that N
+   * couples to an unsettled one with force keeps eta and mu as well.
+   */
+  void select(const std::vector<bool>& force, const std::vector<bool>& engaged,
+              const std::vector<bool>& settled = {});
+  /// True if some constraint with force is not settled (the block has eta, mu).
+  bool has_velocity_multipliers() const { return with_eta_mu; }
+  /// Number of constraints with force that take lambda alone in the selection.
+  unsigned int n_settled() const { return settled_count; }
   /// d = c_damping / k of constraint k (0 if rigid).
   double damping_ratio(unsigned int k) const { return ratio[k]; }
 
@@ -91,6 +114,8 @@ public:
    * q.second_rows; u.first = M^-1 G^T mu (u1) and u.second = M^-1 G^T eta
    * (u2) on u.first_rows. The caller adds them in that order and zeroes them
    * (Bdf2Integrator::combine_trial(), in its one pass over the unknowns).
+   * Without eta and mu (!has_velocity_multipliers()) only q.first is formed
+   * (the other rows null).
    */
   struct ForceSums
   {
@@ -151,5 +176,8 @@ private:
   mutable std::vector<std::size_t> with_mu_w;
   mutable dealii::Vector<double> P_eta, N_mu;
   std::vector<bool> force_set, engaged_set;
+  std::vector<bool> eta_mu_set; ///< force and not settled
+  bool with_eta_mu = false;
+  unsigned int settled_count = 0;
 };
 } // namespace pantocat

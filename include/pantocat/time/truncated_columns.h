@@ -99,6 +99,8 @@ public:
   {
     return column_runs[0].reached().size() + column_runs[1].reached().size();
   }
+  /// The sum of add(c, y), not added (second and second_rows null).
+  Sums sum(const std::vector<double>& c) const;
   /// The sums of add(c, y, d, z), not added.
   Sums sum(const std::vector<double>& c, const std::vector<double>& d) const;
   /// The sums of add_with_partners(c, d, y), not added.
