@@ -1,5 +1,7 @@
 #include <pantocat/lac/column_runs.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
 namespace
@@ -70,6 +72,33 @@ void ColumnRuns::clear()
   run_start.assign(1, 0);
   value.clear();
   ranges.clear();
+}
+
+const RowRanges* ColumnRuns::reach_of(const double* c, const double* d,
+                                      RowRanges& out) const
+{
+  const unsigned int m = run_start.size() - 1;
+  gathered.clear();
+  unsigned int counted = 0;
+  for (unsigned int l = 0; l < m; ++l)
+    if (c[l] != 0. || (d && d[l] != 0.))
+    {
+      ++counted;
+      for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
+        gathered.push_back({static_cast<int>(runs[r].first),
+                            static_cast<int>(runs[r].first + runs[r].length)});
+    }
+  if (counted == m)
+    return &ranges;
+  std::sort(gathered.begin(), gathered.end(),
+            [](const RowRange& a, const RowRange& b) { return a.first < b.first; });
+  out.clear();
+  for (const RowRange& r : gathered)
+    if (!out.empty() && r.first <= out.back().last)
+      out.back().last = std::max(out.back().last, r.last);
+    else
+      out.push_back(r);
+  return &out;
 }
 
 void ColumnRuns::add(const double* c, const double* d, double* y, double* z) const

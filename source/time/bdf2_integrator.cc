@@ -198,6 +198,8 @@ struct Bdf2Integrator::TrialWorkspace
 {
   std::vector<double> gaps, rates;
   std::vector<Role> role;
+  /// Per border constraint: the fixed rows its columns reach.
+  std::vector<std::vector<Reached>> near;
   /// Per constraint: held at every history point of the step; per fixed
   /// constraint: settled in the trial (GglFixedBlock::select()).
   std::vector<bool> settled_at_start, settled;
@@ -407,6 +409,26 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       s.compute_columns(X, U, rows[i]);
     }
   }
+  // The fixed rows (with force or engaged) that each border constraint's
+  // columns reach, by their entries: a dropper's row has entries in the
+  // carrier's and the contact wire's blocks, so its span is too coarse.
+  std::vector<std::vector<Reached>>& near = w.near;
+  near.resize(border.size());
+  for (std::size_t b = 0; b < border.size(); ++b)
+  {
+    const auto [X, U] = s.batches(border[b]);
+    near[b].clear();
+    for (unsigned int k = 0; k < mF; ++k)
+      if (force[k] || engaged[k])
+      {
+        const SparseRow& G = rows[s.fixed[k]].G;
+        const RowRange& span = s.fixed_span[k];
+        const bool by_X = X->reaches(span) && reaches_entries(*X, G),
+                   by_U = U->reaches(span) && reaches_entries(*U, G);
+        if (by_X || by_U)
+          near[b].push_back({k, by_X, by_U});
+      }
+  }
   // Settled: held at the history points and out of the reach of the border's
   // mass columns, whose mu and eta (moving contacts, touching constraints)
   // would otherwise change its levels 1 and 2 (GglFixedBlock::select()).
@@ -414,14 +436,10 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   settled.assign(mF, false);
   for (unsigned int k = 0; k < mF; ++k)
     settled[k] = force[k] && w.settled_at_start[s.fixed[k]];
-  for (const unsigned int i : border)
-    if (role[i] != Role::engaged)
-    {
-      const LocalColumns* U = s.batches(i).second;
-      for (unsigned int k = 0; k < mF; ++k)
-        settled[k] = settled[k] && !(U->reaches(s.fixed_span[k]) &&
-                                     reaches_entries(*U, rows[s.fixed[k]].G));
-    }
+  for (std::size_t b = 0; b < border.size(); ++b)
+    if (role[border[b]] != Role::engaged)
+      for (const Reached& f : near[b])
+        settled[f.k] = settled[f.k] && !f.by_mass_columns;
   s.block.select(force, engaged, settled);
   settled_count = s.block.n_settled();
   const unsigned int p = unknowns.size();
@@ -484,23 +502,21 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   // Fixed rows against the border columns: G_t = G_tt = 0 on them, and the
   // unknowns of one border constraint share its batches, so each fixed row
   // takes its products with them once (the values border_levels() gives).
-  for (unsigned int u0 = 0, u1 = 0; u0 < p; u0 = u1)
+  for (unsigned int u0 = 0, u1 = 0, b = 0; u0 < p; u0 = u1, ++b)
   {
     while (u1 < p && unknowns[u1].constraint == unknowns[u0].constraint)
       ++u1;
     const auto [X, U] = s.batches(unknowns[u0].constraint);
-    for (unsigned int k = 0; k < mF; ++k)
+    // Rows the columns do not reach keep their zeros (their products are +0).
+    for (const Reached& f : near[b])
     {
-      if (!force[k] && !engaged[k])
-        continue;
-      // Columns that do not reach row k give products +0 (the dots of zeros).
+      const unsigned int k = f.k;
       const SparseRow& G = rows[s.fixed[k]].G;
-      const RowRange& span = s.fixed_span[k];
       const std::array<double, InterleavedColumns::width>
-          GX = X->reaches(span) ? X->dots(G)
-                                : std::array<double, InterleavedColumns::width>{},
-          GU = U->reaches(span) ? U->dots(G)
-                                : std::array<double, InterleavedColumns::width>{};
+          GX =
+              f.by_columns ? X->dots(G) : std::array<double, InterleavedColumns::width>{},
+          GU = f.by_mass_columns ? U->dots(G)
+                                 : std::array<double, InterleavedColumns::width>{};
       for (unsigned int u = u0; u < u1; ++u)
       {
         const unsigned int kind = unknowns[u].kind;
@@ -541,7 +557,7 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       if (!force[l] && !engaged[l])
         continue;
       Cr[e][3 * l] = value(functionals(c, X0[l], X1[l], X2[l], 0., 0., 0.), eq);
-      if (!force[l])
+      if (!force[l] || !block.has_eta_mu(l)) // a settled one's eta, mu are 0
         continue;
       Cr[e][3 * l + 1] = value(functionals(c, X0[l], X1[l], X2[l], 0., 0., Y0[l]), eq);
       Cr[e][3 * l + 2] = value(functionals(c, V0[l], V1[l], V2[l], Y0[l], Y1[l], 0.), eq);

@@ -287,7 +287,7 @@ TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c) const
   Assert(by_runs, dealii::ExcMessage("sum() needs the columns by runs"));
   const ColumnRuns& x = column_runs[0];
   x.add(c.data(), nullptr, acc.data(), nullptr);
-  return {acc.data(), nullptr, &x.reached(), nullptr};
+  return {acc.data(), nullptr, x.reach_of(c.data(), nullptr, reach_w[0]), nullptr};
 }
 
 TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c,
@@ -296,7 +296,8 @@ TruncatedColumns::Sums TruncatedColumns::sum(const std::vector<double>& c,
   Assert(by_runs, dealii::ExcMessage("sum() needs the columns by runs"));
   const ColumnRuns& x = column_runs[0];
   x.add(c.data(), d.data(), acc.data(), acc_d.data());
-  return {acc.data(), acc_d.data(), &x.reached(), &x.reached()};
+  const RowRanges* rows = x.reach_of(c.data(), d.data(), reach_w[0]);
+  return {acc.data(), acc_d.data(), rows, rows};
 }
 
 TruncatedColumns::Sums
@@ -307,7 +308,9 @@ TruncatedColumns::sum_with_partners(const std::vector<double>& c,
   Assert(by_runs, dealii::ExcMessage("sum_with_partners() needs the columns by runs"));
   column_runs[0].add(c.data(), nullptr, acc.data(), nullptr);
   column_runs[1].add(d.data(), nullptr, acc_d.data(), nullptr);
-  return {acc.data(), acc_d.data(), &column_runs[0].reached(), &column_runs[1].reached()};
+  return {acc.data(), acc_d.data(),
+          column_runs[0].reach_of(c.data(), nullptr, reach_w[0]),
+          column_runs[1].reach_of(d.data(), nullptr, reach_w[1])};
 }
 
 void TruncatedColumns::add(const std::vector<double>& c, dealii::Vector<double>& y,

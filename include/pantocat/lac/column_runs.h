@@ -45,11 +45,20 @@ public:
    */
   void add(const double* c, const double* d, double* y, double* z) const;
 
+  /**
+   * The rows that the columns l with c[l] != 0 (or d[l] != 0) reach, into
+   * @p out: reached() itself (@p out untouched, its address returned) when
+   * every column counts, else their runs merged into @p out. What add()
+   * writes lies in them.
+   */
+  const RowRanges* reach_of(const double* c, const double* d, RowRanges& out) const;
+
 private:
   std::vector<Run> runs;
   std::vector<unsigned int> run_start{
       0}; ///< column l: runs[run_start[l] .. run_start[l + 1])
   std::vector<double> value;
   RowRanges ranges;
+  mutable std::vector<RowRange> gathered; ///< reach_of()'s workspace
 };
 } // namespace pantocat

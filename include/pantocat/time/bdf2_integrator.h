@@ -101,6 +101,13 @@ public:
 private:
   struct Stage;          ///< factorisation and constant columns for one value of c
   struct TrialWorkspace; ///< the vectors of a step, kept from step to step
+  /// A fixed row k that a border constraint's columns S^-1 (by_columns) or
+  /// M^-1 (by_mass_columns) reach.
+  struct Reached
+  {
+    unsigned int k;
+    bool by_columns, by_mass_columns;
+  };
 
   /// One implicit step from history (rho_q, rho_v) to time t1 with stage @p s
   /// (into @p storage's vectors, if it has them); `history` must hold

@@ -84,6 +84,8 @@ public:
               const std::vector<bool>& settled = {});
   /// True if some constraint with force is not settled (the block has eta, mu).
   bool has_velocity_multipliers() const { return with_eta_mu; }
+  /// True if constraint k has eta and mu in the selection (with force, not settled).
+  bool has_eta_mu(const unsigned int k) const { return eta_mu_set[k]; }
   /// Number of constraints with force that take lambda alone in the selection.
   unsigned int n_settled() const { return settled_count; }
   /// d = c_damping / k of constraint k (0 if rigid).

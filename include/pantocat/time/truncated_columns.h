@@ -139,5 +139,6 @@ private:
 
   /// The sums of X c and X d (zero between calls).
   mutable std::vector<double> acc, acc_d;
+  mutable RowRanges reach_w[2]; ///< the sums' rows when not every column counts
 };
 } // namespace pantocat
