@@ -78,18 +78,19 @@ const RowRanges* ColumnRuns::reach_of(const double* c, const double* d,
                                       RowRanges& out) const
 {
   const unsigned int m = run_start.size() - 1;
-  gathered.clear();
+  const auto counts = [&](const unsigned int l)
+  { return c[l] != 0. || (d && d[l] != 0.); };
   unsigned int counted = 0;
   for (unsigned int l = 0; l < m; ++l)
-    if (c[l] != 0. || (d && d[l] != 0.))
-    {
-      ++counted;
+    counted += counts(l);
+  if (counted == m)
+    return &ranges;
+  gathered.clear();
+  for (unsigned int l = 0; l < m; ++l)
+    if (counts(l))
       for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
         gathered.push_back({static_cast<int>(runs[r].first),
                             static_cast<int>(runs[r].first + runs[r].length)});
-    }
-  if (counted == m)
-    return &ranges;
   std::sort(gathered.begin(), gathered.end(),
             [](const RowRange& a, const RowRange& b) { return a.first < b.first; });
   out.clear();

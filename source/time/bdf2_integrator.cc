@@ -127,6 +127,23 @@ struct Bdf2Integrator::Stage : IterationMatrix
       constraints.push_back(system.constraints[i].get());
       fixed_span.push_back(span_of(rows[i].G));
     }
+    // Per unknown, the fixed constraints whose rows have an entry there.
+    const unsigned int n = system.n_dofs();
+    fixed_at_row_start.assign(n + 1, 0);
+    for (const unsigned int i : fixed)
+      for (std::size_t e = 0; e < rows[i].G.size(); ++e)
+        ++fixed_at_row_start[rows[i].G.index[e] + 1];
+    for (unsigned int i = 0; i < n; ++i)
+      fixed_at_row_start[i + 1] += fixed_at_row_start[i];
+    fixed_at_row.assign(fixed_at_row_start[n], 0);
+    std::vector<unsigned int> next(fixed_at_row_start.begin(),
+                                   fixed_at_row_start.end() - 1);
+    for (unsigned int k = 0; k < fixed.size(); ++k)
+    {
+      const SparseRow& G = rows[fixed[k]].G;
+      for (std::size_t e = 0; e < G.size(); ++e)
+        fixed_at_row[next[G.index[e]]++] = k;
+    }
     block.initialize(G, constraints, inverse, mass_inverse, system.damping,
                      damping_over_mass, c, system.n_dofs());
     block_ready = true;
@@ -153,6 +170,9 @@ struct Bdf2Integrator::Stage : IterationMatrix
   GglFixedBlock block;
   /// The rows [first, last) of each fixed constraint's G (block order).
   std::vector<RowRange> fixed_span;
+  /// The fixed constraints (block order) with an entry in row i:
+  /// fixed_at_row[fixed_at_row_start[i] .. fixed_at_row_start[i + 1]).
+  std::vector<unsigned int> fixed_at_row_start, fixed_at_row;
   bool block_ready = false;
   /// Columns of the touching fixed constraints of the current step.
   std::map<unsigned int, std::pair<LocalColumns, LocalColumns>> touching_columns;
@@ -200,6 +220,7 @@ struct Bdf2Integrator::TrialWorkspace
   std::vector<Role> role;
   /// Per border constraint: the fixed rows its columns reach.
   std::vector<std::vector<Reached>> near;
+  std::vector<int> near_slot; ///< workspace: a fixed row's place in its near list
   /// Per constraint: held at every history point of the step; per fixed
   /// constraint: settled in the trial (GglFixedBlock::select()).
   std::vector<bool> settled_at_start, settled;
@@ -242,8 +263,11 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   for (unsigned int k = 0; k < m_all; ++k)
   {
     const ConstraintState& r = rows[k];
-    base_levels[k] = functionals(c, r.G.dot(B), r.G_t.dot(B), r.G_tt.dot(B),
-                                 r.G.dot(rho_q), r.G_t.dot(rho_q), r.G.dot(rho_v));
+    // (a constant row's G_t, G_tt are empty: their products are +0)
+    const bool moves = r.G_t.size() > 0 || r.G_tt.size() > 0;
+    base_levels[k] =
+        functionals(c, r.G.dot(B), moves ? r.G_t.dot(B) : 0., moves ? r.G_tt.dot(B) : 0.,
+                    r.G.dot(rho_q), moves ? r.G_t.dot(rho_q) : 0., r.G.dot(rho_v));
     base_levels[k][0] += r.z;
     base_levels[k][1] += r.z_t;
     base_levels[k][2] += r.z_tt;
@@ -339,23 +363,6 @@ euler_history(const unsigned int n, const double c, const double* __restrict rho
 }
 } // namespace
 
-namespace
-{
-/// True if @p X's reach holds one of @p row's entries (a span's test is too
-/// coarse for a dropper's row: its carrier and contact wire entries lie in
-/// two blocks of unknowns).
-bool reaches_entries(const LocalColumns& X, const SparseRow& row)
-{
-  for (std::size_t e = 0; e < row.size(); ++e)
-  {
-    const int i = row.index[e];
-    if (X.reaches(RowRange{i, i + 1}))
-      return true;
-  }
-  return false;
-}
-} // namespace
-
 void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& rows,
                                  const dealii::Vector<double>& rho_q,
                                  const dealii::Vector<double>& rho_v, DynamicState& x)
@@ -414,20 +421,34 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   // carrier's and the contact wire's blocks, so its span is too coarse.
   std::vector<std::vector<Reached>>& near = w.near;
   near.resize(border.size());
+  std::vector<int>& slot = w.near_slot;
+  slot.assign(mF, -1);
   for (std::size_t b = 0; b < border.size(); ++b)
   {
     const auto [X, U] = s.batches(border[b]);
-    near[b].clear();
-    for (unsigned int k = 0; k < mF; ++k)
-      if (force[k] || engaged[k])
-      {
-        const SparseRow& G = rows[s.fixed[k]].G;
-        const RowRange& span = s.fixed_span[k];
-        const bool by_X = X->reaches(span) && reaches_entries(*X, G),
-                   by_U = U->reaches(span) && reaches_entries(*U, G);
-        if (by_X || by_U)
-          near[b].push_back({k, by_X, by_U});
-      }
+    std::vector<Reached>& list = near[b];
+    list.clear();
+    const auto take = [&](const RowRanges& reach, const bool by_mass)
+    {
+      for (const RowRange& r : reach)
+        for (unsigned int e = s.fixed_at_row_start[r.first];
+             e < s.fixed_at_row_start[r.last]; ++e)
+        {
+          const unsigned int k = s.fixed_at_row[e];
+          if (!force[k] && !engaged[k])
+            continue;
+          if (slot[k] < 0)
+          {
+            slot[k] = list.size();
+            list.push_back({k, false, false});
+          }
+          (by_mass ? list[slot[k]].by_mass_columns : list[slot[k]].by_columns) = true;
+        }
+    };
+    take(X->reach(), false);
+    take(U->reach(), true);
+    for (const Reached& f : list)
+      slot[f.k] = -1;
   }
   // Settled: held at the history points and out of the reach of the border's
   // mass columns, whose mu and eta (moving contacts, touching constraints)
