@@ -117,7 +117,6 @@ struct Bdf2Integrator::Stage : IterationMatrix
   {
     std::vector<const SparseRow*> G;
     std::vector<const Constraint*> constraints;
-    fixed_span.clear();
     for (const unsigned int i : fixed)
     {
       if (rows[i].G_t.size() > 0 || rows[i].G_tt.size() > 0)
@@ -125,28 +124,64 @@ struct Bdf2Integrator::Stage : IterationMatrix
                               " has constant rows but a time derivative");
       G.push_back(&rows[i].G);
       constraints.push_back(system.constraints[i].get());
-      fixed_span.push_back(span_of(rows[i].G));
     }
-    // Per unknown, the fixed constraints whose rows have an entry there.
+    map_rows_to_fixed(G);
+    block.initialize(G, constraints, inverse, mass_inverse, system.damping,
+                     damping_over_mass, c, system.n_dofs());
+    block_ready = true;
+  }
+
+  /// fixed_at_row from the rows @p G of the fixed constraints (block order).
+  void map_rows_to_fixed(const std::vector<const SparseRow*>& G)
+  {
     const unsigned int n = system.n_dofs();
     fixed_at_row_start.assign(n + 1, 0);
-    for (const unsigned int i : fixed)
-      for (std::size_t e = 0; e < rows[i].G.size(); ++e)
-        ++fixed_at_row_start[rows[i].G.index[e] + 1];
+    for (const SparseRow* g : G)
+      for (std::size_t e = 0; e < g->size(); ++e)
+        ++fixed_at_row_start[g->index[e] + 1];
     for (unsigned int i = 0; i < n; ++i)
       fixed_at_row_start[i + 1] += fixed_at_row_start[i];
     fixed_at_row.assign(fixed_at_row_start[n], 0);
     std::vector<unsigned int> next(fixed_at_row_start.begin(),
                                    fixed_at_row_start.end() - 1);
-    for (unsigned int k = 0; k < fixed.size(); ++k)
+    for (unsigned int k = 0; k < G.size(); ++k)
+      for (std::size_t e = 0; e < G[k]->size(); ++e)
+        fixed_at_row[next[G[k]->index[e]]++] = k;
+  }
+
+  /**
+   * The fixed rows @p in_block (with force or engaged) that the columns of
+   * border constraint @p i reach, by the rows' entries (a dropper's row has
+   * entries in the carrier's and the contact wire's blocks: its span is too
+   * coarse a test), into @p list; @p slot (one entry per fixed constraint,
+   * all -1) is workspace and left all -1.
+   */
+  void reached_fixed_rows(const unsigned int i, const std::vector<bool>& in_block,
+                          std::vector<Reached>& list, std::vector<int>& slot) const
+  {
+    const auto [X, U] = batches(i);
+    list.clear();
+    const auto take = [&](const RowRanges& reach, const bool by_mass)
     {
-      const SparseRow& G = rows[fixed[k]].G;
-      for (std::size_t e = 0; e < G.size(); ++e)
-        fixed_at_row[next[G.index[e]]++] = k;
-    }
-    block.initialize(G, constraints, inverse, mass_inverse, system.damping,
-                     damping_over_mass, c, system.n_dofs());
-    block_ready = true;
+      for (const RowRange& r : reach)
+        for (unsigned int e = fixed_at_row_start[r.first]; e < fixed_at_row_start[r.last];
+             ++e)
+        {
+          const unsigned int k = fixed_at_row[e];
+          if (!in_block[k])
+            continue;
+          if (slot[k] < 0)
+          {
+            slot[k] = list.size();
+            list.push_back({k, false, false});
+          }
+          (by_mass ? list[slot[k]].by_mass_columns : list[slot[k]].by_columns) = true;
+        }
+    };
+    take(X->reach(), false);
+    take(U->reach(), true);
+    for (const Reached& f : list)
+      slot[f.k] = -1;
   }
 
   /// The S and M batches of border constraint @p i (a moving one, or a
@@ -168,8 +203,6 @@ struct Bdf2Integrator::Stage : IterationMatrix
   std::unique_ptr<PatternOperators> split_operators;
   SparseRow DY, DZ; ///< workspace
   GglFixedBlock block;
-  /// The rows [first, last) of each fixed constraint's G (block order).
-  std::vector<RowRange> fixed_span;
   /// The fixed constraints (block order) with an entry in row i:
   /// fixed_at_row[fixed_at_row_start[i] .. fixed_at_row_start[i + 1]).
   std::vector<unsigned int> fixed_at_row_start, fixed_at_row;
@@ -221,6 +254,7 @@ struct Bdf2Integrator::TrialWorkspace
   /// Per border constraint: the fixed rows its columns reach.
   std::vector<std::vector<Reached>> near;
   std::vector<int> near_slot; ///< workspace: a fixed row's place in its near list
+  std::vector<bool> in_block; ///< per fixed constraint: with force or engaged
   /// Per constraint: held at every history point of the step; per fixed
   /// constraint: settled in the trial (GglFixedBlock::select()).
   std::vector<bool> settled_at_start, settled;
@@ -416,40 +450,16 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       s.compute_columns(X, U, rows[i]);
     }
   }
-  // The fixed rows (with force or engaged) that each border constraint's
-  // columns reach, by their entries: a dropper's row has entries in the
-  // carrier's and the contact wire's blocks, so its span is too coarse.
+  // The fixed rows in the block that each border constraint's columns reach.
   std::vector<std::vector<Reached>>& near = w.near;
   near.resize(border.size());
-  std::vector<int>& slot = w.near_slot;
-  slot.assign(mF, -1);
+  std::vector<bool>& in_block = w.in_block;
+  in_block.resize(mF);
+  for (unsigned int k = 0; k < mF; ++k)
+    in_block[k] = force[k] || engaged[k];
+  w.near_slot.assign(mF, -1);
   for (std::size_t b = 0; b < border.size(); ++b)
-  {
-    const auto [X, U] = s.batches(border[b]);
-    std::vector<Reached>& list = near[b];
-    list.clear();
-    const auto take = [&](const RowRanges& reach, const bool by_mass)
-    {
-      for (const RowRange& r : reach)
-        for (unsigned int e = s.fixed_at_row_start[r.first];
-             e < s.fixed_at_row_start[r.last]; ++e)
-        {
-          const unsigned int k = s.fixed_at_row[e];
-          if (!force[k] && !engaged[k])
-            continue;
-          if (slot[k] < 0)
-          {
-            slot[k] = list.size();
-            list.push_back({k, false, false});
-          }
-          (by_mass ? list[slot[k]].by_mass_columns : list[slot[k]].by_columns) = true;
-        }
-    };
-    take(X->reach(), false);
-    take(U->reach(), true);
-    for (const Reached& f : list)
-      slot[f.k] = -1;
-  }
+    s.reached_fixed_rows(border[b], in_block, near[b], w.near_slot);
   // Settled: held at the history points and out of the reach of the border's
   // mass columns, whose mu and eta (moving contacts, touching constraints)
   // would otherwise change its levels 1 and 2 (GglFixedBlock::select()).
