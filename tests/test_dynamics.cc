@@ -498,8 +498,9 @@ TEST(Bdf2, SettledFixedConstraintsGiveTheGglStepToRoundOff)
   //   settling the dropper that the contact's mass columns reach gave 1.5e-4
   //   m/s and forces 6e-2 N apart;
   // - the settled path is taken on all steps but the starts (measured 6994
-  //   of 7000), and on most of them one dropper is left out because the
-  //   contact's mass columns reach it (measured: all 6994).
+  //   of 7000): on about half of them one dropper is left out because the
+  //   contact's mass columns (about 4 m wide here) reach it (measured 3583),
+  //   on the others both droppers are settled (3411).
   ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
   CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   auto settled = create_time_integrator(simulation.system(), p.time_integration);
@@ -509,7 +510,7 @@ TEST(Bdf2, SettledFixedConstraintsGiveTheGglStepToRoundOff)
   dynamic_cast<Bdf2Integrator&>(*full).settle_fixed_constraints(false);
   settled->initialize(simulation.initial_state());
   full->initialize(simulation.initial_state());
-  const unsigned int steps = 7000, fixed = 3; // the paper's three droppers
+  const unsigned int steps = 7000, fixed = 2; // the paper's two droppers
   unsigned int steps_settled = 0, partly = 0, impacts = 0;
   double largest = 0., difference = 0., position = 0., velocity = 0., velocity_full = 0.;
   CaseRunner::TimePointWorkspace workspace_full;
@@ -545,7 +546,8 @@ TEST(Bdf2, SettledFixedConstraintsGiveTheGglStepToRoundOff)
   // at most (3 + 4 + 1) / (2 dt) times the largest position residual.
   EXPECT_LT(velocity, velocity_full + 4. * position / p.time_integration.time_step);
   EXPECT_GT(steps_settled, 0.99 * steps);
-  EXPECT_GT(partly, 0.5 * steps);
+  EXPECT_GT(partly, 0.25 * steps);
+  EXPECT_GT(steps_settled - partly, 0.25 * steps);
 }
 
 TEST(Guards, ARunThatBlowsUpStopsWithTimeStepAndQuantity)
