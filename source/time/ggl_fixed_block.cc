@@ -107,13 +107,13 @@ void GglFixedBlock::add_forces(const std::vector<double>& lambda_plus_eta,
                                dealii::Vector<double>& u1,
                                dealii::Vector<double>& u2) const
 {
-  if (!solves_are_cheaper || !with_eta_mu)
+  if (!with_eta_mu) // lambda alone: u1, u2 take nothing
   {
-    if (!with_eta_mu)
-    {
-      X.add(lambda_plus_eta, q);
-      return;
-    }
+    X.add(lambda_plus_eta, q);
+    return;
+  }
+  if (!solves_are_cheaper)
+  {
     X.add_with_partners(lambda_plus_eta, mu, q);
     Y.add(mu, u1, eta, u2);
     return;
