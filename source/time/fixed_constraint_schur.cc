@@ -199,13 +199,17 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
   row_start.assign(1, 0);
   row_column.clear();
   row_value.clear();
+  row_coupling.clear();
   for (unsigned int k = 0; k < n; ++k)
   {
     const unsigned int i = new_index[k];
     for (auto it = entries.begin(i); it != entries.end(i); ++it)
     {
-      row_column.push_back(old_index[it->column()]);
+      const unsigned int l = old_index[it->column()];
+      row_column.push_back(l);
       row_value.push_back(it->value());
+      row_coupling.push_back(std::abs(it->value()) /
+                             std::sqrt(diagonal[k] * diagonal[l]));
     }
     row_start.push_back(row_column.size());
   }
@@ -312,6 +316,52 @@ void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
       s += row_value[e] * in[row_column[e]];
     out[k] = s;
   }
+}
+
+void FixedConstraintSchur::reach_from(const std::vector<unsigned int>& sources,
+                                      const std::vector<bool>& among,
+                                      const double epsilon,
+                                      std::vector<bool>& reached) const
+{
+  reach_weight.resize(n, 0.);
+  reach_queue.clear();
+  for (const unsigned int k : sources)
+    if (among[k] && reach_weight[k] < 1.)
+    {
+      reach_weight[k] = 1.;
+      reach_touched.push_back(k);
+      reach_queue.emplace_back(1., k);
+    }
+  // Best first (std::push_heap keeps the largest product on top): a
+  // constraint leaves the queue with its largest product, and is walked from
+  // once with it.
+  std::make_heap(reach_queue.begin(), reach_queue.end());
+  while (!reach_queue.empty())
+  {
+    std::pop_heap(reach_queue.begin(), reach_queue.end());
+    const auto [weight, k] = reach_queue.back();
+    reach_queue.pop_back();
+    if (weight < reach_weight[k])
+      continue; // a better path came first
+    for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
+    {
+      const unsigned int l = row_column[e];
+      const double w = weight * row_coupling[e];
+      if (l == k || !among[l] || w <= epsilon || w <= reach_weight[l])
+        continue;
+      if (reach_weight[l] == 0.)
+        reach_touched.push_back(l);
+      reach_weight[l] = w;
+      reach_queue.emplace_back(w, l);
+      std::push_heap(reach_queue.begin(), reach_queue.end());
+    }
+  }
+  for (const unsigned int k : reach_touched)
+  {
+    reached[k] = true;
+    reach_weight[k] = 0.;
+  }
+  reach_touched.clear();
 }
 
 std::size_t FixedConstraintSchur::n_column_entries() const

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <type_traits>
 
@@ -443,6 +444,7 @@ void HalfExplicitIntegrator::set_time_step(const double time_step)
 {
   dt = time_step;
   uniform_runs_built = false; // the scaling of (M + dt/2 D)^-1 changes
+  history_start = step_number;
   factorize();
   take_disjoint_fixed_constraints();
 }
@@ -462,12 +464,14 @@ void HalfExplicitIntegrator::initialize(const DynamicState& initial)
   reported.impulse.clear();
   pending_impulse.clear();
   step_number = 0;
+  history_start = 0;
 }
 
 void HalfExplicitIntegrator::set_previous_velocity(const dealii::Vector<double>& vp)
 {
   v_prev = vp;
   previous = &v_prev;
+  history_start = step_number;
 }
 
 void HalfExplicitIntegrator::find_fixed_near(std::initializer_list<const SparseRow*> rows,
@@ -757,6 +761,7 @@ void HalfExplicitIntegrator::add_acceleration_multipliers(
     const std::vector<unsigned int>& A)
 {
   split(A, keep, moving_active);
+  force_keep = keep;
   if (disjoint.used())
   {
     add_disjoint_acceleration_multipliers();
@@ -1163,8 +1168,36 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       factors[k] = h * h * eta + h * mu;
       factors_v[k] = 2. * h * eta;
     }
+  leave_out_settled_corrections();
   fixed_mass.add_columns(factors, q_new, factors_v, v_new);
   add_moving_position_corrections(sn, sh);
+}
+
+void HalfExplicitIntegrator::leave_out_settled_corrections()
+{
+  settled_count = 0;
+  if (!settling || step_number < history_start + 2 || !pending_impulse.empty())
+    return;
+  // The sources: the held fixed constraints that are not settled, and those
+  // that a moving constraint's columns M^-1 G^T reach.
+  settle_sources.clear();
+  for (unsigned int k = 0; k < fixed.size(); ++k)
+    if (keep[k] &&
+        (!(force_keep[k] && active_now[fixed[k]] && reported.active[fixed[k]]) ||
+         (step_number + k) % settled_refresh_period == 0))
+      settle_sources.push_back(k);
+  for (const unsigned int i : moving_active)
+    for (const unsigned int k : columns[position[i]].near_M)
+      settle_sources.push_back(k);
+  correction_kept.assign(fixed.size(), false);
+  constexpr double unit_roundoff = 0.5 * std::numeric_limits<double>::epsilon();
+  fixed_mass.reach_from(settle_sources, keep, unit_roundoff, correction_kept);
+  for (unsigned int k = 0; k < fixed.size(); ++k)
+    if (keep[k] && !correction_kept[k])
+    {
+      factors[k] = factors_v[k] = 0.;
+      ++settled_count;
+    }
 }
 
 void HalfExplicitIntegrator::add_moving_position_corrections(

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pantocat
@@ -121,6 +122,22 @@ public:
       f(row_column[e]);
   }
 
+  /**
+   * Marks in @p reached (one flag per constraint, set, never cleared) the
+   * constraints among @p among whose multipliers in a solve with S restricted
+   * to @p among take more than @p epsilon of those of @p sources (and the
+   * sources): a best-first walk over S's stored entries that reaches l with the
+   * largest product of scaled couplings |S_kl| / sqrt(S_kk S_ll) along a path
+   * from a source (a source with 1), and goes on from l while that product
+   * exceeds @p epsilon. For the S of constraints along wires (diagonally
+   * dominant, each coupled to its neighbours) the product bounds l's share
+   * of the sources' multipliers (the Neumann series of S scaled to a unit
+   * diagonal). O(the constraints reached and their entries).
+   */
+  void reach_from(const std::vector<unsigned int>& sources,
+                  const std::vector<bool>& among, double epsilon,
+                  std::vector<bool>& reached) const;
+
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
   /// The same for several vectors, substituted side by side (four at a time).
@@ -153,5 +170,11 @@ private:
   /// S in the original numbering, compressed rows (vmult()).
   std::vector<unsigned int> row_start, row_column;
   std::vector<double> row_value;
+  std::vector<double> row_coupling; ///< |S_kl| / sqrt(S_kk S_ll) of row_value's entries
+  /// reach_from()'s workspace: the best product found per constraint (0: none),
+  /// the constraints with one, and the walk's queue.
+  mutable std::vector<double> reach_weight;
+  mutable std::vector<unsigned int> reach_touched;
+  mutable std::vector<std::pair<double, unsigned int>> reach_queue;
 };
 } // namespace pantocat

@@ -128,6 +128,15 @@ public:
   /// Changes the sign or size of the step (the factorisations are redone if D != 0).
   void set_time_step(double time_step);
 
+  /**
+   * On (the default), the position level leaves out the corrections of the
+   * settled fixed constraints (leave_out_settled_corrections()); off, every
+   * held one is corrected (for the tests that compare the two).
+   */
+  void settle_fixed_constraints(bool on) { settling = on; }
+  /// Number of fixed constraints whose corrections the latest trial left out.
+  unsigned int settled_in_latest_step() const { return settled_count; }
+
   const dealii::Vector<double>& positions() const { return q; }
   const dealii::Vector<double>& velocities() const { return v; }
   const dealii::Vector<double>& previous_velocities() const { return *previous; }
@@ -153,6 +162,27 @@ private:
   void solve_position_and_velocity_level(const std::vector<ConstraintState>& at_n,
                                          const std::vector<ConstraintState>& at_half,
                                          const std::vector<ConstraintState>& at_next);
+  /**
+   * A fixed constraint (constant row) that held at t_{n-1} and t_n and has a
+   * force at t_n is *settled*: G v_{n-1} = G v_n = 0, G q_n = -z and the
+   * acceleration level G a_n = 0 give G v* = G v_{n-1} + 2 dt G a_n = 0 and
+   * G q* = G q_n + dt G (v_n + v*)/2 = -z, so (40)'s residuals r_g, r_v of its
+   * row are round-off, and so are its own eta, mu. Only the other
+   * constraints' corrections move its row: those of the moving (contact)
+   * constraints whose columns M^-1 G^T reach it (near_M), and through S =
+   * G_F M^-1 G_F^T those of the fixed constraints that are not settled. The
+   * corrections M^-1 G_k^T (h^2 eta_k + h mu_k) and 2h M^-1 G_k^T eta_k of the
+   * settled constraints that S couples to none of those by more than the unit
+   * round-off (FixedConstraintSchur::reach_from()) are therefore left out of
+   * q_{n+1}, v_{n+1}: factors[k] = factors_v[k] = 0. Not in the first two
+   * steps after a start or a new v_{n-1}, nor after an impact (v_{n-1} then
+   * carries the jump). A settled constraint is corrected all the same on every
+   * settled_refresh_period-th step: the round-off of G a_n = 0 adds to G v of
+   * each of the two chains (even and odd steps) of the two-step update, and
+   * the drift of g and dg/dt stays bounded (the period is odd, so that the
+   * corrections alternate between the chains).
+   */
+  void leave_out_settled_corrections();
   void compute_moving_columns();
   struct MovingColumns;
   /**
@@ -365,7 +395,16 @@ private:
   std::vector<unsigned int> compliant;    ///< indices of the compliant constraints
   std::vector<double> factors, factors_v; ///< workspace
   std::vector<bool> keep;
+  std::vector<bool> force_keep; ///< keep of step 1's set (with a force) in the trial
   std::vector<unsigned int> moving_active;
+  bool settling = true;            ///< settle_fixed_constraints()
+  unsigned long history_start = 0; ///< the step of the latest start or new v_{n-1}
+  unsigned int settled_count = 0;  ///< settled_in_latest_step()
+  /// A settled constraint is corrected all the same every this many steps.
+  static constexpr unsigned int settled_refresh_period = 31;
+  /// Workspace of leave_out_settled_corrections().
+  std::vector<unsigned int> settle_sources;
+  std::vector<bool> correction_kept;
   DynamicState reported;
   /**
    * A bordered multiplier system (solve_bordered()): kept from step to step,
