@@ -1093,6 +1093,12 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
     const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
     const std::vector<ConstraintState>& s1)
 {
+  const bool settled = find_corrected_fixed();
+  if (settled && corrected_fixed.size() <= max_corrected_subset)
+  {
+    solve_corrected_position_and_velocity_level(sn, sh, s1);
+    return;
+  }
   fixed_mass.select(keep);
   const unsigned int mF = fixed.size(), p = moving_active.size();
   const double h = dt;
@@ -1168,36 +1174,104 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
       factors[k] = h * h * eta + h * mu;
       factors_v[k] = 2. * h * eta;
     }
-  leave_out_settled_corrections();
+  if (settled)
+    for (unsigned int k = 0; k < mF; ++k)
+      if (!correction_kept[k])
+        factors[k] = factors_v[k] = 0.;
   fixed_mass.add_columns(factors, q_new, factors_v, v_new);
   add_moving_position_corrections(sn, sh);
 }
 
-void HalfExplicitIntegrator::leave_out_settled_corrections()
+void HalfExplicitIntegrator::solve_corrected_position_and_velocity_level(
+    const std::vector<ConstraintState>& sn, const std::vector<ConstraintState>& sh,
+    const std::vector<ConstraintState>& s1)
+{
+  const unsigned int nL = corrected_fixed.size(), p = moving_active.size();
+  const double h = dt;
+  fixed_mass.factorize_subset(corrected_fixed);
+  position_workspace.prepare(2 * nL, 2 * p);
+  dealii::Vector<double>& x = position_workspace.x;
+  for (unsigned int l = 0; l < nL; ++l)
+  {
+    const unsigned int k = corrected_fixed[l];
+    corrected_slot[k] = l;
+    x(l) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
+    x(nL + l) = -fixed_rows.dot(k, v_new.begin());
+  }
+  // The fixed constraints that a moving column reaches are all corrected.
+  fill_position_border(s1, nL,
+                       [&](const MovingColumns& X, const auto& visit)
+                       {
+                         for (const unsigned int k : X.near_M)
+                           if (keep[k])
+                             visit(corrected_slot[k], k);
+                       });
+  // The fixed block [h^2 S, h S; 2h S, 0] restricted to R: eta = S_RR^-1 r_v /
+  // (2h), mu = S_RR^-1 r_g / h - h eta.
+  solve_bordered(
+      [&](const std::vector<dealii::Vector<double>*>& xs)
+      {
+        for (dealii::Vector<double>* r : xs)
+        {
+          fixed_mass.solve_subset(r->begin());
+          fixed_mass.solve_subset(r->begin() + nL);
+          for (unsigned int l = 0; l < nL; ++l)
+          {
+            const double eta = (*r)(nL + l) / (2. * h);
+            (*r)(nL + l) = (*r)(l) / h - h * eta;
+            (*r)(l) = eta;
+          }
+        }
+      },
+      position_workspace.B, position_workspace.C, position_workspace.D, x,
+      position_workspace.y, position_workspace.rhs, position_workspace.batch, t + dt,
+      "position/velocity level");
+  factors.assign(fixed.size(), 0.);
+  factors_v.assign(fixed.size(), 0.);
+  for (unsigned int l = 0; l < nL; ++l)
+  {
+    const unsigned int k = corrected_fixed[l];
+    factors[k] = h * h * x(l) + h * x(nL + l);
+    factors_v[k] = 2. * h * x(l);
+    corrected_slot[k] = -1;
+  }
+  fixed_mass.add_columns(factors, q_new, factors_v, v_new);
+  add_moving_position_corrections(sn, sh);
+}
+
+bool HalfExplicitIntegrator::find_corrected_fixed()
 {
   settled_count = 0;
   if (!settling || step_number < history_start + 2 || !pending_impulse.empty())
-    return;
+    return false;
   // The sources: the held fixed constraints that are not settled, and those
-  // that a moving constraint's columns M^-1 G^T reach.
+  // that a moving constraint's columns M^-1 G^T reach; with them, the
+  // constraints S couples to them beyond the unit round-off.
+  const unsigned int mF = fixed.size();
   settle_sources.clear();
-  for (unsigned int k = 0; k < fixed.size(); ++k)
-    if (keep[k] &&
-        (!(force_keep[k] && active_now[fixed[k]] && reported.active[fixed[k]]) ||
-         (step_number + k) % settled_refresh_period == 0))
+  for (unsigned int k = 0; k < mF; ++k)
+    if (keep[k] && !(force_keep[k] && active_now[fixed[k]] && reported.active[fixed[k]]))
       settle_sources.push_back(k);
   for (const unsigned int i : moving_active)
     for (const unsigned int k : columns[position[i]].near_M)
       settle_sources.push_back(k);
-  correction_kept.assign(fixed.size(), false);
+  correction_kept.assign(mF, false);
   constexpr double unit_roundoff = 0.5 * std::numeric_limits<double>::epsilon();
   fixed_mass.reach_from(settle_sources, keep, unit_roundoff, correction_kept);
-  for (unsigned int k = 0; k < fixed.size(); ++k)
-    if (keep[k] && !correction_kept[k])
-    {
-      factors[k] = factors_v[k] = 0.;
-      ++settled_count;
-    }
+  // A settled constraint's turn to be corrected: its multipliers are the
+  // round-off its row gathered since, and its neighbours' share of them less.
+  corrected_fixed.clear();
+  for (unsigned int k = 0; k < mF; ++k)
+  {
+    correction_kept[k] =
+        correction_kept[k] || (step_number + k) % settled_refresh_period == 0;
+    if (keep[k] && correction_kept[k])
+      corrected_fixed.push_back(k);
+    settled_count += keep[k] && !correction_kept[k];
+  }
+  if (corrected_slot.size() != mF)
+    corrected_slot.assign(mF, -1);
+  return true;
 }
 
 void HalfExplicitIntegrator::add_moving_position_corrections(

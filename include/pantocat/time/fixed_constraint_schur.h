@@ -6,6 +6,7 @@
 #include <pantocat/system/sparse_row.h>
 #include <pantocat/time/mass_inverse.h>
 
+#include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>
 #include <deal.II/lac/vector.h>
@@ -138,6 +139,15 @@ public:
                   const std::vector<bool>& among, double epsilon,
                   std::vector<bool>& reached) const;
 
+  /**
+   * Factorises S restricted to the few constraints @p subset (compliance
+   * included), dense (Cholesky): for a subset of a few dozen at most, whose
+   * factor changes from step to step.
+   */
+  void factorize_subset(const std::vector<unsigned int>& subset);
+  /// x <- S_RR^-1 x for the subset R of factorize_subset() (x in its order).
+  void solve_subset(double* x) const;
+
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
   /// The same for several vectors, substituted side by side (four at a time).
@@ -176,5 +186,10 @@ private:
   mutable std::vector<double> reach_weight;
   mutable std::vector<unsigned int> reach_touched;
   mutable std::vector<std::pair<double, unsigned int>> reach_queue;
+  /// factorize_subset(): S_RR, its Cholesky factor L and L^T, the slots of R's
+  /// constraints (-1 elsewhere) and the solves' workspace.
+  dealii::FullMatrix<double> subset_matrix, subset_factor, subset_factor_transposed;
+  std::vector<int> subset_slot;
+  mutable dealii::Vector<double> subset_rhs, subset_solution;
 };
 } // namespace pantocat

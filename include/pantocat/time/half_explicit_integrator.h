@@ -174,15 +174,27 @@ private:
    * corrections M^-1 G_k^T (h^2 eta_k + h mu_k) and 2h M^-1 G_k^T eta_k of the
    * settled constraints that S couples to none of those by more than the unit
    * round-off (FixedConstraintSchur::reach_from()) are therefore left out of
-   * q_{n+1}, v_{n+1}: factors[k] = factors_v[k] = 0. Not in the first two
-   * steps after a start or a new v_{n-1}, nor after an impact (v_{n-1} then
-   * carries the jump). A settled constraint is corrected all the same on every
-   * settled_refresh_period-th step: the round-off of G a_n = 0 adds to G v of
-   * each of the two chains (even and odd steps) of the two-step update, and
-   * the drift of g and dg/dt stays bounded (the period is odd, so that the
-   * corrections alternate between the chains).
+   * q_{n+1}, v_{n+1}; the others, corrected_fixed, are found here
+   * (correction_kept). A settled constraint is corrected all the same on
+   * every settled_refresh_period-th step: the round-off of G a_n = 0 adds to
+   * G v of each of the two chains (even and odd steps) of the two-step
+   * update, and the drift of g and dg/dt stays bounded (the period is odd, so
+   * that the corrections alternate between the chains); it is its own round-off
+   * that is corrected then, so S's reach is not followed from it. Returns
+   * false (every held constraint corrected) in the first two steps after a
+   * start or a new v_{n-1}, and after an impact (v_{n-1} then carries the
+   * jump).
    */
-  void leave_out_settled_corrections();
+  bool find_corrected_fixed();
+  /**
+   * (40) with the fixed block restricted to corrected_fixed (S_RR factorised
+   * dense, FixedConstraintSchur::factorize_subset()), when they are few: the
+   * settled constraints' rows take no part (their eta, mu are round-off).
+   */
+  void solve_corrected_position_and_velocity_level(
+      const std::vector<ConstraintState>& at_n,
+      const std::vector<ConstraintState>& at_half,
+      const std::vector<ConstraintState>& at_next);
   void compute_moving_columns();
   struct MovingColumns;
   /**
@@ -402,6 +414,10 @@ private:
   unsigned int settled_count = 0;  ///< settled_in_latest_step()
   /// A settled constraint is corrected all the same every this many steps.
   static constexpr unsigned int settled_refresh_period = 31;
+  /// The most corrected constraints solve_corrected_position_and_velocity_level() takes.
+  static constexpr unsigned int max_corrected_subset = 32;
+  std::vector<unsigned int> corrected_fixed; ///< find_corrected_fixed()
+  std::vector<int> corrected_slot;           ///< position in corrected_fixed, or -1
   /// Workspace of leave_out_settled_corrections().
   std::vector<unsigned int> settle_sources;
   std::vector<bool> correction_kept;
