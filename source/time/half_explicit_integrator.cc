@@ -1109,10 +1109,7 @@ void HalfExplicitIntegrator::solve_position_and_velocity_level(
   // The fixed rows (G_t, z_t are 0).
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k])
-    {
-      x(k) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
-      x(mF + k) = -fixed_rows.dot(k, v_new.begin());
-    }
+      set_fixed_residuals(k, k, mF, x);
   fill_position_border(s1, mF,
                        [&](const MovingColumns& X, const auto& visit)
                        {
@@ -1195,8 +1192,7 @@ void HalfExplicitIntegrator::solve_corrected_position_and_velocity_level(
   {
     const unsigned int k = corrected_fixed[l];
     corrected_slot[k] = l;
-    x(l) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
-    x(nL + l) = -fixed_rows.dot(k, v_new.begin());
+    set_fixed_residuals(k, l, nL, x);
   }
   // The fixed constraints that a moving column reaches are all corrected.
   fill_position_border(s1, nL,
@@ -1237,6 +1233,15 @@ void HalfExplicitIntegrator::solve_corrected_position_and_velocity_level(
   }
   fixed_mass.add_columns(factors, q_new, factors_v, v_new);
   add_moving_position_corrections(sn, sh);
+}
+
+void HalfExplicitIntegrator::set_fixed_residuals(const unsigned int k,
+                                                 const unsigned int slot,
+                                                 const unsigned int half,
+                                                 dealii::Vector<double>& x) const
+{
+  x(slot) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
+  x(half + slot) = -fixed_rows.dot(k, v_new.begin());
 }
 
 bool HalfExplicitIntegrator::find_corrected_fixed()
@@ -1362,11 +1367,7 @@ void HalfExplicitIntegrator::solve_disjoint_position_and_velocity_level(
     position_workspace.prepare(2 * nL, 2 * p);
     dealii::Vector<double>& x = position_workspace.x;
     for (unsigned int l = 0; l < nL; ++l)
-    {
-      const unsigned int k = near_fixed[l];
-      x(l) = -(fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]);
-      x(nL + l) = -fixed_rows.dot(k, v_new.begin());
-    }
+      set_fixed_residuals(near_fixed[l], l, nL, x);
     fill_position_border(s1, nL,
                          [&](const MovingColumns&, const auto& visit)
                          {

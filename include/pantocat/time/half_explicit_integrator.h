@@ -186,6 +186,10 @@ private:
    * jump).
    */
   bool find_corrected_fixed();
+  /// x(slot) = -g_k, x(half + slot) = -dg_k/dt of fixed constraint k at q*, v*
+  /// (the right-hand sides of (40); its G_t, z_t are 0).
+  void set_fixed_residuals(unsigned int k, unsigned int slot, unsigned int half,
+                           dealii::Vector<double>& x) const;
   /**
    * (40) with the fixed block restricted to corrected_fixed (S_RR factorised
    * dense, FixedConstraintSchur::factorize_subset()), when they are few: the
