@@ -74,7 +74,9 @@ struct UniformForceRun
  * (the FDM's droppers and supports under diagonal M and D: no two share an
  * unknown), DisjointFixedConstraints takes each fixed constraint from its own
  * row in one pass, and the moving ones are bordered only by the fixed ones on
- * their unknowns.
+ * their unknowns. In the position level (40), the fixed constraints that held
+ * at t_{n-1} and t_n are settled (find_corrected_fixed()): their eta, mu are
+ * round-off, and only the others' block is solved and corrected.
  *
  * Compliant constraints (Constraint::is_compliant) are explicit forces: in
  * step 1, lambda_i = max(0, -k g_i - c dg_i/dt) (unilateral, 0 when g_i >= 0)
@@ -130,8 +132,8 @@ public:
 
   /**
    * On (the default), the position level leaves out the corrections of the
-   * settled fixed constraints (leave_out_settled_corrections()); off, every
-   * held one is corrected (for the tests that compare the two).
+   * settled fixed constraints (find_corrected_fixed()); off, every held one
+   * is corrected (for the tests that compare the two).
    */
   void settle_fixed_constraints(bool on) { settling = on; }
   /// Number of fixed constraints whose corrections the latest trial left out.
@@ -422,7 +424,7 @@ private:
   static constexpr unsigned int max_corrected_subset = 32;
   std::vector<unsigned int> corrected_fixed; ///< find_corrected_fixed()
   std::vector<int> corrected_slot;           ///< position in corrected_fixed, or -1
-  /// Workspace of leave_out_settled_corrections().
+  /// Workspace of find_corrected_fixed(), and its flags (correction_kept[k]).
   std::vector<unsigned int> settle_sources;
   std::vector<bool> correction_kept;
   DynamicState reported;
