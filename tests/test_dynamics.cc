@@ -479,158 +479,32 @@ TEST(Benchmark48, GeneralizedAlphaOnFemAgreesWithBdf2OnTheSlackEpisodes)
     }
 }
 
-TEST(Bdf2, SettledFixedConstraintsGiveTheGglStepToRoundOff)
-{
-  // A fixed constraint that held at both history points of a BDF-2 step gets
-  // its levels 1 and 2 from level 0 (the BDF weights sum to c), so its GGL
-  // multipliers eta, mu vanish in exact arithmetic and the block takes its
-  // lambda alone (GglFixedBlock::select()). FEM at 48 m/s to t = 0.35 s
-  // (dropper 2 slackens twice, its re-tension at 0.2604 s is an impact with a
-  // Richardson restart, the contact is lost for a step), the same run with
-  // the GGL block in full beside it:
-  // - the same active sets, and multipliers that agree to 1e-7 of the
-  //   largest force at every step (the dropped eta, mu were the history's
-  //   round-off amplified by c and c^2; measured 3.8e-9);
-  // - every held rigid constraint keeps g at round-off (measured 2.1e-17 m)
-  //   and dg/dt within the bound the BDF formula gives (measured 1.3e-12
-  //   m/s, the full block 7.1e-13 m/s). Settling on the initial state, whose
-  //   static solution holds g to 3e-13 m only, gave c * 3e-13 = 1e-9 m/s;
-  //   settling the dropper that the contact's mass columns reach gave 1.5e-4
-  //   m/s and forces 6e-2 N apart;
-  // - the settled path is taken on all steps but the starts (measured 6994
-  //   of 7000): on about half of them one dropper is left out because the
-  //   contact's mass columns (about 4 m wide here) reach it (measured 3583),
-  //   on the others both droppers are settled (3411).
-  ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
-  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
-  auto settled = create_time_integrator(simulation.system(), p.time_integration);
-  auto full = create_time_integrator(simulation.system(), p.time_integration);
-  auto* bdf2 = dynamic_cast<Bdf2Integrator*>(settled.get());
-  ASSERT_NE(bdf2, nullptr);
-  dynamic_cast<Bdf2Integrator&>(*full).settle_fixed_constraints(false);
-  settled->initialize(simulation.initial_state());
-  full->initialize(simulation.initial_state());
-  const unsigned int steps = 7000, fixed = 2; // the paper's two droppers
-  unsigned int steps_settled = 0, partly = 0, impacts = 0;
-  double largest = 0., difference = 0., position = 0., velocity = 0., velocity_full = 0.;
-  CaseRunner::TimePointWorkspace workspace_full;
-  TimePoint point_full;
-  CaseRunner::TimePointWorkspace workspace;
-  TimePoint point;
-  for (unsigned int n = 0; n < steps; ++n)
-  {
-    settled->advance();
-    full->advance();
-    const DynamicState &a = settled->latest(), &b = full->latest();
-    ASSERT_EQ(a.active, b.active) << "t = " << a.t;
-    for (std::size_t i = 0; i < a.lambda.size(); ++i)
-    {
-      largest = std::max(largest, std::abs(b.lambda[i]));
-      difference = std::max(difference, std::abs(a.lambda[i] - b.lambda[i]));
-    }
-    impacts += !a.impulse.empty();
-    simulation.fill_time_point(a, point, workspace);
-    position = std::max(position, point.position_residual);
-    velocity = std::max(velocity, point.velocity_residual);
-    simulation.fill_time_point(b, point_full, workspace_full);
-    velocity_full = std::max(velocity_full, point_full.velocity_residual);
-    const unsigned int k = bdf2->settled_in_latest_step();
-    steps_settled += k > 0;
-    partly += k > 0 && k < fixed;
-    EXPECT_EQ(dynamic_cast<Bdf2Integrator&>(*full).settled_in_latest_step(), 0u);
-  }
-  EXPECT_GE(impacts, 1u);
-  EXPECT_LT(difference, 1e-7 * largest) << difference / largest;
-  EXPECT_LT(position, 1e-15);
-  // A settled constraint's dg/dt is the BDF formula on its g at three steps:
-  // at most (3 + 4 + 1) / (2 dt) times the largest position residual.
-  EXPECT_LT(velocity, velocity_full + 4. * position / p.time_integration.time_step);
-  EXPECT_GT(steps_settled, 0.99 * steps);
-  EXPECT_GT(partly, 0.25 * steps);
-  EXPECT_GT(steps_settled - partly, 0.25 * steps);
-}
-
-TEST(Bdf2, SettledFixedConstraintsWithStronglyCoupledNeighbours)
-{
-  // The FEM benchmark at 48 m/s with 17 droppers 1 m apart (N = G M^-1 G^T
-  // couples neighbours strongly), 4000 BDF-2 steps, settled against the full
-  // GGL block: the same active sets, multipliers within 1e-7 of the largest
-  // force and g at round-off, as for the paper's two droppers above
-  // (measured 6.2e-11 of the largest force, g 2.1e-17 m, dg/dt 1.1e-12 m/s
-  // against 9.6e-13 m/s; 14.9 of 17 droppers settled per step): the one-hop
-  // rule of GglFixedBlock::select() suffices here.
-  ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
-  const unsigned int m = 17, steps = 4000;
-  p.catenary.dropper_positions.clear();
-  for (unsigned int j = 0; j < m; ++j)
-    p.catenary.dropper_positions.push_back(2. + j);
-  p.catenary.dropper_lengths.assign(m, 0.95);
-  p.catenary.dropper_spans.assign(m, 0);
-  CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
-  auto settled = create_time_integrator(simulation.system(), p.time_integration);
-  auto full = create_time_integrator(simulation.system(), p.time_integration);
-  auto& bdf2 = dynamic_cast<Bdf2Integrator&>(*settled);
-  dynamic_cast<Bdf2Integrator&>(*full).settle_fixed_constraints(false);
-  settled->initialize(simulation.initial_state());
-  full->initialize(simulation.initial_state());
-  double largest = 0., difference = 0., position = 0., velocity = 0., velocity_full = 0.;
-  unsigned long settled_total = 0;
-  CaseRunner::TimePointWorkspace workspace, workspace_full;
-  TimePoint point, point_full;
-  for (unsigned int n = 0; n < steps; ++n)
-  {
-    settled->advance();
-    full->advance();
-    const DynamicState &a = settled->latest(), &b = full->latest();
-    ASSERT_EQ(a.active, b.active) << "t = " << a.t;
-    for (std::size_t i = 0; i < a.lambda.size(); ++i)
-    {
-      largest = std::max(largest, std::abs(b.lambda[i]));
-      difference = std::max(difference, std::abs(a.lambda[i] - b.lambda[i]));
-    }
-    simulation.fill_time_point(a, point, workspace);
-    simulation.fill_time_point(b, point_full, workspace_full);
-    position = std::max(position, point.position_residual);
-    velocity = std::max(velocity, point.velocity_residual);
-    velocity_full = std::max(velocity_full, point_full.velocity_residual);
-    settled_total += bdf2.settled_in_latest_step();
-  }
-  EXPECT_LT(difference, 1e-7 * largest) << difference / largest;
-  EXPECT_LT(position, 1e-15);
-  EXPECT_LT(velocity, velocity_full + 4. * position / p.time_integration.time_step);
-  EXPECT_GT(settled_total, 0.5 * m * steps);
-}
-
-/// What HalfExplicit.SettledFixedConstraints* compare: the run with the
-/// settled constraints' corrections left out beside the one that makes them all.
+/// What the tests of settled fixed constraints compare: a run that leaves
+/// the settled constraints' multipliers out beside one that keeps them all.
 struct SettledComparison
 {
-  unsigned int steps_settled = 0, impacts = 0;
+  unsigned int steps_settled = 0, steps_partly = 0, impacts = 0;
   double largest = 0., difference = 0., position = 0., position_full = 0., velocity = 0.,
          velocity_full = 0.;
   unsigned long settled_total = 0;
 };
 
-/// The FEM benchmark at 48 m/s with half-explicit steps of 5e-5 s, on h = 0.2 m
-/// (its explicit limit is 1.3e-4 s).
-ProgramParameters half_explicit_fem_benchmark()
-{
-  ProgramParameters p = benchmark(48., SpaceMethod::fem, "half-explicit");
-  p.discretisation.n_intervals = 100;
-  p.time_integration.time_step = 5e-5;
-  p.time_integration.force_step_size = true;
-  return p;
-}
-
-SettledComparison compare_settled_half_explicit(const ProgramParameters& p,
-                                                const unsigned int steps)
+/**
+ * @p steps steps of the case @p p with @p Integrator (Bdf2Integrator or
+ * HalfExplicitIntegrator) settling and not: the largest forces and their
+ * difference, the residuals of both, and the steps with settled constraints
+ * (steps_partly: fewer than @p n_fixed of them). The active sets must agree.
+ */
+template <typename Integrator>
+SettledComparison compare_settled(const ProgramParameters& p, const unsigned int steps,
+                                  const unsigned int n_fixed = 0)
 {
   CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});
   auto settled = create_time_integrator(simulation.system(), p.time_integration);
   auto full = create_time_integrator(simulation.system(), p.time_integration);
-  auto& he = dynamic_cast<HalfExplicitIntegrator&>(*settled);
-  auto& he_full = dynamic_cast<HalfExplicitIntegrator&>(*full);
-  he_full.settle_fixed_constraints(false);
+  auto& with = dynamic_cast<Integrator&>(*settled);
+  auto& without = dynamic_cast<Integrator&>(*full);
+  without.settle_fixed_constraints(false);
   settled->initialize(simulation.initial_state());
   full->initialize(simulation.initial_state());
   SettledComparison c;
@@ -656,11 +530,90 @@ SettledComparison compare_settled_half_explicit(const ProgramParameters& p,
     c.velocity = std::max(c.velocity, point.velocity_residual);
     c.position_full = std::max(c.position_full, point_full.position_residual);
     c.velocity_full = std::max(c.velocity_full, point_full.velocity_residual);
-    c.steps_settled += he.settled_in_latest_step() > 0;
-    c.settled_total += he.settled_in_latest_step();
-    EXPECT_EQ(he_full.settled_in_latest_step(), 0u);
+    const unsigned int k = with.settled_in_latest_step();
+    c.steps_settled += k > 0;
+    c.steps_partly += k > 0 && k < n_fixed;
+    c.settled_total += k;
+    EXPECT_EQ(without.settled_in_latest_step(), 0u);
   }
   return c;
+}
+
+/// The FEM benchmark at 48 m/s with @p m droppers 1 m apart from x = 2 m.
+ProgramParameters with_droppers_1m_apart(ProgramParameters p, const unsigned int m)
+{
+  p.catenary.dropper_positions.clear();
+  for (unsigned int j = 0; j < m; ++j)
+    p.catenary.dropper_positions.push_back(2. + j);
+  p.catenary.dropper_lengths.assign(m, 0.95);
+  p.catenary.dropper_spans.assign(m, 0);
+  return p;
+}
+
+/// The FEM benchmark at 48 m/s with half-explicit steps of 5e-5 s, on h = 0.2 m
+/// (its explicit limit is 1.3e-4 s).
+ProgramParameters half_explicit_fem_benchmark()
+{
+  ProgramParameters p = benchmark(48., SpaceMethod::fem, "half-explicit");
+  p.discretisation.n_intervals = 100;
+  p.time_integration.time_step = 5e-5;
+  p.time_integration.force_step_size = true;
+  return p;
+}
+
+TEST(Bdf2, SettledFixedConstraintsGiveTheGglStepToRoundOff)
+{
+  // A fixed constraint that held at both history points of a BDF-2 step gets
+  // its levels 1 and 2 from level 0 (the BDF weights sum to c), so its GGL
+  // multipliers eta, mu vanish in exact arithmetic and the block takes its
+  // lambda alone (GglFixedBlock::select()). FEM at 48 m/s to t = 0.35 s
+  // (dropper 2 slackens twice, its re-tension at 0.2604 s is an impact with a
+  // Richardson restart, the contact is lost for a step), the same run with
+  // the GGL block in full beside it:
+  // - the same active sets, and multipliers that agree to 1e-7 of the
+  //   largest force at every step (the dropped eta, mu were the history's
+  //   round-off amplified by c and c^2; measured 3.8e-9);
+  // - every held rigid constraint keeps g at round-off (measured 2.1e-17 m)
+  //   and dg/dt within the bound the BDF formula gives (measured 1.3e-12
+  //   m/s, the full block 7.1e-13 m/s). Settling on the initial state, whose
+  //   static solution holds g to 3e-13 m only, gave c * 3e-13 = 1e-9 m/s;
+  //   settling the dropper that the contact's mass columns reach gave 1.5e-4
+  //   m/s and forces 6e-2 N apart;
+  // - the settled path is taken on all steps but the starts (measured 6994
+  //   of 7000): on about half of them one dropper is left out because the
+  //   contact's mass columns (about 4 m wide here) reach it (measured 3583),
+  //   on the others both droppers are settled (3411).
+  ProgramParameters p = benchmark(48., SpaceMethod::fem, "bdf2");
+  const unsigned int steps = 7000, fixed = 2; // the paper's two droppers
+  const SettledComparison c = compare_settled<Bdf2Integrator>(p, steps, fixed);
+  EXPECT_GE(c.impacts, 1u);
+  EXPECT_LT(c.difference, 1e-7 * c.largest) << c.difference / c.largest;
+  EXPECT_LT(c.position, 1e-15);
+  // A settled constraint's dg/dt is the BDF formula on its g at three steps:
+  // at most (3 + 4 + 1) / (2 dt) times the largest position residual.
+  EXPECT_LT(c.velocity, c.velocity_full + 4. * c.position / p.time_integration.time_step);
+  EXPECT_GT(c.steps_settled, 0.99 * steps);
+  EXPECT_GT(c.steps_partly, 0.25 * steps);
+  EXPECT_GT(c.steps_settled - c.steps_partly, 0.25 * steps);
+}
+
+TEST(Bdf2, SettledFixedConstraintsWithStronglyCoupledNeighbours)
+{
+  // The FEM benchmark at 48 m/s with 17 droppers 1 m apart (N = G M^-1 G^T
+  // couples neighbours strongly), 4000 BDF-2 steps, settled against the full
+  // GGL block: the same active sets, multipliers within 1e-7 of the largest
+  // force and g at round-off, as for the paper's two droppers above
+  // (measured 6.2e-11 of the largest force, g 2.1e-17 m, dg/dt 1.1e-12 m/s
+  // against 9.6e-13 m/s; 14.9 of 17 droppers settled per step): the one-hop
+  // rule of GglFixedBlock::select() suffices here.
+  const unsigned int m = 17, steps = 4000;
+  const ProgramParameters p =
+      with_droppers_1m_apart(benchmark(48., SpaceMethod::fem, "bdf2"), m);
+  const SettledComparison c = compare_settled<Bdf2Integrator>(p, steps);
+  EXPECT_LT(c.difference, 1e-7 * c.largest) << c.difference / c.largest;
+  EXPECT_LT(c.position, 1e-15);
+  EXPECT_LT(c.velocity, c.velocity_full + 4. * c.position / p.time_integration.time_step);
+  EXPECT_GT(c.settled_total, 0.5 * m * steps);
 }
 
 TEST(HalfExplicit, SettledFixedConstraintsGiveTheStepToRoundOff)
@@ -683,7 +636,7 @@ TEST(HalfExplicit, SettledFixedConstraintsGiveTheStepToRoundOff)
   //   contact's columns (about 4 m wide) reach one of the two droppers, or
   //   it is slack, on the others.
   const SettledComparison c =
-      compare_settled_half_explicit(half_explicit_fem_benchmark(), 7000);
+      compare_settled<HalfExplicitIntegrator>(half_explicit_fem_benchmark(), 7000);
   EXPECT_GE(c.impacts, 1u);
   EXPECT_LE(c.difference, 1e-9 * c.largest) << c.difference / c.largest;
   EXPECT_LT(c.position, 2. * c.position_full + 1e-14)
@@ -704,14 +657,9 @@ TEST(HalfExplicit, SettledFixedConstraintsReachThroughStronglyCoupledNeighbours)
   // dg/dt drifted to 2.0e-13 m/s (and g to 1.3e-14 m); without the contact's
   // reach, forces 1.2e-5 of the largest apart. 14.4 of 17 droppers left out
   // per step on average.
-  ProgramParameters p = half_explicit_fem_benchmark();
   const unsigned int m = 17, steps = 4000;
-  p.catenary.dropper_positions.clear();
-  for (unsigned int j = 0; j < m; ++j)
-    p.catenary.dropper_positions.push_back(2. + j);
-  p.catenary.dropper_lengths.assign(m, 0.95);
-  p.catenary.dropper_spans.assign(m, 0);
-  const SettledComparison c = compare_settled_half_explicit(p, steps);
+  const ProgramParameters p = with_droppers_1m_apart(half_explicit_fem_benchmark(), m);
+  const SettledComparison c = compare_settled<HalfExplicitIntegrator>(p, steps);
   EXPECT_LE(c.difference, 1e-9 * c.largest) << c.difference / c.largest;
   EXPECT_LT(c.position, 2. * c.position_full + 1e-14)
       << c.position << " " << c.position_full;
