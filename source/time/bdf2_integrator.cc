@@ -134,19 +134,10 @@ struct Bdf2Integrator::Stage : IterationMatrix
   /// fixed_at_row from the rows @p G of the fixed constraints (block order).
   void map_rows_to_fixed(const std::vector<const SparseRow*>& G)
   {
-    const unsigned int n = system.n_dofs();
-    fixed_at_row_start.assign(n + 1, 0);
+    CompressedRows rows;
     for (const SparseRow* g : G)
-      for (std::size_t e = 0; e < g->size(); ++e)
-        ++fixed_at_row_start[g->index[e] + 1];
-    for (unsigned int i = 0; i < n; ++i)
-      fixed_at_row_start[i + 1] += fixed_at_row_start[i];
-    fixed_at_row.assign(fixed_at_row_start[n], 0);
-    std::vector<unsigned int> next(fixed_at_row_start.begin(),
-                                   fixed_at_row_start.end() - 1);
-    for (unsigned int k = 0; k < G.size(); ++k)
-      for (std::size_t e = 0; e < G[k]->size(); ++e)
-        fixed_at_row[next[G[k]->index[e]]++] = k;
+      rows.push_back(*g);
+    fixed_at_row.build(rows, system.n_dofs());
   }
 
   /**
@@ -164,10 +155,10 @@ struct Bdf2Integrator::Stage : IterationMatrix
     const auto take = [&](const RowRanges& reach, const bool by_mass)
     {
       for (const RowRange& r : reach)
-        for (unsigned int e = fixed_at_row_start[r.first]; e < fixed_at_row_start[r.last];
+        for (unsigned int e = fixed_at_row.start[r.first]; e < fixed_at_row.start[r.last];
              ++e)
         {
-          const unsigned int k = fixed_at_row[e];
+          const unsigned int k = fixed_at_row.row[e];
           if (!in_block[k])
             continue;
           if (slot[k] < 0)
@@ -203,9 +194,8 @@ struct Bdf2Integrator::Stage : IterationMatrix
   std::unique_ptr<PatternOperators> split_operators;
   SparseRow DY, DZ; ///< workspace
   GglFixedBlock block;
-  /// The fixed constraints (block order) with an entry in row i:
-  /// fixed_at_row[fixed_at_row_start[i] .. fixed_at_row_start[i + 1]).
-  std::vector<unsigned int> fixed_at_row_start, fixed_at_row;
+  /// The fixed constraints (block order) with an entry in each row.
+  RowsByColumn fixed_at_row;
   bool block_ready = false;
   /// Columns of the touching fixed constraints of the current step.
   std::map<unsigned int, std::pair<LocalColumns, LocalColumns>> touching_columns;

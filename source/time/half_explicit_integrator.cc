@@ -83,20 +83,9 @@ HalfExplicitIntegrator::HalfExplicitIntegrator(const SemiDiscreteSystem& system,
   is_moving.assign(m, false);
   for (const unsigned int i : moving)
     is_moving[i] = true;
-  // The fixed constraints by unknown (find_fixed_near()).
-  fixed_at_start.assign(n + 1, 0);
-  for (const unsigned int j : fixed_rows.index)
-    ++fixed_at_start[j + 1];
-  for (unsigned int j = 0; j < n; ++j)
-    fixed_at_start[j + 1] += fixed_at_start[j];
-  fixed_at.resize(fixed_at_start[n]);
-  {
-    std::vector<unsigned int> next(fixed_at_start.begin(), fixed_at_start.end() - 1);
-    for (unsigned int k = 0; k < fixed_rows.size(); ++k)
-      for (unsigned int e = fixed_rows.start[k]; e < fixed_rows.start[k + 1]; ++e)
-        fixed_at[next[fixed_rows.index[e]]++] = k;
-  }
+  fixed_by_unknown.build(fixed_rows, n); // find_fixed_near()
   near_mark.assign(fixed.size(), false);
+  corrected_slot.assign(fixed.size(), -1);
   take_disjoint_fixed_constraints();
 }
 
@@ -482,12 +471,16 @@ void HalfExplicitIntegrator::find_fixed_near(std::initializer_list<const SparseR
   near.clear();
   const auto visit = [&](const unsigned int j)
   {
-    for (unsigned int e = fixed_at_start[j]; e < fixed_at_start[j + 1]; ++e)
-      if (!near_mark[fixed_at[e]])
+    for (unsigned int e = fixed_by_unknown.start[j]; e < fixed_by_unknown.start[j + 1];
+         ++e)
+    {
+      const unsigned int k = fixed_by_unknown.row[e];
+      if (!near_mark[k])
       {
-        near_mark[fixed_at[e]] = true;
-        near.push_back(fixed_at[e]);
+        near_mark[k] = true;
+        near.push_back(k);
       }
+    }
   };
   if (local) // the column is zero off its reach
   {
@@ -1257,9 +1250,8 @@ bool HalfExplicitIntegrator::find_corrected_fixed()
   for (unsigned int k = 0; k < mF; ++k)
     if (keep[k] && !(force_keep[k] && active_now[fixed[k]] && reported.active[fixed[k]]))
       settle_sources.push_back(k);
-  for (const unsigned int i : moving_active)
-    for (const unsigned int k : columns[position[i]].near_M)
-      settle_sources.push_back(k);
+  gather_near_fixed(&MovingColumns::near_M);
+  settle_sources.insert(settle_sources.end(), near_fixed.begin(), near_fixed.end());
   correction_kept.assign(mF, false);
   constexpr double unit_roundoff = 0.5 * std::numeric_limits<double>::epsilon();
   fixed_mass.reach_from(settle_sources, keep, unit_roundoff, correction_kept);
@@ -1274,8 +1266,6 @@ bool HalfExplicitIntegrator::find_corrected_fixed()
       corrected_fixed.push_back(k);
     settled_count += keep[k] && !correction_kept[k];
   }
-  if (corrected_slot.size() != mF)
-    corrected_slot.assign(mF, -1);
   return true;
 }
 

@@ -115,4 +115,29 @@ struct CompressedRows
     out[3] = s3;
   }
 };
+
+/**
+ * The pattern of a CompressedRows by column: the rows with an entry in
+ * column j are row[start[j] .. start[j + 1]), in increasing order (e.g. the
+ * fixed constraints on each unknown).
+ */
+struct RowsByColumn
+{
+  std::vector<unsigned int> start, row;
+
+  /// From @p rows, whose entries lie in the columns [0, @p n_columns).
+  void build(const CompressedRows& rows, const unsigned int n_columns)
+  {
+    start.assign(n_columns + 1, 0);
+    for (const unsigned int j : rows.index)
+      ++start[j + 1];
+    for (unsigned int j = 0; j < n_columns; ++j)
+      start[j + 1] += start[j];
+    row.resize(start[n_columns]);
+    std::vector<unsigned int> next(start.begin(), start.end() - 1);
+    for (unsigned int k = 0; k < rows.size(); ++k)
+      for (unsigned int e = rows.start[k]; e < rows.start[k + 1]; ++e)
+        row[next[rows.index[e]]++] = k;
+  }
+};
 } // namespace pantocat

@@ -398,11 +398,9 @@ private:
     std::vector<double> offset;
   };
   FixedRows fixed_rows;
-  std::vector<bool> is_moving; ///< constraint i is a moving (time-dependent) one
-  /// The fixed constraints on each unknown (compressed: [fixed_at_start[j],
-  /// fixed_at_start[j+1])).
-  std::vector<unsigned int> fixed_at_start, fixed_at;
-  std::vector<bool> near_mark; ///< workspace of find_fixed_near()
+  std::vector<bool> is_moving;   ///< constraint i is a moving (time-dependent) one
+  RowsByColumn fixed_by_unknown; ///< the fixed constraints on each unknown
+  std::vector<bool> near_mark;   ///< workspace of find_fixed_near()
   std::vector<MovingColumns> columns;
   /// Workspace of compute_moving_columns().
   LocalColumns local_W, local_M, local_V;
