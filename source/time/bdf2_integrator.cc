@@ -3,6 +3,7 @@
 #include <pantocat/time/dynamic_state_serialization.h>
 #include <pantocat/time/multiplier_system.h>
 
+#include <algorithm>
 #include <array>
 #include <map>
 
@@ -23,6 +24,24 @@ Levels functionals(const double c, const double GX, const double GtX, const doub
 {
   const double Gv = c * GX - GU1, Gtv = c * GtX - GtU1, Ga = c * Gv - GU2;
   return {{GX, GtX + Gv, GttX + 2. * Gtv + Ga}};
+}
+
+/// g, dg/dt, d2g/dt2 of row @p r (offsets included) for the base solution @p B
+/// with the history @p rho_q, @p rho_v.
+Levels complete_levels(const ConstraintState& r, const double c,
+                       const dealii::Vector<double>& B,
+                       const dealii::Vector<double>& rho_q,
+                       const dealii::Vector<double>& rho_v)
+{
+  // (a constant row's G_t, G_tt are empty: their products are +0)
+  const bool moves = r.G_t.size() > 0 || r.G_tt.size() > 0;
+  Levels L =
+      functionals(c, r.G.dot(B), moves ? r.G_t.dot(B) : 0., moves ? r.G_tt.dot(B) : 0.,
+                  r.G.dot(rho_q), moves ? r.G_t.dot(rho_q) : 0., r.G.dot(rho_v));
+  L[0] += r.z;
+  L[1] += r.z_t;
+  L[2] += r.z_tt;
+  return L;
 }
 
 /// Multiplier kinds: the columns of one constraint in its S batch, in the
@@ -256,6 +275,9 @@ struct Bdf2Integrator::TrialWorkspace
   dealii::FullMatrix<double> D;
   std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
   std::vector<dealii::Vector<double>*> batch;
+  /// The local solve's sources, the fixed columns that reach a border row,
+  /// and the subset (GglFixedBlock::local_subset()).
+  std::vector<unsigned int> sources, reached_by_row, subset;
   std::vector<double> lambda_eta, eta_F, mu_F;
   RowRanges reach, reach_scratch;
 };
@@ -282,19 +304,26 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   s.touching_columns.clear();
   const dealii::Vector<double>& B = s.base;
 
-  // The levels g, dg/dt, d2g/dt2 of the base solution on every row.
+  std::vector<bool>& settled = work->settled_at_start;
+  settled.resize(m_all);
+  for (unsigned int k = 0; k < m_all; ++k)
+    settled[k] = settling && held_before && active_at_start[k] && (*held_before)[k];
+
+  // The levels g, dg/dt, d2g/dt2 of the base solution on every row; of a
+  // constant row that may be settled, g alone (the block reads no more of a
+  // settled one; base_levels_of() completes them where a trial needs them).
   base_levels.resize(m_all);
+  levels_complete.resize(m_all);
   for (unsigned int k = 0; k < m_all; ++k)
   {
     const ConstraintState& r = rows[k];
     // (a constant row's G_t, G_tt are empty: their products are +0)
     const bool moves = r.G_t.size() > 0 || r.G_tt.size() > 0;
-    base_levels[k] =
-        functionals(c, r.G.dot(B), moves ? r.G_t.dot(B) : 0., moves ? r.G_tt.dot(B) : 0.,
-                    r.G.dot(rho_q), moves ? r.G_t.dot(rho_q) : 0., r.G.dot(rho_v));
-    base_levels[k][0] += r.z;
-    base_levels[k][1] += r.z_t;
-    base_levels[k][2] += r.z_tt;
+    levels_complete[k] = moves || !settled[k];
+    if (levels_complete[k])
+      base_levels[k] = complete_levels(r, c, B, rho_q, rho_v);
+    else
+      base_levels[k] = {{r.G.dot(B) + r.z, 0., 0.}};
   }
 
   // Active-set iteration (Sec. 5.3): each trial solves the multiplier system
@@ -307,17 +336,14 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
   gaps.resize(m_all);
   rates.resize(m_all);
   active_set.start(active_at_start);
-  std::vector<bool>& settled = work->settled_at_start;
-  settled.resize(m_all);
-  for (unsigned int k = 0; k < m_all; ++k)
-    settled[k] = settling && held_before && active_at_start[k] && (*held_before)[k];
   for (;;)
   {
     solve_trial(s, rows, rho_q, rho_v, x);
     for (unsigned int k = 0; k < m_all; ++k)
     {
-      gaps[k] = rows[k].position_residual(x.q);
-      rates[k] = rows[k].velocity_residual(x.q, x.v);
+      // (only those accept() reads: an active rigid one's are not)
+      gaps[k] = active_set.reads_gap(k) ? rows[k].position_residual(x.q) : 0.;
+      rates[k] = active_set.reads_rate(k) ? rows[k].velocity_residual(x.q, x.v) : 0.;
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;
@@ -384,6 +410,63 @@ euler_history(const unsigned int n, const double c, const double* __restrict rho
 {
   for (unsigned int i = 0; i < n; ++i)
     h[i] = rho_v[i] + c * rho_q[i];
+}
+} // namespace
+
+namespace
+{
+/**
+ * solve_bordered() for border columns @p B and rows @p C with entries on the
+ * slots of @p subset alone (GglFixedBlock::local_subset()): r is solved
+ * whole, the border columns on the subset (GglFixedBlock::solve_local()), and
+ * the products C Z, C x0 and x0 - Z y are formed there. B and C are set to
+ * zero on return (on the subset's slots, where they have entries).
+ */
+void solve_bordered_locally(GglFixedBlock& block, const std::vector<unsigned int>& subset,
+                            std::vector<dealii::Vector<double>>& B,
+                            std::vector<dealii::Vector<double>>& C,
+                            dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
+                            dealii::Vector<double>& s, dealii::Vector<double>& rhs,
+                            std::vector<dealii::Vector<double>*>& batch, const double t)
+{
+  const unsigned int p = s.size();
+  block.solve({&r});
+  batch.clear();
+  for (auto& b : B)
+  {
+    bool nonzero = false;
+    for (const unsigned int k : subset)
+      nonzero = nonzero || b[3 * k] != 0. || b[3 * k + 1] != 0. || b[3 * k + 2] != 0.;
+    if (nonzero)
+      batch.push_back(&b);
+  }
+  block.solve_local(batch);
+  // The products over the subset's slots (C is zero off them, and so is Z).
+  const auto product =
+      [&](const dealii::Vector<double>& a, const dealii::Vector<double>& b)
+  {
+    double sum = 0.;
+    for (const unsigned int k : subset)
+      sum +=
+          a[3 * k] * b[3 * k] + a[3 * k + 1] * b[3 * k + 1] + a[3 * k + 2] * b[3 * k + 2];
+    return sum;
+  };
+  rhs = s;
+  for (unsigned int k = 0; k < p; ++k)
+  {
+    rhs(k) -= product(C[k], r);
+    for (unsigned int l = 0; l < p; ++l)
+      D(k, l) -= product(C[k], B[l]);
+  }
+  solve_multiplier_system(D, rhs, s, t, "BDF step");
+  for (unsigned int l = 0; l < p; ++l)
+    for (const unsigned int k : subset)
+      for (unsigned int j = 3 * k; j < 3 * k + 3; ++j)
+      {
+        r[j] -= s(l) * B[l][j];
+        B[l][j] = 0.;
+        C[l][j] = 0.;
+      }
 }
 } // namespace
 
@@ -505,19 +588,34 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   dealii::Vector<double>&r = w.r, &y = w.y;
   r.reinit(3 * mF);
   y.reinit(p);
+  // The base levels of a row, completed if implicit_step() left them at g.
+  const auto levels_of = [&](const unsigned int i) -> const Levels&
+  {
+    if (!levels_complete[i])
+    {
+      base_levels[i] = complete_levels(rows[i], c, s.base, rho_q, rho_v);
+      levels_complete[i] = true;
+    }
+    return base_levels[i];
+  };
   for (unsigned int k = 0; k < mF; ++k)
   {
-    const Levels& g = base_levels[s.fixed[k]];
-    fixed_slots(k, {{-g[0], -g[1], -g[2]}}, r);
+    if (force[k] && !s.block.has_eta_mu(k)) // settled: the block reads g alone
+      r[3 * k + 1] = -base_levels[s.fixed[k]][0];
+    else if (force[k] || engaged[k])
+    {
+      const Levels& g = levels_of(s.fixed[k]);
+      fixed_slots(k, {{-g[0], -g[1], -g[2]}}, r);
+    }
   }
+  // Bc and Cr are zero between trials (set back on the slots they used).
   std::vector<dealii::Vector<double>>&Bc = w.Bc, &Cr = w.Cr;
   Bc.resize(p);
   Cr.resize(p);
   for (unsigned int u = 0; u < p; ++u)
-  {
-    Bc[u].reinit(3 * mF);
-    Cr[u].reinit(3 * mF);
-  }
+    for (dealii::Vector<double>* v : {&Bc[u], &Cr[u]})
+      if (v->size() != 3 * mF)
+        v->reinit(3 * mF);
   dealii::FullMatrix<double>& D = w.D;
   D.reinit(p, p);
   // Fixed rows against the border columns: G_t = G_tt = 0 on them, and the
@@ -555,7 +653,15 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   const GglFixedBlock& block = s.block;
   std::vector<double>&X0 = w.X0, &X1 = w.X1, &X2 = w.X2, &V0 = w.V0, &V1 = w.V1,
   &V2 = w.V2, &Y0 = w.Y0, &Y1 = w.Y1;
+  // The fixed rows that a border column or row reaches: the sources of the
+  // local solve (GglFixedBlock::local_subset()).
+  std::vector<unsigned int>& sources = w.sources;
+  sources.clear();
+  for (std::size_t b = 0; b < border.size(); ++b)
+    for (const Reached& f : near[b])
+      sources.push_back(f.k);
   unsigned int products_of = m_all;
+  std::vector<unsigned int>& reached_by_row = w.reached_by_row;
   for (unsigned int e = 0; e < p; ++e)
   {
     const Slot& eq = equations[e];
@@ -572,11 +678,17 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       block.mass_columns().row_products(row.G, Y0);
       block.mass_columns().row_products(row.G_t, Y1);
       products_of = eq.constraint;
+      // The fixed columns that reach this row (the others' entries stay 0).
+      reached_by_row.clear();
+      for (unsigned int l = 0; l < mF; ++l)
+        if ((force[l] || engaged[l]) &&
+            (X0[l] != 0. || X1[l] != 0. || X2[l] != 0. || V0[l] != 0. || V1[l] != 0. ||
+             V2[l] != 0. || Y0[l] != 0. || Y1[l] != 0.))
+          reached_by_row.push_back(l);
+      sources.insert(sources.end(), reached_by_row.begin(), reached_by_row.end());
     }
-    for (unsigned int l = 0; l < mF; ++l)
+    for (const unsigned int l : reached_by_row)
     {
-      if (!force[l] && !engaged[l])
-        continue;
       Cr[e][3 * l] = value(functionals(c, X0[l], X1[l], X2[l], 0., 0., 0.), eq);
       if (!force[l] || !block.has_eta_mu(l)) // a settled one's eta, mu are 0
         continue;
@@ -589,12 +701,28 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
       if (eq.kind == force_law && unknowns[u].constraint == eq.constraint)
         D(e, u) += 1. / system.constraints[eq.constraint]->compliance().stiffness;
     }
-    y(e) = -value(base_levels[eq.constraint], eq);
+    y(e) = -value(levels_of(eq.constraint), eq);
   }
   dealii::Vector<double>& rhs = w.rhs;
   std::vector<dealii::Vector<double>*>& batch = w.batch;
-  solve_bordered([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, rhs, batch,
-                 x.t, "BDF step");
+  std::sort(sources.begin(), sources.end());
+  sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
+  local_size = 0;
+  if (p > 0 && mF > 0 && border_locally && s.block.local_subset(sources, w.subset))
+  {
+    solve_bordered_locally(s.block, w.subset, Bc, Cr, D, r, y, rhs, batch, x.t);
+    local_size = w.subset.size();
+  }
+  else
+  {
+    solve_bordered([&](const auto& xs) { block.solve(xs); }, Bc, Cr, D, r, y, rhs, batch,
+                   x.t, "BDF step");
+    for (unsigned int u = 0; u < p; ++u)
+    {
+      Bc[u] = 0.;
+      Cr[u] = 0.;
+    }
+  }
 
   // The multipliers, and
   //   q = base + sum_l lambda_l X^lambda_l + eta_l X^eta_l + mu_l X^mu_l,

@@ -310,12 +310,7 @@ void FixedConstraintSchur::vmult(dealii::Vector<double>& out,
                                  const dealii::Vector<double>& in) const
 {
   for (unsigned int k = 0; k < n; ++k)
-  {
-    double s = 0.;
-    for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
-      s += row_value[e] * in[row_column[e]];
-    out[k] = s;
-  }
+    out[k] = row_product(k, in.begin());
 }
 
 void FixedConstraintSchur::reach_from(const std::vector<unsigned int>& sources,
@@ -364,38 +359,39 @@ void FixedConstraintSchur::reach_from(const std::vector<unsigned int>& sources,
   reach_touched.clear();
 }
 
-void FixedConstraintSchur::factorize_subset(const std::vector<unsigned int>& subset)
+void FixedConstraintSchur::factorize_subset(const std::vector<unsigned int>& subset,
+                                            SubsetFactor& out) const
 {
   const unsigned int r = subset.size();
   subset_slot.resize(n, -1);
   for (unsigned int l = 0; l < r; ++l)
     subset_slot[subset[l]] = l;
-  subset_matrix.reinit(r, r);
+  out.matrix.reinit(r, r);
   for (unsigned int l = 0; l < r; ++l)
   {
     const unsigned int k = subset[l];
     for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
       if (subset_slot[row_column[e]] >= 0)
-        subset_matrix(l, subset_slot[row_column[e]]) = row_value[e];
+        out.matrix(l, subset_slot[row_column[e]]) = row_value[e];
     if (!compliance.empty())
-      subset_matrix(l, l) += compliance[k];
+      out.matrix(l, l) += compliance[k];
   }
   for (const unsigned int k : subset)
     subset_slot[k] = -1;
-  subset_rhs.reinit(r, true);
-  subset_solution.reinit(r, true);
+  out.rhs.reinit(r, true);
+  out.solution.reinit(r, true);
   if (r == 0)
     return;
-  subset_factor.cholesky(subset_matrix);
-  subset_factor_transposed.copy_transposed(subset_factor);
+  out.factor.cholesky(out.matrix);
+  out.factor_transposed.copy_transposed(out.factor);
 }
 
-void FixedConstraintSchur::solve_subset(double* x) const
+void FixedConstraintSchur::SubsetFactor::solve(double* x) const
 {
-  std::copy(x, x + subset_rhs.size(), subset_rhs.begin());
-  subset_factor.forward(subset_solution, subset_rhs);             // L y = x
-  subset_factor_transposed.backward(subset_rhs, subset_solution); // L^T z = y
-  std::copy(subset_rhs.begin(), subset_rhs.end(), x);
+  std::copy(x, x + rhs.size(), rhs.begin());
+  factor.forward(solution, rhs);             // L y = x
+  factor_transposed.backward(rhs, solution); // L^T z = y
+  std::copy(rhs.begin(), rhs.end(), x);
 }
 
 std::size_t FixedConstraintSchur::n_column_entries() const

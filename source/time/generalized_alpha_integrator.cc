@@ -216,13 +216,26 @@ void GeneralizedAlphaIntegrator::advance()
   base_rate.resize(m_all);
   G_q_hat.resize(m_all);
   G_v_hat.resize(m_all);
+  // (the rate of a rigid constraint enters nothing: its law has d = 0, and
+  // accept() reads the rates of the compliant ones only)
+  if (with_rate.size() != m_all)
+  {
+    with_rate.resize(m_all);
+    for (unsigned int i = 0; i < m_all; ++i)
+      with_rate[i] = system.constraints[i]->is_compliant();
+  }
   for (unsigned int i = 0; i < m_all; ++i)
   {
     const ConstraintState& r = rows[i];
     const double Gq0 = r.G.dot(q0);
+    base_gap[i] = Gq0 + r.z;
+    if (!with_rate[i])
+    {
+      G_q_hat[i] = G_v_hat[i] = base_rate[i] = 0.;
+      continue;
+    }
     std::tie(G_q_hat[i], G_v_hat[i]) =
         predicted_dots(r.G, f, current.q.begin(), current.v.begin(), a_n.begin());
-    base_gap[i] = Gq0 + r.z;
     base_rate[i] = r.G_t.dot(q0) + c_v * (Gq0 - G_q_hat[i]) + G_v_hat[i] + r.z_t;
   }
 
@@ -252,10 +265,13 @@ void GeneralizedAlphaIntegrator::advance()
     }
     for (unsigned int i = 0; i < m_all; ++i)
     {
+      // (only those accept() reads: an active rigid one's are not)
       const ConstraintState& r = rows[i];
-      const double Gq = r.G.dot(x.q);
-      gaps[i] = Gq + r.z;
-      rates[i] = r.G_t.dot(x.q) + c_v * (Gq - G_q_hat[i]) + G_v_hat[i] + r.z_t;
+      const bool gap = active_set.reads_gap(i), rate = active_set.reads_rate(i);
+      const double Gq = gap || rate ? r.G.dot(x.q) : 0.;
+      gaps[i] = gap ? Gq + r.z : 0.;
+      rates[i] =
+          rate ? r.G_t.dot(x.q) + c_v * (Gq - G_q_hat[i]) + G_v_hat[i] + r.z_t : 0.;
     }
     if (active_set.accept(gaps, x.lambda, t1, step_number + 1, rates))
       break;

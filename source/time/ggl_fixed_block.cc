@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pantocat
 {
@@ -58,6 +59,9 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   Q.clear();
   for (const SparseRow& row : Q_rows)
     Q.push_back(row);
+  Q_by_column.build(Q, m);
+  local = LocalBlock();
+  N_eta_mu_valid = false;
   P_eta.reinit(m);
   N_mu.reinit(m);
   force_set.assign(m, false);
@@ -164,7 +168,8 @@ void GglFixedBlock::select(const std::vector<bool>& force,
 {
   force_set = force;
   engaged_set = engaged;
-  std::vector<bool> with_lambda(m);
+  std::vector<bool>& with_lambda = with_lambda_set;
+  with_lambda.resize(m);
   eta_mu_set.resize(m);
   with_eta_mu = false;
   for (unsigned int k = 0; k < m; ++k)
@@ -189,7 +194,21 @@ void GglFixedBlock::select(const std::vector<bool>& force,
     settled_count += force[k] && !eta_mu_set[k];
   }
   P.select(with_lambda);
-  N.select(eta_mu_set);
+  // N on the few constraints with eta and mu (those near a contact, and any
+  // that settle anew): dense, refactorised only when they change.
+  eta_mu_list.clear();
+  for (unsigned int k = 0; k < m; ++k)
+    if (eta_mu_set[k])
+      eta_mu_list.push_back(k);
+  eta_mu_dense = eta_mu_list.size() <= max_local_subset;
+  if (!eta_mu_dense)
+    N.select(eta_mu_set);
+  else if (!N_eta_mu_valid || eta_mu_list != factorised_eta_mu_list)
+  {
+    N.factorize_subset(eta_mu_list, N_eta_mu);
+    factorised_eta_mu_list = eta_mu_list;
+    N_eta_mu_valid = true;
+  }
 }
 
 void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
@@ -226,7 +245,18 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
     if (eta_nonzero)
       batch.push_back(&eta[j]);
   }
-  N.solve(batch);
+  if (!eta_mu_dense)
+    N.solve(batch);
+  else // on eta_mu_list, where the right-hand sides have their entries
+    for (dealii::Vector<double>* v : batch)
+    {
+      gathered.resize(eta_mu_list.size());
+      for (std::size_t i = 0; i < eta_mu_list.size(); ++i)
+        gathered[i] = (*v)[eta_mu_list[i]];
+      N_eta_mu.solve(gathered.data());
+      for (std::size_t i = 0; i < eta_mu_list.size(); ++i)
+        (*v)[eta_mu_list[i]] = gathered[i];
+    }
   // Q mu: zero for a zero mu, the others four at a time side by side.
   if (Q_mu_w.size() < count)
     Q_mu_w.resize(count, dealii::Vector<double>(m));
@@ -287,6 +317,123 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       x[3 * k] = rhs[j][k];
       x[3 * k + 1] = eta_mu_set[k] ? eta[j][k] : 0.;
       x[3 * k + 2] = eta_mu_set[k] ? mu[j][k] : 0.;
+    }
+  }
+}
+
+bool GglFixedBlock::local_subset(const std::vector<unsigned int>& sources,
+                                 std::vector<unsigned int>& subset)
+{
+  constexpr double unit_roundoff = 0.5 * std::numeric_limits<double>::epsilon();
+  LocalBlock& L = local;
+  std::vector<bool>& reached = L.reached;
+  reached.resize(m, false);
+  // eta and mu: the reach of N among the constraints that have them.
+  N.reach_from(sources, eta_mu_set, unit_roundoff, reached);
+  L.eta_mu.clear();
+  for (unsigned int k = 0; k < m; ++k)
+    if (reached[k])
+      L.eta_mu.push_back(k);
+  // lambda: the reach of P + C from the sources, those with eta and mu, and
+  // the rows their Q mu (and, on engaged ones, N mu) enters.
+  std::vector<unsigned int>& seeds = L.seeds;
+  seeds.clear();
+  for (const unsigned int k : sources)
+    if (with_lambda_set[k])
+      seeds.push_back(k);
+  const bool any_engaged =
+      std::find(engaged_set.begin(), engaged_set.end(), true) != engaged_set.end();
+  for (const unsigned int l : L.eta_mu)
+  {
+    seeds.push_back(l);
+    for (unsigned int e = Q_by_column.start[l]; e < Q_by_column.start[l + 1]; ++e)
+      if (with_lambda_set[Q_by_column.row[e]])
+        seeds.push_back(Q_by_column.row[e]);
+    if (any_engaged)
+      N.for_each_coupled(l,
+                         [&](const unsigned int k)
+                         {
+                           if (engaged_set[k])
+                             seeds.push_back(k);
+                         });
+  }
+  P.reach_from(seeds, with_lambda_set, unit_roundoff, reached);
+  subset.clear();
+  for (unsigned int k = 0; k < m; ++k)
+    if (reached[k])
+    {
+      subset.push_back(k);
+      reached[k] = false;
+    }
+  L.subset = subset;
+  return subset.size() <= max_local_subset;
+}
+
+void GglFixedBlock::solve_local(const std::vector<dealii::Vector<double>*>& xs)
+{
+  LocalBlock& L = local;
+  if (!L.factorised || L.subset != L.factorised_subset || L.eta_mu != L.factorised_eta_mu)
+  {
+    P.factorize_subset(L.subset, L.P_factor);
+    N.factorize_subset(L.eta_mu, L.N_factor);
+    L.factorised_subset = L.subset;
+    L.factorised_eta_mu = L.eta_mu;
+    L.factorised = true;
+  }
+  const unsigned int r = L.subset.size(), e = L.eta_mu.size();
+  L.eta_full.resize(m, 0.);
+  L.mu_full.resize(m, 0.);
+  L.rhs.resize(r);
+  L.eta.resize(e);
+  L.mu.resize(e);
+  for (dealii::Vector<double>* xp : xs)
+  {
+    dealii::Vector<double>& x = *xp;
+    // mu = -N^-1 r_1, eta = -N^-1 r_2 on those with eta and mu (solve()).
+    for (unsigned int i = 0; i < e; ++i)
+    {
+      const unsigned int k = L.eta_mu[i];
+      L.mu[i] = -x[3 * k + 2];
+      L.eta[i] = -x[3 * k];
+    }
+    if (e > 0)
+    {
+      L.N_factor.solve(L.mu.data());
+      L.N_factor.solve(L.eta.data());
+    }
+    for (unsigned int i = 0; i < e; ++i)
+    {
+      L.mu_full[L.eta_mu[i]] = L.mu[i];
+      L.eta_full[L.eta_mu[i]] = L.eta[i];
+    }
+    // (P + C) lambda = r_0 - P eta - Q mu, the engaged rows' laws as in solve().
+    for (unsigned int i = 0; i < r; ++i)
+    {
+      const unsigned int k = L.subset[i];
+      const double P_eta = e > 0 ? P.row_product(k, L.eta_full.data()) : 0.,
+                   Q_mu = e > 0 ? Q.dot(k, L.mu_full.data()) : 0.;
+      if (force_set[k])
+        L.rhs[i] = x[3 * k + 1] - P_eta - Q_mu;
+      else
+      {
+        const double N_mu = e > 0 ? N.row_product(k, L.mu_full.data()) : 0.;
+        L.rhs[i] = (x[3 * k] + ratio[k] * N_mu) / (1. + ratio[k] * c) - P_eta - Q_mu;
+      }
+    }
+    if (r > 0)
+      L.P_factor.solve(L.rhs.data());
+    for (unsigned int i = 0; i < r; ++i)
+    {
+      const unsigned int k = L.subset[i];
+      x[3 * k] = L.rhs[i];
+      x[3 * k + 1] = x[3 * k + 2] = 0.;
+    }
+    for (unsigned int i = 0; i < e; ++i)
+    {
+      const unsigned int k = L.eta_mu[i];
+      x[3 * k + 1] = L.eta[i];
+      x[3 * k + 2] = L.mu[i];
+      L.eta_full[k] = L.mu_full[k] = 0.;
     }
   }
 }

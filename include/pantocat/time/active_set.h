@@ -110,6 +110,14 @@ public:
    */
   std::vector<unsigned int> holding_indices() const;
   unsigned int iterations_in_step() const { return visited.size(); }
+  /// True if accept() reads the gap of constraint @p i in the current trial:
+  /// a unilateral one that is inactive or compliant (the others hold or are bilateral).
+  bool reads_gap(const unsigned int i) const
+  {
+    return unilateral[i] && (compliant[i] || current[i] == Status::inactive);
+  }
+  /// True if accept() reads the rate of constraint @p i: a compliant unilateral one.
+  bool reads_rate(const unsigned int i) const { return unilateral[i] && compliant[i]; }
 
 private:
   enum class Status : char

@@ -92,6 +92,12 @@ public:
   void settle_fixed_constraints(bool on) { settling = on; }
   /// Number of fixed constraints that were settled in the latest step's last trial.
   unsigned int settled_in_latest_step() const { return settled_count; }
+  /// The border columns (moving contacts, touching constraints) are solved
+  /// with the fixed block on the constraints they reach (true, the default:
+  /// GglFixedBlock::solve_local()) or over the whole block (false, for the tests).
+  void solve_border_locally(bool on) { border_locally = on; }
+  /// Size of the latest step's last local border solve (0: solved whole, or no border).
+  unsigned int local_border_size() const { return local_size; }
   double time() const override { return current.t; }
   /// x_n, x_{n-1} (with J_n), the step number (the Richardson start is step 0) and
   /// the counters.
@@ -203,7 +209,12 @@ private:
   unsigned long step_number = 0;
   bool settling = true;                           ///< settle_fixed_constraints()
   unsigned int settled_count = 0;                 ///< settled_in_latest_step()
+  bool border_locally = true;                     ///< solve_border_locally()
+  unsigned int local_size = 0;                    ///< local_border_size()
   std::vector<std::array<double, 3>> base_levels; ///< g, dg/dt, d2g/dt2 of the base
-  std::vector<BorderTerm> border_terms;           ///< workspace of solve_trial()
+  /// base_levels[k] holds all three levels (else g alone: a constant row
+  /// that held at the history points, whose other levels a trial may not read).
+  std::vector<char> levels_complete;
+  std::vector<BorderTerm> border_terms; ///< workspace of solve_trial()
 };
 } // namespace pantocat

@@ -113,6 +113,14 @@ public:
   const std::vector<SparseRow>& truncated_columns() const { return columns; }
   /// out = (G_F A^-1 G_F^T) in over all constraints (no selection, no compliance).
   void vmult(dealii::Vector<double>& out, const dealii::Vector<double>& in) const;
+  /// Row k of vmult(): sum_l S_kl in[l], summed in vmult()'s order (the same bits).
+  double row_product(const unsigned int k, const double* in) const
+  {
+    double s = 0.;
+    for (unsigned int e = row_start[k]; e < row_start[k + 1]; ++e)
+      s += row_value[e] * in[row_column[e]];
+    return s;
+  }
   /// Number of stored entries of the truncated columns.
   std::size_t n_column_entries() const;
   /// Calls @p f(l) for each constraint l with a stored entry S_kl (k too).
@@ -139,14 +147,31 @@ public:
                   const std::vector<bool>& among, double epsilon,
                   std::vector<bool>& reached) const;
 
+  /// S restricted to a few constraints R, factorised dense (Cholesky).
+  struct SubsetFactor
+  {
+    /// x <- S_RR^-1 x (x in R's order).
+    void solve(double* x) const;
+    unsigned int size() const { return rhs.size(); }
+
+  private:
+    friend class FixedConstraintSchur;
+    dealii::FullMatrix<double> matrix, factor, factor_transposed; ///< S_RR, L, L^T
+    mutable dealii::Vector<double> rhs, solution;
+  };
   /**
    * Factorises S restricted to the few constraints @p subset (compliance
-   * included), dense (Cholesky): for a subset of a few dozen at most, whose
-   * factor changes from step to step.
+   * included), dense (Cholesky), into @p out: for a subset of a few dozen at
+   * most, whose factor changes from step to step.
    */
-  void factorize_subset(const std::vector<unsigned int>& subset);
+  void factorize_subset(const std::vector<unsigned int>& subset, SubsetFactor& out) const;
+  /// The same into this object's own factor, for solve_subset().
+  void factorize_subset(const std::vector<unsigned int>& subset)
+  {
+    factorize_subset(subset, own_subset);
+  }
   /// x <- S_RR^-1 x for the subset R of factorize_subset() (x in its order).
-  void solve_subset(double* x) const;
+  void solve_subset(double* x) const { own_subset.solve(x); }
 
   /// x <- S_KK^-1 x on the kept constraints K, 0 on the others.
   void solve(dealii::Vector<double>& x) const;
@@ -186,10 +211,8 @@ private:
   mutable std::vector<double> reach_weight;
   mutable std::vector<unsigned int> reach_touched;
   mutable std::vector<std::pair<double, unsigned int>> reach_queue;
-  /// factorize_subset(): S_RR, its Cholesky factor L and L^T, the slots of R's
-  /// constraints (-1 elsewhere) and the solves' workspace.
-  dealii::FullMatrix<double> subset_matrix, subset_factor, subset_factor_transposed;
-  std::vector<int> subset_slot;
-  mutable dealii::Vector<double> subset_rhs, subset_solution;
+  SubsetFactor own_subset; ///< factorize_subset(subset)
+  /// factorize_subset()'s workspace: the slots of R's constraints (-1 elsewhere).
+  mutable std::vector<int> subset_slot;
 };
 } // namespace pantocat

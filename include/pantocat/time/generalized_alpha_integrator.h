@@ -152,6 +152,9 @@ private:
   std::vector<double> base_gap, base_rate;
   /// G q^ and G v^ of every constraint (the rates of the step's trials).
   std::vector<double> G_q_hat, G_v_hat;
+  /// Per constraint: compliant (its rate enters its law and accept()); the
+  /// rates and G q^, G v^ of the others are not formed (0).
+  std::vector<char> with_rate;
   /// The rows [first, last) of each fixed constraint's G (FixedConstraintSchur
   /// order): the moving columns that do not reach them give products +0.
   std::vector<RowRange> fixed_span;

@@ -95,6 +95,35 @@ public:
   void solve(const std::vector<dealii::Vector<double>*>& xs) const;
 
   /**
+   * The constraints of the block whose multipliers a right-hand side with
+   * entries on the slots of @p sources alone moves by more than the unit
+   * round-off (relative to those of the sources), ascending: the sources in
+   * the block, the reach of N among those with eta and mu, the constraints
+   * that Q (and, for the engaged ones, N) couples to those, and the reach of
+   * P + C from all these (FixedConstraintSchur::reach_from(), 2^-53). Returns
+   * false, leaving @p subset unspecified, if they are more than
+   * max_local_subset: solve() then.
+   *
+   * A moving contact's border columns (Bc of Bdf2Integrator) have entries on
+   * the few fixed rows that its columns reach; droppers 5 m apart couple in P
+   * and N by about 1e-15 of their diagonals, so the subset is those rows and
+   * one neighbour on each side.
+   */
+  bool local_subset(const std::vector<unsigned int>& sources,
+                    std::vector<unsigned int>& subset);
+  /**
+   * Each x <- A^-1 x for right-hand sides with entries on the slots of the
+   * last local_subset()'s constraints R alone, solved on R (P + C, N and Q
+   * restricted to R, dense, factorised when R or the selection changes);
+   * the slots off R are not read and keep their zeros. The multipliers
+   * differ from solve()'s by the round-off of the dropped couplings (below
+   * 2^-53 of the sources' along every path) and of the dense factors.
+   */
+  void solve_local(const std::vector<dealii::Vector<double>*>& xs);
+  /// Most constraints of a local solve (dense factors of this order at most).
+  static constexpr unsigned int max_local_subset = 32;
+
+  /**
    * The multipliers' share of a step's vectors: q += S^-1 G^T (lambda + eta) +
    * S^-1 (c G^T + D M^-1 G^T) mu, u1 += M^-1 G^T mu, u2 += M^-1 G^T eta
    * (Bdf2Integrator: v = c q - rho_q - u1, a = c v - rho_v - u2). From the
@@ -180,6 +209,30 @@ private:
   std::vector<bool> force_set, engaged_set;
   std::vector<bool> eta_mu_set; ///< force and not settled
   bool with_eta_mu = false;
+  std::vector<bool> with_lambda_set; ///< force or engaged (P's selection)
+  RowsByColumn Q_by_column;          ///< Q's pattern by column
+  /// The constraints with eta and mu; when they are at most max_local_subset,
+  /// N restricted to them, dense (solve() takes it instead of N's banded factor).
+  std::vector<unsigned int> eta_mu_list, factorised_eta_mu_list;
+  bool eta_mu_dense = false, N_eta_mu_valid = false;
+  FixedConstraintSchur::SubsetFactor N_eta_mu;
+  mutable std::vector<double> gathered; ///< solve()'s workspace on eta_mu_list
+
+  /// The local solves' subset R and its members with eta and mu; the
+  /// subsets whose dense factors P and N hold (P.factorize_subset(),
+  /// N.factorize_subset(): their entries do not change, so equal subsets
+  /// keep them).
+  struct LocalBlock
+  {
+    std::vector<unsigned int> subset, eta_mu, seeds;
+    std::vector<unsigned int> factorised_subset, factorised_eta_mu;
+    bool factorised = false;
+    FixedConstraintSchur::SubsetFactor P_factor, N_factor;
+    std::vector<bool> reached; ///< local_subset()'s flags (all false between calls)
+    std::vector<double> eta_full, mu_full; ///< full-m scratch, 0 off eta_mu
+    std::vector<double> rhs, eta, mu;      ///< on subset, on eta_mu
+  };
+  LocalBlock local;
   unsigned int settled_count = 0;
 };
 } // namespace pantocat
