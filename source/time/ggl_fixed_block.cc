@@ -208,6 +208,17 @@ void GglFixedBlock::select(const std::vector<bool>& force,
     N.factorize_subset(eta_mu_list, N_eta_mu);
     factorised_eta_mu_list = eta_mu_list;
     N_eta_mu_valid = true;
+    // The rows where P eta and Q mu can be non-zero (P is symmetric).
+    eta_mu_rows.clear();
+    for (const unsigned int l : eta_mu_list)
+    {
+      P.for_each_coupled(l, [&](const unsigned int k) { eta_mu_rows.push_back(k); });
+      for (unsigned int e = Q_by_column.start[l]; e < Q_by_column.start[l + 1]; ++e)
+        eta_mu_rows.push_back(Q_by_column.row[e]);
+    }
+    std::sort(eta_mu_rows.begin(), eta_mu_rows.end());
+    eta_mu_rows.erase(std::unique(eta_mu_rows.begin(), eta_mu_rows.end()),
+                      eta_mu_rows.end());
   }
 }
 
@@ -267,19 +278,27 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
       Q_mu_w[j] = 0.;
     else
       with_mu.push_back(j);
-  for (std::size_t g = 0; g < with_mu.size(); g += 4)
-  {
-    const double* x[4];
-    for (std::size_t l = 0; l < 4; ++l) // unused lanes repeat the first vector
-      x[l] = mu[with_mu[g + (g + l < with_mu.size() ? l : 0)]].begin();
-    double out[4];
-    for (unsigned int k = 0; k < m; ++k)
+  if (eta_mu_dense) // mu is zero off eta_mu_list: Q mu only on the rows Q couples to it
+    for (const std::size_t j : with_mu)
     {
-      Q.dots(k, x, out);
-      for (std::size_t l = 0; l < 4 && g + l < with_mu.size(); ++l)
-        Q_mu_w[with_mu[g + l]][k] = out[l];
+      Q_mu_w[j] = 0.;
+      for (const unsigned int k : eta_mu_rows)
+        Q_mu_w[j][k] = Q.dot(k, mu[j].begin());
     }
-  }
+  else
+    for (std::size_t g = 0; g < with_mu.size(); g += 4)
+    {
+      const double* x[4];
+      for (std::size_t l = 0; l < 4; ++l) // unused lanes repeat the first vector
+        x[l] = mu[with_mu[g + (g + l < with_mu.size() ? l : 0)]].begin();
+      double out[4];
+      for (unsigned int k = 0; k < m; ++k)
+      {
+        Q.dots(k, x, out);
+        for (std::size_t l = 0; l < 4 && g + l < with_mu.size(); ++l)
+          Q_mu_w[with_mu[g + l]][k] = out[l];
+      }
+    }
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
   // E.
   batch.clear();
@@ -289,6 +308,12 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
   {
     if (eta_zero[j])
       P_eta = 0.;
+    else if (eta_mu_dense) // eta is zero off eta_mu_list
+    {
+      P_eta = 0.;
+      for (const unsigned int k : eta_mu_rows)
+        P_eta[k] = P.row_product(k, eta[j].begin());
+    }
     else
       P.vmult(P_eta, eta[j]);
     if (any_engaged) // N mu enters the laws of the engaged ones only

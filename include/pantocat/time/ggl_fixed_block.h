@@ -214,6 +214,8 @@ private:
   /// The constraints with eta and mu; when they are at most max_local_subset,
   /// N restricted to them, dense (solve() takes it instead of N's banded factor).
   std::vector<unsigned int> eta_mu_list, factorised_eta_mu_list;
+  /// The rows with an entry of P or Q in a column of eta_mu_list (when dense).
+  std::vector<unsigned int> eta_mu_rows;
   bool eta_mu_dense = false, N_eta_mu_valid = false;
   FixedConstraintSchur::SubsetFactor N_eta_mu;
   mutable std::vector<double> gathered; ///< solve()'s workspace on eta_mu_list
