@@ -4,12 +4,17 @@
 
 namespace pantocat
 {
-RowRange span_of(const SparseRow& row)
+RowRanges spans_of(const SparseRow& row)
 {
-  if (row.size() == 0)
-    return {0, 0};
-  const auto [lo, hi] = std::minmax_element(row.index.begin(), row.index.end());
-  return {static_cast<int>(*lo), static_cast<int>(*hi) + 1};
+  std::vector<unsigned int> sorted(row.index.begin(), row.index.end());
+  std::sort(sorted.begin(), sorted.end());
+  RowRanges spans;
+  for (const unsigned int i : sorted)
+    if (!spans.empty() && static_cast<int>(i) <= spans.back().last)
+      spans.back().last = std::max<int>(spans.back().last, i + 1);
+    else
+      spans.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
+  return spans;
 }
 
 void merge_ranges(const RowRanges& a, const RowRanges& b, RowRanges& out)

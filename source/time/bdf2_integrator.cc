@@ -311,7 +311,7 @@ DynamicState Bdf2Integrator::implicit_step(Stage& s, const dealii::Vector<double
 
   // The levels g, dg/dt, d2g/dt2 of the base solution on every row; of a
   // constant row that may be settled, g alone (the block reads no more of a
-  // settled one; base_levels_of() completes them where a trial needs them).
+  // settled one; solve_trial() completes them where a trial needs them).
   base_levels.resize(m_all);
   levels_complete.resize(m_all);
   for (unsigned int k = 0; k < m_all; ++k)

@@ -170,7 +170,7 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
   factors.assign(S.fixed.size(), 0.);
   fixed_span.clear();
   for (const unsigned int i : S.fixed)
-    fixed_span.push_back(span_of(rows[i].G));
+    fixed_span.push_back(spans_of(rows[i].G));
   fixed_ready = true;
 }
 

@@ -60,6 +60,14 @@ public:
         return true;
     return false;
   }
+  /// True if the reach meets one of the rows @p spans.
+  bool reaches(const RowRanges& spans) const
+  {
+    for (const RowRange& span : spans)
+      if (reaches(span))
+        return true;
+    return false;
+  }
 
   /// out += sum_k coefficient[k] * column k, on the reach.
   void add_combination(const std::array<double, width>& coefficient,
@@ -74,8 +82,10 @@ private:
   RowRanges added, merged; ///< take_in()'s workspace: no allocation once grown
 };
 
-/// The rows [min, max + 1) of @p row's indices (empty for an empty row).
-RowRange span_of(const SparseRow& row);
+/// The rows of @p row's indices as runs of consecutive rows, in increasing
+/// order (a dropper's row: a few rows of the carrier, a few of the contact
+/// wire, far apart in the numbering).
+RowRanges spans_of(const SparseRow& row);
 
 /// The union of @p a and @p b (disjoint ranges in increasing order each).
 RowRanges union_of(const RowRanges& a, const RowRanges& b);

@@ -155,9 +155,9 @@ private:
   /// Per constraint: compliant (its rate enters its law and accept()); the
   /// rates and G q^, G v^ of the others are not formed (0).
   std::vector<char> with_rate;
-  /// The rows [first, last) of each fixed constraint's G (FixedConstraintSchur
+  /// The rows of each fixed constraint's G, as runs (FixedConstraintSchur
   /// order): the moving columns that do not reach them give products +0.
-  std::vector<RowRange> fixed_span;
+  std::vector<RowRanges> fixed_span;
   std::vector<bool> keep;      ///< fixed constraints in the current system
   std::vector<double> factors; ///< their multipliers (FixedConstraintSchur order)
   /// mu of the position projection (touching constraints) and eta of the

@@ -114,7 +114,7 @@ public:
   /**
    * Each x <- A^-1 x for right-hand sides with entries on the slots of the
    * last local_subset()'s constraints R alone, solved on R (P + C, N and Q
-   * restricted to R, dense, factorised when R or the selection changes);
+   * restricted to R, dense, factorised again only when R changes);
    * the slots off R are not read and keep their zeros. The multipliers
    * differ from solve()'s by the round-off of the dropped couplings (below
    * 2^-53 of the sources' along every path) and of the dense factors.
