@@ -221,8 +221,12 @@ void GeneralizedAlphaIntegrator::advance()
   if (with_rate.size() != m_all)
   {
     with_rate.resize(m_all);
+    ratio.resize(m_all);
     for (unsigned int i = 0; i < m_all; ++i)
+    {
       with_rate[i] = system.constraints[i]->is_compliant();
+      ratio[i] = damping_ratio(*system.constraints[i]);
+    }
   }
   for (unsigned int i = 0; i < m_all; ++i)
   {
@@ -360,14 +364,14 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     if (keep[k])
     {
       const unsigned int i = S.fixed[k];
-      const double d = damping_ratio(*system.constraints[i]);
+      const double d = ratio[i];
       x(k) = -(base_gap[i] + d * base_rate[i]) / (1. + d * c_v);
     }
   for (unsigned int c = 0; c < p; ++c)
   {
     const unsigned int i = moving_in[c];
     const LocalColumns& X = S.S_columns[S.position[i]];
-    const double d = damping_ratio(*system.constraints[i]);
+    const double d = ratio[i];
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
     // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric). Both
     // +0, as reinit() left them, where the columns do not reach row k.
@@ -383,7 +387,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     for (unsigned int r = 0; r < p; ++r)
     {
       const unsigned int j = moving_in[r];
-      const double d_r = damping_ratio(*system.constraints[j]);
+      const double d_r = ratio[j];
       D(r, c) = (1. + d_r * c_v) * X.dot(rows[j].G, lambda_column) +
                 d_r * X.dot(rows[j].G_t, lambda_column);
     }

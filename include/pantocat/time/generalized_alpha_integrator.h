@@ -155,6 +155,7 @@ private:
   /// Per constraint: compliant (its rate enters its law and accept()); the
   /// rates and G q^, G v^ of the others are not formed (0).
   std::vector<char> with_rate;
+  std::vector<double> ratio; ///< damping_ratio() of each constraint, read once
   /// The rows of each fixed constraint's G, as runs (FixedConstraintSchur
   /// order): the moving columns that do not reach them give products +0.
   std::vector<RowRanges> fixed_span;
