@@ -4,16 +4,22 @@
 
 namespace pantocat
 {
+void runs_of(const std::vector<unsigned int>& sorted, RowRanges& out)
+{
+  out.clear();
+  for (const unsigned int i : sorted)
+    if (!out.empty() && static_cast<int>(i) <= out.back().last)
+      out.back().last = std::max<int>(out.back().last, i + 1);
+    else
+      out.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
+}
+
 RowRanges spans_of(const SparseRow& row)
 {
   std::vector<unsigned int> sorted(row.index.begin(), row.index.end());
   std::sort(sorted.begin(), sorted.end());
   RowRanges spans;
-  for (const unsigned int i : sorted)
-    if (!spans.empty() && static_cast<int>(i) <= spans.back().last)
-      spans.back().last = std::max<int>(spans.back().last, i + 1);
-    else
-      spans.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
+  runs_of(sorted, spans);
   return spans;
 }
 
@@ -62,12 +68,7 @@ void LocalColumns::clear()
 
 void LocalColumns::take_in(const std::vector<unsigned int>& sorted)
 {
-  added.clear();
-  for (const unsigned int i : sorted)
-    if (!added.empty() && static_cast<int>(i) <= added.back().last)
-      added.back().last = std::max<int>(added.back().last, i + 1);
-    else
-      added.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
+  runs_of(sorted, added);
   add_ranges(rows, added, merged);
 }
 

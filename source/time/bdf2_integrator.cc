@@ -275,9 +275,9 @@ struct Bdf2Integrator::TrialWorkspace
   dealii::FullMatrix<double> D;
   std::vector<double> X0, X1, X2, V0, V1, V2, Y0, Y1;
   std::vector<dealii::Vector<double>*> batch;
-  /// The local solve's sources, the fixed columns that reach a border row,
-  /// and the subset (GglFixedBlock::local_subset()).
-  std::vector<unsigned int> sources, reached_by_row, subset;
+  /// The local solve's sources (GglFixedBlock::local_subset()) and the
+  /// fixed columns that reach a border row.
+  std::vector<unsigned int> sources, reached_by_row;
   std::vector<double> lambda_eta, eta_F, mu_F;
   RowRanges reach, reach_scratch;
 };
@@ -417,19 +417,19 @@ namespace
 {
 /**
  * solve_bordered() for border columns @p B and rows @p C with entries on the
- * slots of @p subset alone (GglFixedBlock::local_subset()): r is solved
+ * slots of @p block's local_members() alone (GglFixedBlock::local_subset()): r is solved
  * whole, the border columns on the subset (GglFixedBlock::solve_local()), and
  * the products C Z, C x0 and x0 - Z y are formed there. B and C are set to
  * zero on return (on the subset's slots, where they have entries).
  */
-void solve_bordered_locally(GglFixedBlock& block, const std::vector<unsigned int>& subset,
-                            std::vector<dealii::Vector<double>>& B,
+void solve_bordered_locally(GglFixedBlock& block, std::vector<dealii::Vector<double>>& B,
                             std::vector<dealii::Vector<double>>& C,
                             dealii::FullMatrix<double>& D, dealii::Vector<double>& r,
                             dealii::Vector<double>& s, dealii::Vector<double>& rhs,
                             std::vector<dealii::Vector<double>*>& batch, const double t)
 {
   const unsigned int p = s.size();
+  const std::vector<unsigned int>& subset = block.local_members();
   block.solve({&r});
   batch.clear();
   for (auto& b : B)
@@ -708,10 +708,10 @@ void Bdf2Integrator::solve_trial(Stage& s, const std::vector<ConstraintState>& r
   std::sort(sources.begin(), sources.end());
   sources.erase(std::unique(sources.begin(), sources.end()), sources.end());
   local_size = 0;
-  if (p > 0 && mF > 0 && border_locally && s.block.local_subset(sources, w.subset))
+  if (p > 0 && mF > 0 && border_locally && s.block.local_subset(sources))
   {
-    solve_bordered_locally(s.block, w.subset, Bc, Cr, D, r, y, rhs, batch, x.t);
-    local_size = w.subset.size();
+    solve_bordered_locally(s.block, Bc, Cr, D, r, y, rhs, batch, x.t);
+    local_size = s.block.local_members().size();
   }
   else
   {

@@ -117,6 +117,11 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
 {
   mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M",
                           linear_solver);
+  for (const auto& c : system.constraints)
+  {
+    with_rate.push_back(c->is_compliant());
+    ratio.push_back(damping_ratio(*c));
+  }
 }
 
 void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
@@ -218,16 +223,6 @@ void GeneralizedAlphaIntegrator::advance()
   G_v_hat.resize(m_all);
   // (the rate of a rigid constraint enters nothing: its law has d = 0, and
   // accept() reads the rates of the compliant ones only)
-  if (with_rate.size() != m_all)
-  {
-    with_rate.resize(m_all);
-    ratio.resize(m_all);
-    for (unsigned int i = 0; i < m_all; ++i)
-    {
-      with_rate[i] = system.constraints[i]->is_compliant();
-      ratio[i] = damping_ratio(*system.constraints[i]);
-    }
-  }
   for (unsigned int i = 0; i < m_all; ++i)
   {
     const ConstraintState& r = rows[i];

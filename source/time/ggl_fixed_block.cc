@@ -193,6 +193,7 @@ void GglFixedBlock::select(const std::vector<bool>& force,
     with_eta_mu = with_eta_mu || eta_mu_set[k];
     settled_count += force[k] && !eta_mu_set[k];
   }
+  any_engaged = std::find(engaged.begin(), engaged.end(), true) != engaged.end();
   P.select(with_lambda);
   // N on the few constraints with eta and mu (those near a contact, and any
   // that settle anew): dense, refactorised only when they change.
@@ -302,8 +303,6 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
   // (P + C) lambda = r_1 - P eta - Q mu on F; (law + d N mu)/(1 + d c) - P eta - Q mu on
   // E.
   batch.clear();
-  const bool any_engaged =
-      std::find(engaged_set.begin(), engaged_set.end(), true) != engaged_set.end();
   for (std::size_t j = 0; j < count; ++j)
   {
     if (eta_zero[j])
@@ -346,8 +345,7 @@ void GglFixedBlock::solve(const std::vector<dealii::Vector<double>*>& xs) const
   }
 }
 
-bool GglFixedBlock::local_subset(const std::vector<unsigned int>& sources,
-                                 std::vector<unsigned int>& subset)
+bool GglFixedBlock::local_subset(const std::vector<unsigned int>& sources)
 {
   constexpr double unit_roundoff = 0.5 * std::numeric_limits<double>::epsilon();
   LocalBlock& L = local;
@@ -366,8 +364,6 @@ bool GglFixedBlock::local_subset(const std::vector<unsigned int>& sources,
   for (const unsigned int k : sources)
     if (with_lambda_set[k])
       seeds.push_back(k);
-  const bool any_engaged =
-      std::find(engaged_set.begin(), engaged_set.end(), true) != engaged_set.end();
   for (const unsigned int l : L.eta_mu)
   {
     seeds.push_back(l);
@@ -383,15 +379,14 @@ bool GglFixedBlock::local_subset(const std::vector<unsigned int>& sources,
                          });
   }
   P.reach_from(seeds, with_lambda_set, unit_roundoff, reached);
-  subset.clear();
+  L.subset.clear();
   for (unsigned int k = 0; k < m; ++k)
     if (reached[k])
     {
-      subset.push_back(k);
+      L.subset.push_back(k);
       reached[k] = false;
     }
-  L.subset = subset;
-  return subset.size() <= max_local_subset;
+  return L.subset.size() <= max_local_subset;
 }
 
 void GglFixedBlock::solve_local(const std::vector<dealii::Vector<double>*>& xs)

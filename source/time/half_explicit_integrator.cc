@@ -1075,8 +1075,10 @@ void HalfExplicitIntegrator::compute_update(const std::vector<unsigned int>& A)
   {
     if (mF + p > 0)
       solve_position_and_velocity_level(sn, sh, s1);
-    for (unsigned int k = 0; k < fixed.size(); ++k)
-      gaps[fixed[k]] = fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k];
+    for (unsigned int k = 0; k < fixed.size(); ++k) // (those accept() reads)
+      gaps[fixed[k]] = active_set.reads_gap(fixed[k])
+                           ? fixed_rows.dot(k, q_new.begin()) + fixed_rows.offset[k]
+                           : 0.;
   }
   for (const auto* list : {&moving, &compliant})
     for (const unsigned int i : *list)

@@ -82,6 +82,9 @@ private:
   RowRanges added, merged; ///< take_in()'s workspace: no allocation once grown
 };
 
+/// @p out = the rows @p sorted (ascending, repeats allowed) as runs of
+/// consecutive rows.
+void runs_of(const std::vector<unsigned int>& sorted, RowRanges& out);
 /// The rows of @p row's indices as runs of consecutive rows, in increasing
 /// order (a dropper's row: a few rows of the carrier, a few of the contact
 /// wire, far apart in the numbering).

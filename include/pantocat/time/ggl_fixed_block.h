@@ -95,22 +95,23 @@ public:
   void solve(const std::vector<dealii::Vector<double>*>& xs) const;
 
   /**
-   * The constraints of the block whose multipliers a right-hand side with
-   * entries on the slots of @p sources alone moves by more than the unit
-   * round-off (relative to those of the sources), ascending: the sources in
-   * the block, the reach of N among those with eta and mu, the constraints
-   * that Q (and, for the engaged ones, N) couples to those, and the reach of
-   * P + C from all these (FixedConstraintSchur::reach_from(), 2^-53). Returns
-   * false, leaving @p subset unspecified, if they are more than
-   * max_local_subset: solve() then.
+   * Finds the subset (local_members()) of the block's constraints whose
+   * multipliers a right-hand side with entries on the slots of @p sources
+   * alone moves by more than the unit round-off (relative to those of the
+   * sources), ascending: the sources in the block, the reach of N among
+   * those with eta and mu, the constraints that Q (and, for the engaged
+   * ones, N) couples to those, and the reach of P + C from all these
+   * (FixedConstraintSchur::reach_from(), 2^-53). Returns false if they are
+   * more than max_local_subset: solve() then.
    *
    * A moving contact's border columns (Bc of Bdf2Integrator) have entries on
    * the few fixed rows that its columns reach; droppers 5 m apart couple in P
    * and N by about 1e-15 of their diagonals, so the subset is those rows and
    * one neighbour on each side.
    */
-  bool local_subset(const std::vector<unsigned int>& sources,
-                    std::vector<unsigned int>& subset);
+  bool local_subset(const std::vector<unsigned int>& sources);
+  /// The subset of the latest local_subset().
+  const std::vector<unsigned int>& local_members() const { return local.subset; }
   /**
    * Each x <- A^-1 x for right-hand sides with entries on the slots of the
    * last local_subset()'s constraints R alone, solved on R (P + C, N and Q
@@ -209,6 +210,7 @@ private:
   std::vector<bool> force_set, engaged_set;
   std::vector<bool> eta_mu_set; ///< force and not settled
   bool with_eta_mu = false;
+  bool any_engaged = false;          ///< some constraint in engaged_set
   std::vector<bool> with_lambda_set; ///< force or engaged (P's selection)
   RowsByColumn Q_by_column;          ///< Q's pattern by column
   /// The constraints with eta and mu; when they are at most max_local_subset,

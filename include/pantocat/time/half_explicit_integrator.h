@@ -158,7 +158,8 @@ private:
   /// step 2 of the constraints that no moving one borders in the same pass.
   void compute_acceleration(const std::vector<unsigned int>& active,
                             const std::vector<unsigned int>* update = nullptr);
-  /// Step 2: q_{n+1}, v_{n+1} for the active set; fills the gaps at t_{n+1}.
+  /// Step 2: q_{n+1}, v_{n+1} for the active set; fills the gaps at t_{n+1}
+  /// that the active set reads (those of the fixed ones it does not read are 0).
   void compute_update(const std::vector<unsigned int>& active);
   /// eta, mu of (40) for the constraints split() found, and their corrections of q*, v*.
   void solve_position_and_velocity_level(const std::vector<ConstraintState>& at_n,
