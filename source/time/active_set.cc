@@ -203,8 +203,9 @@ std::vector<unsigned int> ActiveSetIteration::holding_indices() const
 void clamp_compliant_forces(const SemiDiscreteSystem& system, std::vector<double>& lambda)
 {
   for (unsigned int i = 0; i < lambda.size(); ++i)
-    if (system.constraints[i]->is_compliant() && system.constraints[i]->is_unilateral())
-      lambda[i] = std::max(lambda[i], 0.);
+    if (lambda[i] < 0. && system.constraints[i]->is_compliant() &&
+        system.constraints[i]->is_unilateral())
+      lambda[i] = 0.;
 }
 
 double damping_ratio(const Constraint& c)

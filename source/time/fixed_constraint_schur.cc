@@ -6,6 +6,7 @@
 #include <deal.II/lac/sparsity_tools.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace pantocat
@@ -125,6 +126,7 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     throw SimulationError("the " + what + " got " + std::to_string(C.size()) +
                           " compliances for " + std::to_string(n) + " constraints");
   selected.clear();
+  selected_flag.clear();
   factorised = false;
   if (n == 0)
     return;
@@ -220,6 +222,7 @@ void FixedConstraintSchur::select(const std::vector<bool>& keep)
   if (n == 0 || (factorised && keep == selected))
     return;
   selected = keep;
+  selected_flag.assign(keep.begin(), keep.end());
   factorised = true;
   if (diagonal_only)
   {
@@ -411,11 +414,15 @@ void FixedConstraintSchur::solve(dealii::Vector<double>& x) const
       y[k] *= d[k];
     return;
   }
+  const char* __restrict kept = selected_flag.data();
+  const unsigned int* __restrict to = new_index.data();
+  double* __restrict y = x.begin();
+  double* __restrict w = permuted.begin();
   for (unsigned int k = 0; k < n; ++k)
-    permuted[new_index[k]] = selected[k] ? x[k] : 0.;
+    w[to[k]] = kept[k] ? y[k] : 0.;
   factor.solve(permuted);
   for (unsigned int k = 0; k < n; ++k)
-    x[k] = selected[k] ? permuted[new_index[k]] : 0.;
+    y[k] = kept[k] ? w[to[k]] : 0.;
 }
 
 void FixedConstraintSchur::solve(const std::vector<dealii::Vector<double>*>& xs) const
@@ -429,17 +436,29 @@ void FixedConstraintSchur::solve(const std::vector<dealii::Vector<double>*>& xs)
     return;
   }
   constexpr std::size_t width = 4;
+  const char* __restrict kept = selected_flag.data();
+  const unsigned int* __restrict to = new_index.data();
   for (std::size_t first = 0; first < xs.size(); first += width)
   {
     const unsigned int k = std::min(width, xs.size() - first);
     interleaved.resize(static_cast<std::size_t>(n) * k);
+    double* __restrict w = interleaved.data();
+    std::array<double*, width> x{};
+    for (unsigned int r = 0; r < k; ++r)
+      x[r] = xs[first + r]->begin();
     for (unsigned int i = 0; i < n; ++i)
+    {
+      double* __restrict wi = w + static_cast<std::size_t>(to[i]) * k;
       for (unsigned int r = 0; r < k; ++r)
-        interleaved[new_index[i] * k + r] = selected[i] ? (*xs[first + r])[i] : 0.;
-    factor.solve_interleaved(interleaved.data(), k);
+        wi[r] = kept[i] ? x[r][i] : 0.;
+    }
+    factor.solve_interleaved(w, k);
     for (unsigned int i = 0; i < n; ++i)
+    {
+      const double* __restrict wi = w + static_cast<std::size_t>(to[i]) * k;
       for (unsigned int r = 0; r < k; ++r)
-        (*xs[first + r])[i] = selected[i] ? interleaved[new_index[i] * k + r] : 0.;
+        x[r][i] = kept[i] ? wi[r] : 0.;
+    }
   }
 }
 } // namespace pantocat

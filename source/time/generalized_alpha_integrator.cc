@@ -173,9 +173,10 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
                      "matrix G M^-1 G^T of the fixed constraints (velocity projection)");
   keep.assign(S.fixed.size(), false);
   factors.assign(S.fixed.size(), 0.);
-  fixed_span.clear();
+  std::vector<RowRanges> spans;
   for (const unsigned int i : S.fixed)
-    fixed_span.push_back(spans_of(rows[i].G));
+    spans.push_back(spans_of(rows[i].G));
+  fixed_spans.initialize(spans);
   fixed_ready = true;
 }
 
@@ -339,7 +340,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
   moving_in.clear();
   const auto select = [&](const unsigned int i)
   {
-    if (system.constraints[i]->depends_on_time())
+    if (S.moves[i])
       moving_in.push_back(i);
     else
       keep[S.position[i]] = true;
@@ -370,8 +371,9 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
     // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric). Both
     // +0, as reinit() left them, where the columns do not reach row k.
-    for (unsigned int k = 0; k < mF; ++k)
-      if (keep[k] && X.reaches(fixed_span[k]))
+    fixed_spans.rows_meeting(X.reach(), reached);
+    for (const unsigned int k : reached)
+      if (keep[k])
       {
         const std::array<double, InterleavedColumns::width> GX =
             X.dots(rows[S.fixed[k]].G); // both columns in one pass
@@ -426,7 +428,7 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   std::vector<unsigned int>& moving_in = b.moving_in;
   moving_in.clear();
   for (const unsigned int i : A)
-    if (system.constraints[i]->depends_on_time())
+    if (S.moves[i])
       moving_in.push_back(i);
     else
       keep[S.position[i]] = true;
@@ -442,8 +444,9 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   for (unsigned int c = 0; c < p; ++c)
   {
     const LocalColumns& U = S.M_columns[S.position[moving_in[c]]];
-    for (unsigned int k = 0; k < mF; ++k)
-      if (keep[k] && U.reaches(fixed_span[k])) // else +0, as reinit() left it
+    fixed_spans.rows_meeting(U.reach(), reached);
+    for (const unsigned int k : reached)
+      if (keep[k]) // the others +0, as reinit() left them
         Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);
     for (unsigned int r = 0; r < p; ++r)
       D(r, c) = U.dot(rows[moving_in[r]].G, 0);

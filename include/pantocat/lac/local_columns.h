@@ -82,6 +82,36 @@ private:
   RowRanges added, merged; ///< take_in()'s workspace: no allocation once grown
 };
 
+/**
+ * Many rows, each given by its runs of consecutive unknowns (spans_of(): the
+ * fixed constraints' rows), indexed for one question: which of them does a
+ * moving constraint's columns' reach meet (LocalColumns::reaches() of each,
+ * answered for all at once)? The runs are sorted by their first row, so a
+ * range of the reach finds the runs that meet it by a binary search and
+ * reads only those: O(log of the runs + the rows met) instead of a test per
+ * row.
+ */
+class RowSpanIndex
+{
+public:
+  /// Indexes the rows k = 0, 1, ... with the runs @p spans[k].
+  void initialize(const std::vector<RowRanges>& spans);
+  /// The rows k one of whose runs meets one of @p ranges (disjoint, in
+  /// increasing order), into @p out, in increasing k, each once: the rows for
+  /// which LocalColumns::reaches(spans[k]) is true when @p ranges is the reach.
+  void rows_meeting(const RowRanges& ranges, std::vector<unsigned int>& out) const;
+
+private:
+  struct Run
+  {
+    int first, last;
+    unsigned int row;
+  };
+  std::vector<Run> runs;         ///< sorted by first
+  int longest = 0;               ///< the longest run's length
+  mutable std::vector<char> met; ///< rows_meeting()'s flags (all 0 between calls)
+};
+
 /// @p out = the rows @p sorted (ascending, repeats allowed) as runs of
 /// consecutive rows.
 void runs_of(const std::vector<unsigned int>& sorted, RowRanges& out);

@@ -156,11 +156,13 @@ private:
   /// rates and G q^, G v^ of the others are not formed (0).
   std::vector<char> with_rate;
   std::vector<double> ratio; ///< damping_ratio() of each constraint, read once
-  /// The rows of each fixed constraint's G, as runs (FixedConstraintSchur
-  /// order): the moving columns that do not reach them give products +0.
-  std::vector<RowRanges> fixed_span;
-  std::vector<bool> keep;      ///< fixed constraints in the current system
-  std::vector<double> factors; ///< their multipliers (FixedConstraintSchur order)
+  /// The rows of each fixed constraint's G, as runs, indexed
+  /// (FixedConstraintSchur order): the moving columns that do not reach
+  /// them give products +0.
+  RowSpanIndex fixed_spans;
+  std::vector<unsigned int> reached; ///< the fixed constraints a column reaches
+  std::vector<bool> keep;            ///< fixed constraints in the current system
+  std::vector<double> factors;       ///< their multipliers (FixedConstraintSchur order)
   /// mu of the position projection (touching constraints) and eta of the
   /// velocity projection, per constraint.
   std::vector<double> position_multipliers, velocity_multipliers;
