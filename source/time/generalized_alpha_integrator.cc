@@ -174,8 +174,12 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
   keep.assign(S.fixed.size(), false);
   factors.assign(S.fixed.size(), 0.);
   std::vector<RowRanges> spans;
+  fixed_G.clear();
   for (const unsigned int i : S.fixed)
+  {
     spans.push_back(spans_of(rows[i].G));
+    fixed_G.push_back(rows[i].G);
+  }
   fixed_spans.initialize(spans);
   fixed_ready = true;
 }
@@ -227,7 +231,7 @@ void GeneralizedAlphaIntegrator::advance()
   for (unsigned int i = 0; i < m_all; ++i)
   {
     const ConstraintState& r = rows[i];
-    const double Gq0 = r.G.dot(q0);
+    const double Gq0 = S.moves[i] ? r.G.dot(q0) : fixed_G.dot(S.position[i], q0.begin());
     base_gap[i] = Gq0 + r.z;
     if (!with_rate[i])
     {
@@ -260,7 +264,12 @@ void GeneralizedAlphaIntegrator::advance()
       // Touching constraints hold by the position projection alone.
       q_newmark = x.q;
       project(
-          rows, t1, [&](const unsigned int i) { return rows[i].position_residual(x.q); },
+          rows, t1,
+          [&](const unsigned int i)
+          {
+            return S.moves[i] ? rows[i].position_residual(x.q)
+                              : fixed_G.dot(S.position[i], x.q.begin()) + rows[i].z;
+          },
           x.q, position_multipliers, "position projection");
     }
     for (unsigned int i = 0; i < m_all; ++i)
@@ -316,8 +325,13 @@ void GeneralizedAlphaIntegrator::advance()
   else
     project(
         rows, t1,
-        [&](const unsigned int i) { return rows[i].velocity_residual(x.q, x.v); }, x.v,
-        velocity_multipliers, "velocity projection");
+        [&](const unsigned int i)
+        {
+          // A fixed row has no G_t: its G_t q is +0, as velocity_residual() sums it.
+          return S.moves[i] ? rows[i].velocity_residual(x.q, x.v)
+                            : 0. + fixed_G.dot(S.position[i], x.v.begin()) + rows[i].z_t;
+        },
+        x.v, velocity_multipliers, "velocity projection");
   pseudo_acceleration.swap(a_next);
   spare = std::move(current);
   current = std::move(x);

@@ -62,6 +62,7 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   Q_by_column.build(Q, m);
   local = LocalBlock();
   N_eta_mu_valid = false;
+  selected_once = false;
   P_eta.reinit(m);
   N_mu.reinit(m);
   force_set.assign(m, false);
@@ -166,8 +167,14 @@ void GglFixedBlock::select(const std::vector<bool>& force,
                            const std::vector<bool>& engaged,
                            const std::vector<bool>& settled)
 {
+  // Most trials select what the one before selected: all derived from it holds.
+  if (selected_once && force == force_set && engaged == engaged_set &&
+      settled == settled_set)
+    return;
+  selected_once = true;
   force_set = force;
   engaged_set = engaged;
+  settled_set = settled;
   std::vector<bool>& with_lambda = with_lambda_set;
   with_lambda.resize(m);
   eta_mu_set.resize(m);

@@ -160,6 +160,9 @@ private:
   /// (FixedConstraintSchur order): the moving columns that do not reach
   /// them give products +0.
   RowSpanIndex fixed_spans;
+  /// Their rows G, one after the other (FixedConstraintSchur order): the
+  /// dots of a step read them in one stream.
+  CompressedRows fixed_G;
   std::vector<unsigned int> reached; ///< the fixed constraints a column reaches
   std::vector<bool> keep;            ///< fixed constraints in the current system
   std::vector<double> factors;       ///< their multipliers (FixedConstraintSchur order)

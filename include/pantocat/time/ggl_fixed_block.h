@@ -208,6 +208,8 @@ private:
   mutable std::vector<std::size_t> with_mu_w;
   mutable dealii::Vector<double> P_eta, N_mu;
   std::vector<bool> force_set, engaged_set;
+  std::vector<bool> settled_set; ///< select()'s last arguments
+  bool selected_once = false;
   std::vector<bool> eta_mu_set; ///< force and not settled
   bool with_eta_mu = false;
   bool any_engaged = false;          ///< some constraint in engaged_set
