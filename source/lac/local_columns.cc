@@ -45,6 +45,8 @@ void RowSpanIndex::rows_meeting(const RowRanges& ranges,
   out.clear();
   for (const RowRange& range : ranges)
   {
+    if (range.last <= range.first)
+      continue; // an empty range meets nothing
     // A run [first, last) meets [range.first, range.last) iff first <
     // range.last and last > range.first; last <= first + longest, so only
     // runs with first > range.first - longest can.
@@ -52,7 +54,7 @@ void RowSpanIndex::rows_meeting(const RowRanges& ranges,
     auto run = std::upper_bound(runs.begin(), runs.end(), from,
                                 [](const int f, const Run& r) { return f < r.first; });
     for (; run != runs.end() && run->first < range.last; ++run)
-      if (run->last > range.first && range.last > range.first && !met[run->row])
+      if (run->last > range.first && !met[run->row])
       {
         met[run->row] = 1;
         out.push_back(run->row);
