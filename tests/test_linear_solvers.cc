@@ -521,12 +521,11 @@ TEST(LinearSolvers, LocalSolvesAreTheFullSolvesWhereTheColumnsAreNotNegligible)
 
 TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
 {
-  // The implicit steps skip a fixed row whose runs of rows (spans_of()) the
-  // moving columns do not reach (LocalColumns::reaches), taking +0 for its
-  // products.
-  // That is right only if dots() of such a row is +0 in every column, and
-  // reaches() must say true for a span that shares a single row with the
-  // reach (its ends are half-open). Checked on a contact's columns solved
+  // The implicit steps skip a fixed row without an entry on the moving
+  // columns' reach (RowsByColumn::rows_in() over the reach), taking +0 for
+  // its products. That is right only if dots() of such a row is +0 in every
+  // column, and a row with a single entry on the reach must be found (the
+  // reach's ends are half-open). Checked on a contact's columns solved
   // locally with the FEM BDF-2 matrix (N+1 = 500).
   CaseRunner simulation(fem_bdf2(500).make_case());
   const SemiDiscreteSystem& sys = simulation.system();
@@ -546,10 +545,18 @@ TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
   ASSERT_FALSE(X.reach().empty());
   const RowRange first = X.reach().front();
   ASSERT_GT(first.first, 2);
-  ASSERT_EQ(spans_of(contact).size(), 1u);
-  EXPECT_EQ(spans_of(contact)[0].first, n / 4);
-  EXPECT_EQ(spans_of(contact)[0].last, n / 4 + 6);
-  EXPECT_TRUE(spans_of(SparseRow()).empty());
+  // Whether the lookup over the reach finds @p row.
+  const auto found = [&](const SparseRow& row)
+  {
+    CompressedRows one;
+    one.push_back(row);
+    RowsByColumn by_column;
+    by_column.build(one, n);
+    std::vector<unsigned int> out;
+    std::vector<char> seen(1, 0);
+    by_column.rows_in(X.reach(), out, seen);
+    return !out.empty();
+  };
   // Rows just before the reach, just touching it, and far beyond every range.
   SparseRow before, touching, inside;
   before.add(first.first - 2, 0.7);
@@ -557,19 +564,18 @@ TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
   touching.add(first.first - 1, 0.7);
   touching.add(first.first, -1.3);
   inside.add((first.first + first.last) / 2, 1.);
-  EXPECT_FALSE(X.reaches(spans_of(before)));
-  EXPECT_TRUE(X.reaches(spans_of(touching)));
-  EXPECT_TRUE(X.reaches(spans_of(inside)));
-  EXPECT_FALSE(X.reaches(RowRange{first.last, first.last})); // an empty span
+  EXPECT_FALSE(found(before));
+  EXPECT_TRUE(found(touching));
+  EXPECT_TRUE(found(inside));
+  EXPECT_FALSE(found(SparseRow())); // a row without entries
   // A dropper's row: rows of both wires, far apart in the numbering, here on
-  // both sides of the reach: two runs, neither of which meets it (the rows
-  // [min, max] between them would).
+  // both sides of the reach: neither entry is on it (the rows [min, max]
+  // between them would be).
   ASSERT_LT(X.reach().back().last + 1, n);
   SparseRow straddling;
   straddling.add(first.first - 2, 0.7);
   straddling.add(X.reach().back().last + 1, 0.3);
-  EXPECT_EQ(spans_of(straddling).size(), 2u);
-  EXPECT_FALSE(X.reaches(spans_of(straddling)));
+  EXPECT_FALSE(found(straddling));
   for (const double d : X.dots(straddling))
     EXPECT_TRUE(d == 0. && !std::signbit(d));
   for (const double d : X.dots(before))
@@ -577,7 +583,7 @@ TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
     EXPECT_EQ(d, 0.);
     EXPECT_FALSE(std::signbit(d));
   }
-  // The touching row's products are not all zero: reaches() must keep it.
+  // The touching row's products are not all zero: the lookup must find it.
   const auto touched = X.dots(touching);
   EXPECT_TRUE(std::any_of(touched.begin(), touched.end(),
                           [](const double d) { return d != 0.; }));
@@ -587,7 +593,7 @@ TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
   {
     SparseRow r;
     r.add(i, -2.5);
-    if (X.reaches(spans_of(r)))
+    if (found(r))
       continue;
     ++outside;
     for (const double d : X.dots(r))
@@ -596,34 +602,37 @@ TEST(LinearSolvers, RowsOutsideTheReachHaveZeroProductsWithTheLocalColumns)
   EXPECT_GT(outside, static_cast<unsigned int>(n / 7 / 2)); // the reach is local
 }
 
-TEST(LinearSolvers, SpanIndexFindsExactlyTheRowsTheReachMeets)
+TEST(LinearSolvers, RowsOnAReachAreFoundEachOnce)
 {
-  // The generalized-alpha step asks RowSpanIndex which fixed rows a moving
-  // column's reach meets, instead of a reaches() test per row. The answer
-  // must be the same set, in increasing order, each row once: checked
-  // against the row-by-row test on rows like a section's (a few runs each,
-  // of lengths 1 to 6, some of both wires far apart, some empty, some
-  // sharing rows) and reaches of one to three ranges, touching runs at
-  // either half-open end.
+  // The generalized-alpha step finds the fixed rows that a moving column's
+  // reach meets by RowsByColumn::rows_in() (the rows with an entry on one of
+  // the reach's ranges), not by a test per row. The answer must be exactly
+  // those rows, each once, and the workspace left clean: checked against the
+  // row-by-row test on rows like a section's (a few runs of entries each, of
+  // lengths 1 to 6, some on both wires far apart, some empty, some sharing
+  // unknowns) and reaches of one to three ranges (some empty) that touch runs
+  // at either half-open end.
   std::mt19937 random(7);
   const auto draw = [&](const int lo, const int hi)
   { return std::uniform_int_distribution<int>(lo, hi)(random); };
-  std::vector<RowRanges> spans(300);
-  for (RowRanges& s : spans)
+  const unsigned int n = 5000;
+  std::vector<SparseRow> rows(300);
+  CompressedRows compressed;
+  for (SparseRow& row : rows)
   {
     const int n_runs = draw(0, 3), base = draw(0, 2000);
-    std::vector<unsigned int> rows;
     for (int r = 0; r < n_runs; ++r)
     {
       const int first = base + r * draw(0, 700), length = draw(1, 6);
       for (int i = first; i < first + length; ++i)
-        rows.push_back(i);
+        if (std::find(row.index.begin(), row.index.end(), i) == row.index.end())
+          row.add(i, 1.);
     }
-    std::sort(rows.begin(), rows.end());
-    runs_of(rows, s);
+    compressed.push_back(row);
   }
-  RowSpanIndex index;
-  index.initialize(spans);
+  RowsByColumn by_column;
+  by_column.build(compressed, n);
+  std::vector<char> seen(rows.size(), 0);
   unsigned int met_somewhere = 0;
   for (int trial = 0; trial < 500; ++trial)
   {
@@ -636,17 +645,21 @@ TEST(LinearSolvers, SpanIndexFindsExactlyTheRowsTheReachMeets)
       from += length + draw(1, 900);
     }
     std::vector<unsigned int> expected, found;
-    for (unsigned int k = 0; k < spans.size(); ++k)
+    for (unsigned int k = 0; k < rows.size(); ++k)
     {
       bool meets = false;
       for (const RowRange& a : reach)
-        for (const RowRange& b : spans[k])
-          meets = meets || (a.first < b.last && a.last > b.first && a.last > a.first);
+        for (const unsigned int i : rows[k].index)
+          meets =
+              meets || (a.first <= static_cast<int>(i) && static_cast<int>(i) < a.last);
       if (meets)
         expected.push_back(k);
     }
-    index.rows_meeting(reach, found);
+    by_column.rows_in(reach, found, seen);
+    std::sort(found.begin(), found.end()); // (a repeat would remain and differ)
     ASSERT_EQ(found, expected) << "trial " << trial;
+    ASSERT_TRUE(
+        std::all_of(seen.begin(), seen.end(), [](const char f) { return f == 0; }));
     met_somewhere += !found.empty();
   }
   EXPECT_GT(met_somewhere, 250u); // the reaches do meet rows: not a vacuous check

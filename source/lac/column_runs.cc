@@ -56,16 +56,6 @@ void ColumnRuns::initialize(const std::vector<SparseRow>& columns,
     }
     run_start.push_back(runs.size());
   }
-  by_first.resize(runs.size());
-  run_column.resize(runs.size());
-  for (unsigned int l = 0; l + 1 < run_start.size(); ++l)
-    for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
-      run_column[r] = l;
-  for (unsigned int r = 0; r < runs.size(); ++r)
-    by_first[r] = r;
-  std::stable_sort(by_first.begin(), by_first.end(),
-                   [&](const unsigned int a, const unsigned int b)
-                   { return runs[a].first < runs[b].first; });
   for (unsigned int i = 0; i < n_dofs; ++i)
     if (is_reached[i])
     {
@@ -80,8 +70,6 @@ void ColumnRuns::clear()
 {
   runs.clear();
   run_start.assign(1, 0);
-  by_first.clear();
-  run_column.clear();
   value.clear();
   ranges.clear();
 }
@@ -97,38 +85,20 @@ const RowRanges* ColumnRuns::reach_of(const double* c, const double* d,
     counted += counts(l);
   if (counted == m)
     return &ranges;
-  // The runs of the counted columns in increasing first row, merged: few
-  // columns (those near a contact) gathered and sorted; many read in the
-  // order by_first keeps, without a sort.
-  const auto merge = [&](const RowRange g)
-  {
-    if (!out.empty() && g.first <= out.back().last)
-      out.back().last = std::max(out.back().last, g.last);
-    else
-      out.push_back(g);
-  };
-  const auto range_of = [&](const unsigned int r)
-  {
-    return RowRange{static_cast<int>(runs[r].first),
-                    static_cast<int>(runs[r].first + runs[r].length)};
-  };
+  gathered.clear();
+  for (unsigned int l = 0; l < m; ++l)
+    if (counts(l))
+      for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
+        gathered.push_back({static_cast<int>(runs[r].first),
+                            static_cast<int>(runs[r].first + runs[r].length)});
+  std::sort(gathered.begin(), gathered.end(),
+            [](const RowRange& a, const RowRange& b) { return a.first < b.first; });
   out.clear();
-  if (8 * counted <= m)
-  {
-    gathered.clear();
-    for (unsigned int l = 0; l < m; ++l)
-      if (counts(l))
-        for (unsigned int r = run_start[l]; r < run_start[l + 1]; ++r)
-          gathered.push_back(range_of(r));
-    std::sort(gathered.begin(), gathered.end(),
-              [](const RowRange& a, const RowRange& b) { return a.first < b.first; });
-    for (const RowRange& g : gathered)
-      merge(g);
-  }
-  else
-    for (const unsigned int r : by_first)
-      if (counts(run_column[r]))
-        merge(range_of(r));
+  for (const RowRange& r : gathered)
+    if (!out.empty() && r.first <= out.back().last)
+      out.back().last = std::max(out.back().last, r.last);
+    else
+      out.push_back(r);
   return &out;
 }
 

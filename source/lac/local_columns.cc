@@ -4,67 +4,6 @@
 
 namespace pantocat
 {
-void runs_of(const std::vector<unsigned int>& sorted, RowRanges& out)
-{
-  out.clear();
-  for (const unsigned int i : sorted)
-    if (!out.empty() && static_cast<int>(i) <= out.back().last)
-      out.back().last = std::max<int>(out.back().last, i + 1);
-    else
-      out.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
-}
-
-RowRanges spans_of(const SparseRow& row)
-{
-  std::vector<unsigned int> sorted(row.index.begin(), row.index.end());
-  std::sort(sorted.begin(), sorted.end());
-  RowRanges spans;
-  runs_of(sorted, spans);
-  return spans;
-}
-
-void RowSpanIndex::initialize(const std::vector<RowRanges>& spans)
-{
-  runs.clear();
-  longest = 0;
-  for (unsigned int k = 0; k < spans.size(); ++k)
-    for (const RowRange& r : spans[k])
-      if (r.last > r.first)
-      {
-        runs.push_back({r.first, r.last, k});
-        longest = std::max(longest, r.last - r.first);
-      }
-  std::sort(runs.begin(), runs.end(),
-            [](const Run& a, const Run& b) { return a.first < b.first; });
-  met.assign(spans.size(), 0);
-}
-
-void RowSpanIndex::rows_meeting(const RowRanges& ranges,
-                                std::vector<unsigned int>& out) const
-{
-  out.clear();
-  for (const RowRange& range : ranges)
-  {
-    if (range.last <= range.first)
-      continue; // an empty range meets nothing
-    // A run [first, last) meets [range.first, range.last) iff first <
-    // range.last and last > range.first; last <= first + longest, so only
-    // runs with first > range.first - longest can.
-    const int from = range.first - longest;
-    auto run = std::upper_bound(runs.begin(), runs.end(), from,
-                                [](const int f, const Run& r) { return f < r.first; });
-    for (; run != runs.end() && run->first < range.last; ++run)
-      if (run->last > range.first && !met[run->row])
-      {
-        met[run->row] = 1;
-        out.push_back(run->row);
-      }
-  }
-  for (const unsigned int k : out)
-    met[k] = 0;
-  std::sort(out.begin(), out.end());
-}
-
 void merge_ranges(const RowRanges& a, const RowRanges& b, RowRanges& out)
 {
   out.clear();
@@ -110,7 +49,12 @@ void LocalColumns::clear()
 
 void LocalColumns::take_in(const std::vector<unsigned int>& sorted)
 {
-  runs_of(sorted, added);
+  added.clear();
+  for (const unsigned int i : sorted)
+    if (!added.empty() && static_cast<int>(i) <= added.back().last)
+      added.back().last = std::max<int>(added.back().last, i + 1);
+    else
+      added.push_back({static_cast<int>(i), static_cast<int>(i) + 1});
   add_ranges(rows, added, merged);
 }
 

@@ -126,7 +126,6 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
     throw SimulationError("the " + what + " got " + std::to_string(C.size()) +
                           " compliances for " + std::to_string(n) + " constraints");
   selected.clear();
-  selected_flag.clear();
   factorised = false;
   if (n == 0)
     return;
@@ -219,10 +218,10 @@ void FixedConstraintSchur::initialize(const std::vector<const SparseRow*>& G,
 
 void FixedConstraintSchur::select(const std::vector<bool>& keep)
 {
-  if (n == 0 || (factorised && keep == selected))
+  if (n == 0 || (factorised &&
+                 std::equal(keep.begin(), keep.end(), selected.begin(), selected.end())))
     return;
-  selected = keep;
-  selected_flag.assign(keep.begin(), keep.end());
+  selected.assign(keep.begin(), keep.end());
   factorised = true;
   if (diagonal_only)
   {
@@ -414,7 +413,7 @@ void FixedConstraintSchur::solve(dealii::Vector<double>& x) const
       y[k] *= d[k];
     return;
   }
-  const char* __restrict kept = selected_flag.data();
+  const char* __restrict kept = selected.data();
   const unsigned int* __restrict to = new_index.data();
   double* __restrict y = x.begin();
   double* __restrict w = permuted.begin();
@@ -436,7 +435,7 @@ void FixedConstraintSchur::solve(const std::vector<dealii::Vector<double>*>& xs)
     return;
   }
   constexpr std::size_t width = 4;
-  const char* __restrict kept = selected_flag.data();
+  const char* __restrict kept = selected.data();
   const unsigned int* __restrict to = new_index.data();
   for (std::size_t first = 0; first < xs.size(); first += width)
   {

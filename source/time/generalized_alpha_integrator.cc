@@ -173,14 +173,11 @@ void GeneralizedAlphaIntegrator::initialize_fixed(
                      "matrix G M^-1 G^T of the fixed constraints (velocity projection)");
   keep.assign(S.fixed.size(), false);
   factors.assign(S.fixed.size(), 0.);
-  std::vector<RowRanges> spans;
   fixed_G.clear();
   for (const unsigned int i : S.fixed)
-  {
-    spans.push_back(spans_of(rows[i].G));
     fixed_G.push_back(rows[i].G);
-  }
-  fixed_spans.initialize(spans);
+  fixed_at_row.build(fixed_G, system.n_dofs());
+  seen.assign(S.fixed.size(), 0);
   fixed_ready = true;
 }
 
@@ -226,12 +223,15 @@ void GeneralizedAlphaIntegrator::advance()
   base_rate.resize(m_all);
   G_q_hat.resize(m_all);
   G_v_hat.resize(m_all);
+  // G y of constraint i (a fixed one's from the compressed copy, the same bits).
+  const auto G_dot = [&](const unsigned int i, const dealii::Vector<double>& y)
+  { return S.moves[i] ? rows[i].G.dot(y) : fixed_G.dot(S.position[i], y.begin()); };
   // (the rate of a rigid constraint enters nothing: its law has d = 0, and
   // accept() reads the rates of the compliant ones only)
   for (unsigned int i = 0; i < m_all; ++i)
   {
     const ConstraintState& r = rows[i];
-    const double Gq0 = S.moves[i] ? r.G.dot(q0) : fixed_G.dot(S.position[i], q0.begin());
+    const double Gq0 = G_dot(i, q0);
     base_gap[i] = Gq0 + r.z;
     if (!with_rate[i])
     {
@@ -264,20 +264,15 @@ void GeneralizedAlphaIntegrator::advance()
       // Touching constraints hold by the position projection alone.
       q_newmark = x.q;
       project(
-          rows, t1,
-          [&](const unsigned int i)
-          {
-            return S.moves[i] ? rows[i].position_residual(x.q)
-                              : fixed_G.dot(S.position[i], x.q.begin()) + rows[i].z;
-          },
-          x.q, position_multipliers, "position projection");
+          rows, t1, [&](const unsigned int i) { return G_dot(i, x.q) + rows[i].z; }, x.q,
+          position_multipliers, "position projection");
     }
     for (unsigned int i = 0; i < m_all; ++i)
     {
       // (only those accept() reads: an active rigid one's are not)
       const ConstraintState& r = rows[i];
       const bool gap = active_set.reads_gap(i), rate = active_set.reads_rate(i);
-      const double Gq = gap || rate ? r.G.dot(x.q) : 0.;
+      const double Gq = gap || rate ? G_dot(i, x.q) : 0.;
       gaps[i] = gap ? Gq + r.z : 0.;
       rates[i] =
           rate ? r.G_t.dot(x.q) + c_v * (Gq - G_q_hat[i]) + G_v_hat[i] + r.z_t : 0.;
@@ -329,7 +324,7 @@ void GeneralizedAlphaIntegrator::advance()
         {
           // A fixed row has no G_t: its G_t q is +0, as velocity_residual() sums it.
           return S.moves[i] ? rows[i].velocity_residual(x.q, x.v)
-                            : 0. + fixed_G.dot(S.position[i], x.v.begin()) + rows[i].z_t;
+                            : 0. + G_dot(i, x.v) + rows[i].z_t;
         },
         x.v, velocity_multipliers, "velocity projection");
   pseudo_acceleration.swap(a_next);
@@ -385,7 +380,7 @@ void GeneralizedAlphaIntegrator::solve_position_level(
     // Fixed row k, column c: G_k S^-1 G_c^T. Row c, fixed column k:
     // (1 + d c_v) G_c S^-1 G_k^T + d G_t,c S^-1 G_k^T (S symmetric). Both
     // +0, as reinit() left them, where the columns do not reach row k.
-    fixed_spans.rows_meeting(X.reach(), reached);
+    fixed_at_row.rows_in(X.reach(), reached, seen);
     for (const unsigned int k : reached)
       if (keep[k])
       {
@@ -458,7 +453,7 @@ void GeneralizedAlphaIntegrator::project(const std::vector<ConstraintState>& row
   for (unsigned int c = 0; c < p; ++c)
   {
     const LocalColumns& U = S.M_columns[S.position[moving_in[c]]];
-    fixed_spans.rows_meeting(U.reach(), reached);
+    fixed_at_row.rows_in(U.reach(), reached, seen);
     for (const unsigned int k : reached)
       if (keep[k]) // the others +0, as reinit() left them
         Bc[c](k) = U.dot(rows[S.fixed[k]].G, 0);

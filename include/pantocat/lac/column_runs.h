@@ -59,8 +59,6 @@ private:
       0}; ///< column l: runs[run_start[l] .. run_start[l + 1])
   std::vector<double> value;
   RowRanges ranges;
-  std::vector<unsigned int> by_first;     ///< the runs in increasing first row
-  std::vector<unsigned int> run_column;   ///< the column of each run
   mutable std::vector<RowRange> gathered; ///< reach_of()'s workspace
 };
 } // namespace pantocat

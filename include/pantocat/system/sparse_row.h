@@ -139,5 +139,26 @@ struct RowsByColumn
       for (unsigned int e = rows.start[k]; e < rows.start[k + 1]; ++e)
         row[next[rows.index[e]]++] = k;
   }
+
+  /**
+   * The rows with an entry in one of the columns @p ranges (each [first,
+   * last), e.g. a moving contact's columns' reach), into @p out, each once, in
+   * the order met; @p seen (one flag per row, all 0) is workspace and left all 0.
+   */
+  template <typename Ranges>
+  void rows_in(const Ranges& ranges, std::vector<unsigned int>& out,
+               std::vector<char>& seen) const
+  {
+    out.clear();
+    for (const auto& r : ranges)
+      for (unsigned int e = start[r.first]; e < start[r.last]; ++e)
+        if (!seen[row[e]])
+        {
+          seen[row[e]] = 1;
+          out.push_back(row[e]);
+        }
+    for (const unsigned int k : out)
+      seen[k] = 0;
+  }
 };
 } // namespace pantocat

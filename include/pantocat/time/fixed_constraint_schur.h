@@ -194,8 +194,7 @@ private:
   dealii::SparsityPattern pattern;     ///< in the new numbering
   dealii::SparseMatrix<double> entries, selected_matrix;
   std::vector<double> compliance; ///< C, in the original numbering
-  std::vector<bool> selected;
-  std::vector<char> selected_flag; ///< the same, one byte each (the solves' loops)
+  std::vector<char> selected;     ///< select()'s keep, one byte each (the solves' loops)
   bool factorised = false;
   SparseDirectSolver factor;
   /// S is diagonal (no two constraints share an unknown of a diagonal A): the

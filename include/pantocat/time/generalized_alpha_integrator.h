@@ -156,14 +156,15 @@ private:
   /// rates and G q^, G v^ of the others are not formed (0).
   std::vector<char> with_rate;
   std::vector<double> ratio; ///< damping_ratio() of each constraint, read once
-  /// The rows of each fixed constraint's G, as runs, indexed
-  /// (FixedConstraintSchur order): the moving columns that do not reach
-  /// them give products +0.
-  RowSpanIndex fixed_spans;
-  /// Their rows G, one after the other (FixedConstraintSchur order): the
-  /// dots of a step read them in one stream.
+  /// The rows G of the fixed constraints, one after the other
+  /// (FixedConstraintSchur order): the dots of a step read them in one
+  /// stream.
   CompressedRows fixed_G;
+  /// The fixed constraints on each unknown: those a moving column's reach
+  /// meets (the others' products with it are +0).
+  RowsByColumn fixed_at_row;
   std::vector<unsigned int> reached; ///< the fixed constraints a column reaches
+  std::vector<char> seen;            ///< RowsByColumn::rows_in()'s workspace
   std::vector<bool> keep;            ///< fixed constraints in the current system
   std::vector<double> factors;       ///< their multipliers (FixedConstraintSchur order)
   /// mu of the position projection (touching constraints) and eta of the
