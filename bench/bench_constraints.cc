@@ -7,8 +7,10 @@
 // turns, the fastest of 10 batches counts), and its ratio to
 // the same grid without droppers: the target is 1.5 for m up to 200.
 // Columns: FDM and FEM with the half-explicit method, BDF-2 and
-// generalized-alpha; the last line is one banded solve with the FEM BDF-2
-// matrix (the reference of the implicit methods' target, 2.5 solves per step).
+// generalized-alpha; then one banded solve with the FEM BDF-2 matrix S (the
+// reference of the implicit methods' target, 2.5 solves per step), and per m
+// one solve of the constrained system [S G_F^T; G_F 0] (S solve, Schur
+// complement, truncated columns) with the FEM implicit steps in both units.
 // Usage: bench_constraints [steps] [m ...]
 // [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
 // [--span=L] (a span of L metres instead of 100, the same h and dx: with L = 1000
@@ -121,6 +123,49 @@ std::vector<double> step_times(const std::vector<ProgramParameters>& cases,
     }
   return best;
 }
+struct Column
+{
+  std::string method, integrator;
+  unsigned int steps;
+};
+
+/**
+ * The FEM implicit steps in banded solves: per m, one solve of the
+ * constrained system (bench::constrained_solve_microseconds(), the same
+ * grid with the m droppers) and each FEM BDF-2 / generalized-alpha step
+ * divided by it and by one solve with S alone (@p solve_with_S).
+ */
+void print_steps_in_solves(const std::vector<unsigned int>& ms,
+                           const std::vector<Column>& columns,
+                           const std::vector<std::vector<double>>& times,
+                           const double solve_with_S, const unsigned int span)
+{
+  std::vector<std::size_t> implicit;
+  for (std::size_t k = 0; k < columns.size(); ++k)
+    if (columns[k].method == "fem" && columns[k].integrator != "half-explicit")
+      implicit.push_back(k);
+  if (implicit.empty())
+    return;
+  std::cout << "\n| m | one constrained solve [us] |";
+  for (const std::size_t k : implicit)
+    std::cout << " fem + " << columns[k].integrator
+              << " in S solves | in constrained solves |";
+  std::cout << "\n|---|---|";
+  for (std::size_t k = 0; k < implicit.size(); ++k)
+    std::cout << "---|---|";
+  std::cout << '\n';
+  for (std::size_t r = 0; r < ms.size(); ++r)
+  {
+    const double solve = ms[r] == 0 ? solve_with_S
+                                    : bench::constrained_solve_microseconds(
+                                          span_with_droppers(ms[r], "fem", "bdf2", span));
+    std::cout << "| " << ms[r] << " | " << std::setprecision(3) << solve << " |";
+    for (const std::size_t k : implicit)
+      std::cout << ' ' << times[k][r] / solve_with_S << " | " << times[k][r] / solve
+                << " |";
+    std::cout << '\n';
+  }
+}
 } // namespace
 
 int main(int argc, char** argv)
@@ -144,11 +189,6 @@ try
       counts.push_back(std::atoi(argv[i]));
   if (counts.empty())
     counts = {2, 10, 40, 100, 200};
-  struct Column
-  {
-    std::string method, integrator;
-    unsigned int steps;
-  };
   std::vector<Column> columns = {
       {"fdm", "half-explicit", steps}, {"fem", "half-explicit", steps / 2},
       {"fdm", "bdf2", steps / 10},     {"fdm", "generalized-alpha", steps / 10},
@@ -194,11 +234,11 @@ try
   }
   if (!baseline)
     return 0;
+  const double solve_with_S =
+      bench::banded_solve_microseconds(span_with_droppers(0, "fem", "bdf2", span));
   std::cout << "\nOne banded solve with the FEM BDF-2 matrix of this grid: "
-            << std::setprecision(3)
-            << bench::banded_solve_microseconds(
-                   span_with_droppers(0, "fem", "bdf2", span))
-            << " us\n";
+            << std::setprecision(3) << solve_with_S << " us\n";
+  print_steps_in_solves(ms, columns, times, solve_with_S, span);
 }
 catch (const std::exception& e)
 {
