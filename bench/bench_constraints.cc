@@ -10,7 +10,9 @@
 // generalized-alpha; then one banded solve with the FEM BDF-2 matrix S (the
 // reference of the implicit methods' target, 2.5 solves per step), and per m
 // one solve of the constrained system [S G_F^T; G_F 0] (S solve, Schur
-// complement, truncated columns) with the FEM implicit steps in both units.
+// complement, truncated columns), a lower bound of a BDF-2 step (the
+// library's right-hand side and solve, the two corrections, one minimal
+// update pass) and the FEM implicit steps in both units.
 // Usage: bench_constraints [steps] [m ...]
 // [--only=fem+bdf2] (one column) [--no-baseline] (skip m = 0, e.g. to profile one m)
 // [--span=L] (a span of L metres instead of 100, the same h and dx: with L = 1000
@@ -132,8 +134,10 @@ struct Column
 /**
  * The FEM implicit steps in banded solves: per m, one solve of the
  * constrained system (bench::constrained_solve_microseconds(), the same
- * grid with the m droppers) and each FEM BDF-2 / generalized-alpha step
- * divided by it and by one solve with S alone (@p solve_with_S).
+ * grid with the m droppers), a lower bound of a BDF-2 step from the
+ * library's kernels (bench::bdf2_step_floor_microseconds()) in solves with
+ * S, and each FEM BDF-2 / generalized-alpha step divided by one constrained
+ * solve and by one solve with S alone (@p solve_with_S).
  */
 void print_steps_in_solves(const std::vector<unsigned int>& ms,
                            const std::vector<Column>& columns,
@@ -146,11 +150,12 @@ void print_steps_in_solves(const std::vector<unsigned int>& ms,
       implicit.push_back(k);
   if (implicit.empty())
     return;
-  std::cout << "\n| m | one constrained solve [us] |";
+  std::cout
+      << "\n| m | one constrained solve [us] | BDF-2 step floor [us] | in S solves |";
   for (const std::size_t k : implicit)
     std::cout << " fem + " << columns[k].integrator
               << " in S solves | in constrained solves |";
-  std::cout << "\n|---|---|";
+  std::cout << "\n|---|---|---|---|";
   for (std::size_t k = 0; k < implicit.size(); ++k)
     std::cout << "---|---|";
   std::cout << '\n';
@@ -159,7 +164,10 @@ void print_steps_in_solves(const std::vector<unsigned int>& ms,
     const double solve = ms[r] == 0 ? solve_with_S
                                     : bench::constrained_solve_microseconds(
                                           span_with_droppers(ms[r], "fem", "bdf2", span));
-    std::cout << "| " << ms[r] << " | " << std::setprecision(3) << solve << " |";
+    const double floor = bench::bdf2_step_floor_microseconds(
+        span_with_droppers(ms[r], "fem", "bdf2", span));
+    std::cout << "| " << ms[r] << " | " << std::setprecision(3) << solve << " | " << floor
+              << " | " << floor / solve_with_S << " |";
     for (const std::size_t k : implicit)
       std::cout << ' ' << times[k][r] / solve_with_S << " | " << times[k][r] / solve
                 << " |";
