@@ -200,6 +200,7 @@ inline double constrained_solve_microseconds(const ProgramParameters& p,
 
   return microseconds_less_the_copy(solve, x, b, batches, repetitions);
 }
+
 /**
  * Microseconds of a lower bound of one FEM BDF-2 step of the case @p p with
  * its rigid fixed constraints (the droppers), from the library's own kernels
@@ -207,8 +208,9 @@ inline double constrained_solve_microseconds(const ProgramParameters& p,
  * systems and the active set:
  *  1. the right-hand side f + M h' + E r and the solve with S
  *     (PatternOperators::solve_history(), as the step forms them);
- *  2. the position-level correction x += S^-1 G_F^T lambda (the stored
- *     columns, FixedConstraintSchur::add_columns(), one output);
+ *  2. the position-level correction x += S^-1 G_F^T lambda, one output
+ *     (FixedConstraintSchur::add_columns(): the stored columns, or one
+ *     solve where they would read more, as on a 100 m span at m = 200);
  *  3. one pass that a BDF-2 step cannot do without: reads x (which is
  *     q_(n+1), as the step keeps it in the solve's vector), q_n, q_(n-1),
  *     v_n, v_(n-1), writes v_(n+1) and the next history h' (seven streams;

@@ -125,6 +125,7 @@ std::vector<double> step_times(const std::vector<ProgramParameters>& cases,
     }
   return best;
 }
+
 struct Column
 {
   std::string method, integrator;
