@@ -2,6 +2,8 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
 #include <pantocat/scene/steady_arms.h>
+#include <pantocat/simulation/catenary_design.h>
+#include <pantocat/simulation/checkpoint.h>
 #include <pantocat/studies/sweep_study.h>
 
 #include <deal.II/base/patterns.h>
@@ -10,6 +12,7 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <sstream>
 
@@ -32,6 +35,24 @@ const boost::property_tree::ptree* find_entry(const boost::property_tree::ptree&
   return node->get_optional<std::string>("pattern_description") ? node : nullptr;
 }
 
+/**
+ * False for the entries whose value cannot change a sweep's rows: the
+ * outputs, checkpoints, the settings of other modes (convergence and
+ * work-precision studies, eigenfrequencies, the static elasticity check) and
+ * Sweep/Resume, Output name and Stop after runs.
+ */
+bool sweep_reads(const std::string& entry)
+{
+  for (const char* prefix :
+       {"Output/", "Checkpoint/", "Study/", "Eigenfrequencies/", "Elasticity/"})
+    if (entry.rfind(prefix, 0) == 0)
+      return false;
+  for (const char* name : {"Sweep/Resume", "Sweep/Output name", "Sweep/Stop after runs"})
+    if (entry == name)
+      return false;
+  return true;
+}
+
 /// Checks one swept entry (@p which: "Parameter" or "Second parameter") and its values.
 void check_entry(const boost::property_tree::ptree& tree, const std::string& which,
                  const std::string& values_name, const std::string& entry,
@@ -42,6 +63,10 @@ void check_entry(const boost::property_tree::ptree& tree, const std::string& whi
   require(node != nullptr, parameter, entry,
           "no such entry; allowed: a numeric entry with its subsections, e.g. "
           "Catenary/Contact wire/Tension (pantocat-fem --print-parameters lists them)");
+  require(sweep_reads(entry), parameter, entry,
+          "the runs of a sweep do not use this entry (outputs, checkpoints and the "
+          "settings of other modes cannot change a row); allowed: an entry of the "
+          "case, e.g. Catenary/Contact wire/Tension");
   const std::string pattern = node->get<std::string>("pattern_description");
   require(pattern.rfind("[Double", 0) == 0 || pattern.rfind("[Integer", 0) == 0,
           parameter, entry,
@@ -99,6 +124,53 @@ unsigned int pantographs_of(const Case& c)
   for (const PantographCase& p : c.scene.pantographs)
     n += p.has_body() ? 1 : 0;
   return n;
+}
+
+/**
+ * The dropper lengths of @p base as the runs install them before the
+ * deviations: designed (form-finding, as the CaseRunner does it) or given.
+ */
+std::vector<double> dropper_lengths_before_deviations(const Case& base)
+{
+  if (!needs_design(base.scene, base.catenary))
+    return base.catenary.dropper_lengths;
+  const auto space = create_catenary_discretisation(base.catenary, base.discretisation);
+  return design_catenary(base.scene, base.catenary, *space).catenary.dropper_lengths;
+}
+
+/**
+ * Refuses a Monte Carlo dropper length tolerance that reaches the shortest
+ * dropper of @p base: its samples would install droppers of length <= 0 (a
+ * uniform draw reaches -tolerance, a normal one does so at 3 sigma).
+ */
+void check_dropper_tolerance(const Case& base, const SweepParameters& s)
+{
+  if (s.dropper_length_tolerance <= 0.)
+    return;
+  const std::vector<double> lengths = dropper_lengths_before_deviations(base);
+  const auto shortest = std::min_element(lengths.begin(), lengths.end());
+  if (shortest == lengths.end())
+    return;
+  const auto j = static_cast<std::size_t>(shortest - lengths.begin());
+  require(s.dropper_length_tolerance < *shortest, "Sweep/Dropper length tolerance",
+          s.dropper_length_tolerance,
+          "reaches the shortest dropper (dropper " + std::to_string(j + 1) +
+              " at x = " + number_to_string(base.catenary.dropper_positions[j], 6) +
+              " m, " + number_to_string(*shortest, 6) +
+              " m long before the deviations): samples would install droppers of "
+              "length <= 0, which Catenary/Droppers/Lengths refuses; allowed: a "
+              "tolerance below " +
+              number_to_string(*shortest, 6) + " m");
+}
+
+/// The parameters that decide a sweep's rows: every entry that sweep_reads().
+ParameterFingerprint sweep_parameters_of(const dealii::ParameterHandler& prm)
+{
+  ParameterFingerprint all = resolved_parameters(prm);
+  all.erase(std::remove_if(all.begin(), all.end(),
+                           [](const auto& e) { return !sweep_reads(e.first); }),
+            all.end());
+  return all;
 }
 
 /// Fills the costs and row counts of @p plan from each run's case (0 if refused).
@@ -175,6 +247,7 @@ void run_sweep(const ProgramParameters& p, const dealii::ParameterHandler& prm,
   }
   else
   {
+    check_dropper_tolerance(base, s);
     plan.kind = SweepKind::monte_carlo;
     plan.key_columns = {"sample"};
     for (unsigned int i = 0; i < s.samples; ++i)
@@ -189,6 +262,7 @@ void run_sweep(const ProgramParameters& p, const dealii::ParameterHandler& prm,
     };
   }
   estimate(plan, make_run, base);
+  plan.parameters = sweep_parameters_of(prm);
   SweepStudy study(
       plan, make_run, s,
       {p.output.directory, p.output.plots, p.catenary.contact_wire.wave_speed()});

@@ -41,6 +41,16 @@ void InstallationDeviations::apply(CatenaryParameters& c) const
     c.steady_arm_preloads[k] += c.steady_arm_stiffness * steady_arm_heights[k];
   c.carrier.tension *= carrier_tension_factor;
   c.contact_wire.tension *= contact_wire_tension_factor;
+  try
+  {
+    c.check(); // what a prm file may not give, installation may not give either
+  }
+  catch (const InputError& e)
+  {
+    throw InputError(std::string("the catenary as installed (with its installation "
+                                 "deviations) is refused: ") +
+                     e.what());
+  }
 }
 
 double Case::end_time() const

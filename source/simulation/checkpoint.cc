@@ -72,7 +72,7 @@ std::string trim(const std::string& s)
 }
 } // namespace
 
-ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm)
+ParameterFingerprint resolved_parameters(const dealii::ParameterHandler& prm)
 {
   // The resolved parameters as ShortPRM text: "subsection X", "set A = B", "end".
   std::ostringstream text;
@@ -94,10 +94,18 @@ ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm)
       for (const auto& p : path)
         name += p + '/';
       name += trim(line.substr(4, eq - 4));
-      if (is_critical(name))
-        list.emplace_back(name, trim(line.substr(eq + 1)));
+      list.emplace_back(name, trim(line.substr(eq + 1)));
     }
   }
+  return list;
+}
+
+ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm)
+{
+  ParameterFingerprint list = resolved_parameters(prm);
+  list.erase(std::remove_if(list.begin(), list.end(),
+                            [](const auto& e) { return !is_critical(e.first); }),
+             list.end());
   return list;
 }
 

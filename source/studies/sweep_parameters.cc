@@ -5,6 +5,7 @@
 #include <deal.II/base/utilities.h>
 
 #include <cmath>
+#include <map>
 #include <sstream>
 
 namespace pantocat
@@ -43,6 +44,33 @@ std::vector<std::string> as_text(const std::vector<double>& values)
   return text;
 }
 
+/**
+ * Refuses two values of a sweep that are the same run: @p same[i] is value
+ * i as the run sees it (its number, or its text in the CSV), @p written[i]
+ * as written. Names the first value given more than once.
+ */
+void require_distinct(const std::vector<std::string>& same,
+                      const std::vector<std::string>& written,
+                      const std::string& parameter, const std::string& text)
+{
+  std::map<std::string, std::vector<std::size_t>> where;
+  for (std::size_t i = 0; i < same.size(); ++i)
+    where[same[i]].push_back(i);
+  for (std::size_t i = 0; i < same.size(); ++i)
+  {
+    const std::vector<std::size_t>& at = where[same[i]];
+    if (at.size() == 1)
+      continue;
+    std::string as;
+    for (const std::size_t j : at)
+      as += (as.empty() ? "" : ", ") + written[j];
+    require(false, parameter, text,
+            "the value " + written[i] + " is given " + std::to_string(at.size()) +
+                " times (as " + as +
+                "), which would run the same case again; allowed: each value once");
+  }
+}
+
 /// The values of an entry as written: a list of words, or a range expanded.
 std::vector<std::string> value_words(const std::string& text,
                                      const std::string& parameter)
@@ -56,6 +84,37 @@ std::vector<std::string> value_words(const std::string& text,
           "give at least one value: a list \"a, b, c\" or a range \"first to last "
           "step s\"");
   return words;
+}
+
+/// Refuses a list of @p words in which two are the same number (or the same text).
+void require_distinct_values(const std::vector<std::string>& words,
+                             const std::string& parameter, const std::string& text)
+{
+  std::vector<std::string> same;
+  for (const std::string& w : words)
+  {
+    double v = 0.;
+    same.push_back(to_number(w, v) ? number_to_string(v, 17) : w);
+  }
+  require_distinct(same, words, parameter, text);
+}
+
+/**
+ * Refuses two speeds that are the same run or the same key in the CSV (the
+ * speeds printed with 12 digits, speed_kmh).
+ */
+void require_distinct_speeds(const std::vector<double>& speeds, const std::string& text)
+{
+  std::vector<std::string> keys, written;
+  for (const double v : speeds)
+    keys.push_back(number_to_string(v, 12));
+  if (text.find(" to ") != std::string::npos)
+    written = keys;
+  else
+    for (const std::string& w : dealii::Utilities::split_string_list(text))
+      written.push_back(dealii::Utilities::trim(w));
+  require_distinct(keys, written.size() == keys.size() ? written : keys, "Sweep/Speeds",
+                   text);
 }
 } // namespace
 
@@ -129,7 +188,12 @@ void SweepParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "tensions as designed.");
   prm.declare_entry("Resume", "false", dealii::Patterns::Bool(),
                     "Go on with a sweep that was stopped: the runs in <name>.csv.partial "
-                    "of the output directory are kept and not run again.");
+                    "of the output directory are kept and not run again. Only a partial "
+                    "file of the same program version and parameters, undamaged but for "
+                    "the run a stop cut short, is accepted.");
+  prm.declare_entry("Stop after runs", "0", dealii::Patterns::Integer(0),
+                    "For tests: stop the sweep after this many runs as if it were "
+                    "killed (the partial file stays, exit 1); 0: never.");
   prm.declare_entry("Output name", "", Anything(),
                     "Base name of the tables and plots; empty: speed_sweep, "
                     "parameter_sweep or monte_carlo.");
@@ -153,6 +217,7 @@ void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
   steady_arm_height_tolerance = prm.get_double("Steady arm height tolerance");
   tension_tolerance = prm.get_double("Tension tolerance");
   resume = prm.get_bool("Resume");
+  stop_after_runs = static_cast<unsigned int>(prm.get_integer("Stop after runs"));
   output_name = prm.get("Output name");
   prm.leave_subsection();
 
@@ -164,6 +229,7 @@ void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
     speeds_kmh = parse_sweep_values(speeds_text, "Sweep/Speeds");
     for (const double v : speeds_kmh)
       require(v > 0., "Sweep/Speeds", speeds_text, "every speed must be > 0 km/h");
+    require_distinct_speeds(speeds_kmh, speeds_text);
   }
   if (mode == "parameter sweep")
   {
@@ -172,6 +238,7 @@ void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
     entries.push_back(first);
     values.push_back(value_words(first_values, "Sweep/Values"));
     values_text.push_back(first_values);
+    require_distinct_values(values.back(), "Sweep/Values", first_values);
     if (!second.empty())
     {
       require(second != first, "Sweep/Second parameter", second,
@@ -179,6 +246,7 @@ void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
       entries.push_back(second);
       values.push_back(value_words(second_values, "Sweep/Second values"));
       values_text.push_back(second_values);
+      require_distinct_values(values.back(), "Sweep/Second values", second_values);
     }
     else
       require(dealii::Utilities::trim(second_values).empty(), "Sweep/Second values",

@@ -2,6 +2,7 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/io/atomic_file.h>
 #include <pantocat/studies/run_distribution.h>
+#include <pantocat/studies/sweep_partial.h>
 #include <pantocat/studies/sweep_plots.h>
 #include <pantocat/studies/sweep_study.h>
 
@@ -13,7 +14,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <numeric>
+#include <set>
 #include <sstream>
 
 namespace pantocat
@@ -58,18 +61,85 @@ std::string duration(const double seconds)
   return d.str();
 }
 
-/// The first @p n comma-separated fields of @p line.
-std::vector<std::string> first_fields(const std::string& line, const std::size_t n)
+/// @p text without its first @p n comma-separated fields on each line.
+std::string without_keys(const std::string& text, const std::size_t n)
 {
-  std::vector<std::string> fields;
-  std::size_t begin = 0;
-  while (fields.size() < n && begin <= line.size())
+  std::string rest;
+  std::istringstream lines(text);
+  for (std::string line; std::getline(lines, line);)
   {
-    const std::size_t end = std::min(line.find(',', begin), line.size());
-    fields.push_back(line.substr(begin, end - begin));
-    begin = end + 1;
+    std::size_t begin = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      begin = line.find(',', begin) + 1;
+    rest += line.substr(begin) + "\n";
   }
-  return fields;
+  return rest;
+}
+
+/**
+ * True if @p file is what a sweep named @p name writes when it completes:
+ * <name>.csv, <name>_runs.csv, <name>_distribution.csv, or a plot
+ * <name>[_<statistic>][_pantograph_<k>] with extension .png or .gp.
+ */
+bool is_sweep_result(const std::string& file, const std::string& name)
+{
+  if (file.rfind(name, 0) != 0)
+    return false;
+  std::string rest = file.substr(name.size());
+  if (rest == ".csv" || rest == "_runs.csv" || rest == "_distribution.csv")
+    return true;
+  const auto ends_with = [&](const std::string& end)
+  {
+    return rest.size() >= end.size() &&
+           rest.compare(rest.size() - end.size(), end.size(), end) == 0;
+  };
+  if (!ends_with(".png") && !ends_with(".gp"))
+    return false;
+  rest.erase(rest.rfind('.'));
+  const std::string pantograph = "_pantograph_";
+  const std::size_t p = rest.rfind(pantograph);
+  if (p != std::string::npos && p + pantograph.size() < rest.size() &&
+      rest.find_first_not_of("0123456789", p + pantograph.size()) == std::string::npos)
+    rest.erase(p);
+  if (rest.empty())
+    return true;
+  const std::vector<std::string>& statistics = sweep_statistic_columns();
+  return std::find(statistics.begin(), statistics.end(), rest.substr(1)) !=
+             statistics.end() &&
+         rest[0] == '_';
+}
+
+/**
+ * The swept entries (key columns) of a parameter sweep whose every value gave
+ * the same rows, all figures to their printed digits, with the other entry
+ * fixed: the runs may not read them (another integrator's setting, an absent
+ * pantograph's). Needs two values or more and two completed runs that differ
+ * only in that entry.
+ */
+std::vector<unsigned int>
+entries_without_effect(const SweepPlan& plan,
+                       const std::map<unsigned int, std::string>& rows)
+{
+  std::vector<unsigned int> found;
+  const std::size_t n_keys = plan.key_columns.size();
+  for (unsigned int e = 0; plan.kind == SweepKind::parameter && e < n_keys; ++e)
+  {
+    std::map<std::string, std::set<std::string>> outcomes; // other entry's value -> rows
+    std::map<std::string, unsigned int> n_runs;
+    for (const auto& [k, text] : rows)
+      if (text.find(",completed,\"\"\n") != std::string::npos)
+      {
+        const std::string other = n_keys > 1 ? plan.keys[k][1 - e] : "";
+        outcomes[other].insert(without_keys(text, n_keys));
+        ++n_runs[other];
+      }
+    bool same = !outcomes.empty(), compared = false;
+    for (const auto& [other, distinct] : outcomes)
+      same = same && distinct.size() == 1, compared = compared || n_runs[other] > 1;
+    if (same && compared)
+      found.push_back(e);
+  }
+  return found;
 }
 
 /// A short account of run @p outcome for the progress line.
@@ -108,6 +178,40 @@ const std::vector<std::string>& sweep_statistic_columns()
                                                    "filtered_min",
                                                    "filtered_contact_loss_percent"};
   return columns;
+}
+
+std::string sweep_csv_header(const std::vector<std::string>& key_columns)
+{
+  std::string h;
+  for (const std::string& k : key_columns)
+    h += k + ",";
+  h += "pantograph";
+  for (const std::string& c : sweep_statistic_columns())
+    h += "," + c;
+  return h + ",status,reason\n";
+}
+
+void remove_sweep_results(const std::string& directory, const std::string& name)
+{
+  namespace fs = std::filesystem;
+  std::vector<fs::path> earlier;
+  const std::vector<std::string> names = {name, "speed_sweep", "parameter_sweep",
+                                          "monte_carlo"};
+  std::error_code error;
+  for (const auto& entry : fs::directory_iterator(directory, error))
+  {
+    const std::string file = entry.path().filename().string();
+    if (file == "summary.json" ||
+        std::any_of(names.begin(), names.end(),
+                    [&](const std::string& n) { return is_sweep_result(file, n); }))
+      earlier.push_back(entry.path());
+  }
+  if (error)
+    throw SimulationError("cannot list " + directory + ": " + error.message());
+  for (const fs::path& file : earlier)
+    if (!fs::remove(file, error) && error)
+      throw SimulationError("cannot remove " + file.string() +
+                            ", a result of an earlier run: " + error.message());
 }
 
 std::string sweep_rows(const std::vector<std::string>& key, const SweepOutcome& outcome,
@@ -167,13 +271,7 @@ std::string SweepStudy::name() const
 
 std::string SweepStudy::header() const
 {
-  std::string h;
-  for (const std::string& k : plan.key_columns)
-    h += k + ",";
-  h += "pantograph";
-  for (const std::string& c : sweep_statistic_columns())
-    h += "," + c;
-  return h + ",status,reason\n";
+  return sweep_csv_header(plan.key_columns);
 }
 
 std::string SweepStudy::partial_file() const
@@ -184,60 +282,43 @@ std::string SweepStudy::partial_file() const
 void SweepStudy::read_partial()
 {
   const std::string file = partial_file();
-  std::ifstream in(file);
+  std::ifstream in(file, std::ios::binary);
   require(static_cast<bool>(in), "Sweep/Resume", "true",
           "there is no " + file +
               " to resume from (a completed sweep removes it); "
               "allowed: Resume = false to start the sweep");
-  std::string line;
-  std::getline(in, line);
-  require(line + "\n" == header(), "Sweep/Resume", "true",
-          file + " has the columns of another sweep; allowed: Resume = false, or the "
-                 "sweep that wrote it");
-  std::map<std::vector<std::string>, unsigned int> index;
-  for (unsigned int k = 0; k < plan.size(); ++k)
-    index[plan.keys[k]] = k;
-  const std::string written = [&]
-  {
-    std::ostringstream s;
-    s << in.rdbuf();
-    return s.str();
-  }();
-  // A run's rows are appended with one write: every complete line belongs to
-  // a finished run. A last line without its newline was cut when the sweep
-  // was killed: that run runs again.
-  std::size_t begin = 0;
-  while (begin < written.size())
-  {
-    const std::size_t end = written.find('\n', begin);
-    if (end == std::string::npos)
-      break;
-    line = written.substr(begin, end - begin);
-    begin = end + 1;
-    const auto key = first_fields(line, plan.key_columns.size());
-    const auto k = index.find(key);
-    require(k != index.end(), "Sweep/Resume", "true",
-            file + " holds a run (" + line.substr(0, line.find(',')) +
-                ") that this sweep does not have; allowed: Resume = false, or the "
-                "sweep that wrote it");
-    rows[k->second] += line + "\n";
-  }
-  std::string clean = header(); // without a cut last line, to append to
-  for (const auto& [k, text] : rows)
-    clean += text;
-  write_file_atomically(file, clean);
+  std::ostringstream text;
+  text << in.rdbuf();
+  PartialRuns finished = read_partial_file(text.str(), file, plan);
+  rows = std::move(finished.rows);
+  dropped_lines = finished.dropped_lines;
+}
+
+void SweepStudy::start()
+{
+  if (parameters.resume)
+    read_partial();
+  remove_sweep_results(output.directory, name());
+  // Resumed: the finished runs again, without what a stop cut short.
+  std::string text = partial_file_start(plan);
+  for (const auto& [k, text_of_run] : rows)
+    text += partial_record(text_of_run);
+  write_file_atomically(partial_file(), text);
+}
+
+void SweepStudy::append_to_partial(const std::string& text) const
+{
+  std::ofstream partial(partial_file(), std::ios::app | std::ios::binary);
+  partial << text << std::flush;
+  if (!partial)
+    throw SimulationError("cannot append to " + partial_file());
 }
 
 void SweepStudy::finished(const unsigned int k, const SweepOutcome& outcome,
                           std::ostream& out)
 {
   rows[k] = sweep_rows(plan.keys[k], outcome, plan.pantographs[k]);
-  {
-    std::ofstream partial(partial_file(), std::ios::app);
-    partial << rows[k] << std::flush;
-    if (!partial)
-      throw SimulationError("cannot append to " + partial_file());
-  }
+  append_to_partial(partial_record(rows[k]));
   std::ostringstream timing;
   for (const std::string& key : plan.keys[k])
     timing << key << ",";
@@ -264,24 +345,28 @@ void SweepStudy::run(std::ostream& out)
   const RunDistribution distribution;
   const bool root = distribution.is_root();
   // Rank 0 reads (or starts) the partial file; a refusal there must stop
-  // every rank, not leave the others waiting for runs.
+  // every rank, not leave the others waiting for runs. The first character
+  // says which: 'i' bad input (InputError), 's' a file that cannot be changed.
   std::string refusal;
   if (root)
     try
     {
-      if (parameters.resume)
-        read_partial();
-      else
-        write_file_atomically(partial_file(), header());
+      start();
     }
     catch (const InputError& e)
     {
-      refusal = e.what();
+      refusal = std::string("i") + e.what();
+    }
+    catch (const SimulationError& e)
+    {
+      refusal = std::string("s") + e.what();
     }
   if (distribution.size() > 1)
     refusal = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refusal, 0);
+  if (!refusal.empty() && refusal[0] == 'i')
+    throw InputError(refusal.substr(1));
   if (!refusal.empty())
-    throw InputError(refusal);
+    throw SimulationError(refusal.substr(1));
   std::vector<unsigned int> order;
   for (unsigned int k = 0; k < plan.size(); ++k)
     if (!rows.count(k))
@@ -290,13 +375,21 @@ void SweepStudy::run(std::ostream& out)
   std::stable_sort(order.begin(), order.end(),
                    [&](const unsigned int a, const unsigned int b)
                    { return plan.costs[a] > plan.costs[b]; });
+  // Sweep/Stop after runs (tests): the first runs only, then stop as if killed.
+  bool stops =
+      parameters.stop_after_runs > 0 && parameters.stop_after_runs < order.size();
+  if (stops)
+    order.resize(parameters.stop_after_runs);
   to_run = order.size();
   if (root)
     out << name() << ": " << plan.size() << " runs on " << distribution.size()
         << (distribution.size() == 1 ? " process" : " MPI ranks (dynamic work queue)")
-        << (rows.empty()
+        << (rows.empty() && !parameters.resume
                 ? ""
-                : ", " + std::to_string(rows.size()) + " finished before (Resume = true)")
+                : ", " + std::to_string(rows.size()) + " finished before (Resume = true" +
+                      (dropped_lines > 0 ? "; " + std::to_string(dropped_lines) +
+                                               " lines of a run cut short dropped)"
+                                         : ")"))
         << std::endl;
   started = wall_clock();
   const auto execute = [&](const unsigned int k, const std::function<void()>& poll)
@@ -319,6 +412,12 @@ void SweepStudy::run(std::ostream& out)
   distribution.run_queue(order, execute,
                          [&](const unsigned int k, const std::vector<char>& bytes)
                          { finished(k, SweepOutcome::unpack(bytes), out); });
+  if (distribution.size() > 1)
+    stops = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, stops, 0);
+  if (stops)
+    throw SimulationError("stopped after " + std::to_string(parameters.stop_after_runs) +
+                          " runs as asked (Sweep/Stop after runs); " + partial_file() +
+                          " holds them: Sweep/Resume = true runs the others");
   if (root)
     write(out);
 }
@@ -337,7 +436,6 @@ void SweepStudy::write(std::ostream& out) const
   for (const auto& [k, text] : timings)
     runs += text;
   write_file_atomically(dir + "/" + name() + "_runs.csv", runs);
-  std::filesystem::remove(partial_file());
   const SweepTable table = read_sweep_table(csv, plan.key_columns.size());
   if (plan.kind == SweepKind::monte_carlo)
   {
@@ -358,5 +456,13 @@ void SweepStudy::write(std::ostream& out) const
       out << " (no plot: gnuplot missing or nothing to draw)";
   }
   out << " to " << dir << std::endl;
+  for (const unsigned int e : entries_without_effect(plan, rows))
+    std::cerr << "pantocat-fem: warning: Sweep/"
+              << (e == 0 ? "Parameter" : "Second parameter") << " = "
+              << plan.key_columns[e]
+              << ": every value gave the same figures (every completed row equal to all "
+                 "its digits): the runs may not use this entry in this case"
+              << std::endl;
+  std::filesystem::remove(partial_file()); // last: until here a resume can go on
 }
 } // namespace pantocat

@@ -31,7 +31,11 @@ struct InstallationDeviations
 
   /// True if any deviation is set.
   bool any() const;
-  /// Applies the deviations to the designed (or given) catenary @p c.
+  /**
+   * Applies the deviations to the designed (or given) catenary @p c. Throws
+   * InputError when the installed catenary is one a prm file could not give
+   * (CatenaryParameters::check(): a dropper of length <= 0, a tension <= 0).
+   */
   void apply(CatenaryParameters& c) const;
 };
 

@@ -17,6 +17,9 @@
 
 namespace pantocat
 {
+/// Every entry of @p prm ("Subsection/Entry", value as written), in the order printed.
+ParameterFingerprint resolved_parameters(const dealii::ParameterHandler& prm);
+
 /**
  * The parameters that decide what a dynamic run computes and writes: every
  * entry of @p prm except subsection Checkpoint, Run/Mode-independent ones of

@@ -51,6 +51,8 @@ struct SweepParameters
   double tension_tolerance = 0.;           ///< relative, of both wires' tensions
 
   bool resume = false; ///< skip the runs a killed sweep already finished
+  /// Stop after this many runs as if killed (0: never); for tests.
+  unsigned int stop_after_runs = 0;
   std::string
       output_name; ///< file base name; empty: speed_sweep | parameter_sweep | monte_carlo
 

@@ -1,0 +1,103 @@
+# A resume from a partial file that a stop cannot have left is refused: exit
+# 2, one line on stderr naming the partial file (and the line, or the entry
+# that differs), the partial file unchanged, no CSV written, parameters.prm
+# as the stopped sweep left it. The sweep is stopped after KEEP runs (Sweep/
+# Stop after runs); each case damages a copy of its partial file (the first
+# row, at line FIRST after the version line, the parameters and the header)
+# or resumes with another contact-wire tension.
+#   -DEXE=... -DPRM=... -DOUTDIR=dir -DTABLE=speed_sweep.csv -DKEEP=k
+cmake_minimum_required(VERSION 3.13)
+file(REMOVE_RECURSE ${OUTDIR})
+set(stopped ${OUTDIR}/stopped)
+execute_process(COMMAND ${EXE} ${PRM} -o ${stopped} --set "Sweep/Stop after runs=${KEEP}"
+                RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT status EQUAL 1 OR NOT EXISTS ${stopped}/${TABLE}.partial)
+  message(FATAL_ERROR "the stopped sweep: exit ${status}\n${out}\n${err}")
+endif()
+file(READ ${stopped}/${TABLE}.partial text)
+file(READ ${stopped}/parameters.prm parameters)
+
+# The file around its first row: head (up to the header line), row, tail.
+string(FIND "${text}" "\nspeed_kmh," header)
+math(EXPR header "${header} + 1")
+string(SUBSTRING "${text}" ${header} -1 rest)
+string(FIND "${rest}" "\n" eol)
+math(EXPR head_length "${header} + ${eol} + 1")
+string(SUBSTRING "${text}" 0 ${head_length} head)
+string(SUBSTRING "${text}" ${head_length} -1 rest)
+string(FIND "${rest}" "\n" eol)
+string(SUBSTRING "${rest}" 0 ${eol} row)
+math(EXPR eol "${eol} + 1")
+string(SUBSTRING "${rest}" ${eol} -1 tail)
+string(REGEX MATCHALL "\n" newlines "${head}")
+list(LENGTH newlines first)
+math(EXPR first "${first} + 1")
+math(EXPR end_line "${first} + 1")
+math(EXPR after "${first} + 2 * ${KEEP}")
+string(REGEX REPLACE ",[^,]*,[^,]*,[^,]*$" "" short_row "${row}")
+string(REGEX REPLACE "^([^,]*,[^,]*,[^,]*),[^,]*," "\\1,nan," nan_row "${row}")
+string(REPLACE "completed" "bogus" bogus_row "${row}")
+string(REGEX REPLACE "^([^,]*,[^,]*,[^,]*),([0-9])" "\\1,9\\2" changed_row "${row}")
+
+# Each case: its name, the damaged file in `damaged`, the expected line in `expect`.
+set(where "Sweep/Resume = true: .*${TABLE}.partial, line")
+macro(damage name)
+  if(name STREQUAL "garbage")
+    set(damaged "${head}#!%garbage\n${tail}")
+    set(expect "${where} ${first}: 1 field, a row has 19")
+  elseif(name STREQUAL "too few fields")
+    set(damaged "${head}${short_row}\n${tail}")
+    set(expect "${where} ${first}: 16 fields, a row has 19")
+  elseif(name STREQUAL "nan")
+    set(damaged "${head}${nan_row}\n${tail}")
+    set(expect "${where} ${first}: std = \"nan\" is not a finite number")
+  elseif(name STREQUAL "bogus status")
+    set(damaged "${head}${bogus_row}\n${tail}")
+    set(expect "${where} ${first}: status \"bogus\" is not completed, failed or refused")
+  elseif(name STREQUAL "changed figure")
+    set(damaged "${head}${changed_row}\n${tail}")
+    set(expect "${where} ${end_line}: the end line does not match the row above it")
+  elseif(name STREQUAL "duplicate row")
+    set(damaged "${head}${row}\n${row}\n${tail}")
+    set(expect "${where} ${end_line}: a row more than the 1 of the run")
+  elseif(name STREQUAL "duplicate run")
+    set(damaged "${text}${row}\n")
+    set(expect "${where} ${after}: a second record of the run")
+  elseif(name STREQUAL "garbage at the end")
+    set(damaged "${text}garbage\n")
+    set(expect "${where} ${after}: 1 field, a row has 19")
+  else() # foreign: resumed with another tension
+    set(damaged "${text}")
+    set(expect "Sweep/Resume = true: .*${TABLE}.partial: written by a sweep with other parameters: Catenary/Contact wire/Tension = [0-9.e+]+ there, 22000 in this sweep; allowed: .*remove it.*another output directory")
+  endif()
+endmacro()
+
+foreach(name garbage "too few fields" nan "bogus status" "changed figure" "duplicate row"
+             "duplicate run" "garbage at the end" foreign)
+  damage("${name}")
+  string(REPLACE " " "_" dir "${name}")
+  set(dir ${OUTDIR}/${dir})
+  file(MAKE_DIRECTORY ${dir})
+  file(WRITE ${dir}/${TABLE}.partial "${damaged}")
+  file(WRITE ${dir}/parameters.prm "${parameters}")
+  set(other "")
+  if(name STREQUAL "foreign")
+    set(other --set "Catenary/Contact wire/Tension=22000")
+  endif()
+  execute_process(COMMAND ${EXE} ${PRM} -o ${dir} --set "Sweep/Resume=true" ${other}
+                  RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  string(STRIP "${err}" err)
+  string(FIND "${err}" "\n" newline)
+  if(NOT status EQUAL 2 OR NOT newline EQUAL -1 OR NOT err MATCHES "${expect}")
+    message(FATAL_ERROR "${name}: exit ${status}, expected 2 and one line matching\n"
+                        "${expect}\ngot:\n${err}")
+  endif()
+  file(READ ${dir}/${TABLE}.partial after_refusal)
+  file(READ ${dir}/parameters.prm parameters_after)
+  if(NOT after_refusal STREQUAL damaged OR NOT parameters_after STREQUAL parameters
+     OR EXISTS ${dir}/${TABLE})
+    message(FATAL_ERROR "${name}: the refusal changed the partial file or parameters.prm, "
+                        "or wrote ${TABLE}")
+  endif()
+  message(STATUS "${name}: ${err}")
+endforeach()
