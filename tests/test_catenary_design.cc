@@ -6,12 +6,14 @@
 #include <pantocat/scene/clamp_and_dropper_masses.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/simulation/case_runner.h>
+#include <pantocat/simulation/catenary_design.h>
 
 #include "support/case_files.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
 using namespace pantocat;
 
@@ -267,4 +269,40 @@ TEST(CatenaryDesign, ASteadyArmAtASectionAnchorIsRefused)
         EXPECT_NE(what.find("section anchor"), std::string::npos) << what;
       }
     }
+}
+
+TEST(CatenaryDesign, TheSaddlePointWayDesignsTheSameSection)
+{
+  // The design's static solves take the dense Schur complement for few
+  // constraints and the saddle-point system for many (a long section: time
+  // and memory near-linear in its length, doc/benchmarks.md "Setup against
+  // the number of spans"). Forced onto the second way (column budget 0), S55
+  // on three spans (FEM, h = 0.5 m, 27 elastic droppers, 2 steady arms, the
+  // carrier fixed at 2 supports) gets the same design: the same iterations,
+  // the lengths to 1e-12 m and the dropper forces and preloads to 1e-9 N
+  // (round-off of two exact solutions; we measured about 1e-14 m and 1e-11 N).
+  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
+  const ProgramParameters p =
+      read_case(source_file("prm/catenary/section-s55.prm"),
+                {"Catenary/Number of spans=3", "Discretisation/Number of intervals=330",
+                 "Pantograph/Final position=160", "Statistics/Window spans="});
+  const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
+  const CatenaryDesignResult dense = design_catenary(p.scene, p.catenary, *space);
+  const CatenaryDesignResult sparse = design_catenary(p.scene, p.catenary, *space, 0.);
+  EXPECT_EQ(dense.iterations, sparse.iterations);
+  ASSERT_EQ(dense.catenary.n_droppers(), 27u);
+  ASSERT_EQ(sparse.catenary.dropper_lengths.size(), 27u);
+  for (unsigned int j = 0; j < 27; ++j)
+  {
+    EXPECT_NEAR(dense.catenary.dropper_lengths[j], sparse.catenary.dropper_lengths[j],
+                1e-12)
+        << "dropper " << j + 1;
+    EXPECT_NEAR(dense.dropper_forces[j], sparse.dropper_forces[j], 1e-9) << j + 1;
+  }
+  ASSERT_EQ(dense.catenary.steady_arm_preloads.size(), 2u);
+  ASSERT_EQ(sparse.catenary.steady_arm_preloads.size(), 2u);
+  for (unsigned int k = 0; k < 2; ++k)
+    EXPECT_NEAR(dense.catenary.steady_arm_preloads[k],
+                sparse.catenary.steady_arm_preloads[k], 1e-9)
+        << "steady arm " << k + 1;
 }

@@ -507,6 +507,8 @@ TEST(ContactForceOverX, ScriptMarksSupportsSpansAndTheWindow)
       << gp;
   EXPECT_NE(gp.find("plot $raw using 1:2 with lines"), std::string::npos) << gp;
   EXPECT_NE(gp.find("$filtered using 1:2 with lines"), std::string::npos) << gp;
-  EXPECT_NE(gp.find("set output 'contact_force_over_x_pantograph_2.png'"),
-            std::string::npos);
+  EXPECT_NE(
+      gp.find("set output output_directory.'contact_force_over_x_pantograph_2.png'"),
+      std::string::npos)
+      << gp;
 }

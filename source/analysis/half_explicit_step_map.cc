@@ -129,73 +129,58 @@ private:
   SparseDirectSolver whole; ///< of all blocks, used if banded
 };
 
-namespace
+/**
+ * A column of a banded inverse, M^-1 G^T and the like, kept on its support
+ * only: entries [first, first + values.size()) of a vector that is exactly
+ * zero elsewhere. The columns of a diagonal mass have a few entries; those of
+ * a banded inverse decay by a constant factor per row until they underflow,
+ * some thousand rows for a consistent mass. Their entries below 1e-17 of the
+ * largest at either end are dropped (they no longer change a sum in double
+ * precision): the passes over a column cost O(support), and m columns of a
+ * long section O(m support) memory, not O(m n).
+ */
+struct HalfExplicitStepMap::CompactColumn
 {
-/// Entries [first, last) of a vector: outside them it is exactly zero.
-struct Support
-{
-  unsigned int first = 0, last = 0;
+  unsigned int first = 0;
+  std::vector<double> values;
+
+  unsigned int last() const { return first + values.size(); }
+
+  /// Keeps @p x (which it leaves unchanged) less the small entries at its ends.
+  void assign_truncated(const dealii::Vector<double>& x)
+  {
+    const double small = 1e-17 * x.linfty_norm();
+    unsigned int lo = 0, hi = x.size();
+    while (lo < hi && std::abs(x[lo]) < small)
+      ++lo;
+    while (hi > lo && std::abs(x[hi - 1]) < small)
+      --hi;
+    // Zeros inside the kept range stay (exactly as in the full vector).
+    while (lo < hi && x[lo] == 0.)
+      ++lo;
+    while (hi > lo && x[hi - 1] == 0.)
+      --hi;
+    first = lo;
+    values.assign(x.begin() + lo, x.begin() + hi);
+  }
+
+  /// row . column, the row's entries in order (those outside the support add 0).
+  double dot(const SparseRow& row) const
+  {
+    double sum = 0.;
+    for (std::size_t e = 0; e < row.size(); ++e)
+      if (row.index[e] >= first && row.index[e] < last())
+        sum += row.value[e] * values[row.index[e] - first];
+    return sum;
+  }
+
+  /// y += a column on the support (y unchanged elsewhere, where it is zero).
+  void add_to(dealii::Vector<double>& y, const double a) const
+  {
+    for (unsigned int i = 0; i < values.size(); ++i)
+      y[first + i] += a * values[i];
+  }
 };
-
-/**
- * Sets the entries at either end of @p x that are below 1e-17 of its largest
- * magnitude to zero. A column of a banded inverse decays by a constant factor
- * per row until it underflows, some thousand rows for a consistent mass; below
- * 1e-17 of its largest entry it no longer changes a sum in double precision,
- * and the passes over it get some twenty times shorter.
- */
-void truncate(dealii::Vector<double>& x)
-{
-  const double small = 1e-17 * x.linfty_norm();
-  unsigned int first = 0, last = x.size();
-  while (first < last && std::abs(x[first]) < small)
-    x[first++] = 0.;
-  while (last > first && std::abs(x[last - 1]) < small)
-    x[--last] = 0.;
-}
-
-Support support_of(const dealii::Vector<double>& x)
-{
-  Support s;
-  const unsigned int n = x.size();
-  while (s.first < n && x[s.first] == 0.)
-    ++s.first;
-  s.last = n;
-  while (s.last > s.first && x[s.last - 1] == 0.)
-    --s.last;
-  return s;
-}
-
-Support join(const Support& a, const Support& b)
-{
-  if (a.first == a.last)
-    return b;
-  if (b.first == b.last)
-    return a;
-  return {std::min(a.first, b.first), std::max(a.last, b.last)};
-}
-
-/**
- * y += a x on the support of x: the entries of deal.II's y.add(a, x) there,
- * and y unchanged elsewhere (x is zero there). The columns M^-1 G^T of a
- * diagonal mass have a few entries; those of a banded inverse decay until
- * they underflow: a pass over their support, not over all unknowns.
- */
-void add_on(dealii::Vector<double>& y, const double a, const dealii::Vector<double>& x,
-            const Support& s)
-{
-  for (unsigned int i = s.first; i < s.last; ++i)
-    y[i] += a * x[i];
-}
-
-/// y += a x + b w on @p s, the joint support of x and w (as y.add(a, x, b, w)).
-void add_on(dealii::Vector<double>& y, const double a, const dealii::Vector<double>& x,
-            const double b, const dealii::Vector<double>& w, const Support& s)
-{
-  for (unsigned int i = s.first; i < s.last; ++i)
-    y[i] = y[i] + a * x[i] + b * w[i];
-}
-} // namespace
 
 /**
  * K and D/2 stored by diagonals and swept by DiagonalForceSweep, as the
@@ -229,25 +214,14 @@ struct HalfExplicitStepMap::Rows
 {
   std::vector<ConstraintState> at_n, at_half, at_next;
   /// Y = (M + dt/2 D)^-1 G(t_n)^T, P = M^-1 G(t_n)^T, Q = M^-1 G_t(t_{n+1/2})^T,
-  /// R = M^-1 G(t_{n+1/2})^T, for the rigid constraints.
-  std::vector<dealii::Vector<double>> Y, P, Q, R;
-  /// Where Y, P, P and Q together, and R of each rigid constraint are not zero.
-  std::vector<Support> on_Y, on_P, on_PQ, on_R;
+  /// R = M^-1 G(t_{n+1/2})^T, for the rigid constraints, on their supports.
+  std::vector<CompactColumn> Y, P, Q, R;
+  /// The full vector each column is solved in before it is kept.
+  dealii::Vector<double> scratch;
   /// The inverses of the multipliers' matrices at the acceleration and at the
   /// position level, kept from step to step while no rigid row moves.
   dealii::FullMatrix<double> acceleration_inverse, position_inverse;
   bool rigid_rows_move = false;
-
-  /// The supports of rigid constraint @p k's columns, after they changed.
-  void find_supports(const unsigned int k)
-  {
-    for (auto* column : {&Y[k], &P[k], &Q[k], &R[k]})
-      truncate(*column);
-    on_Y[k] = support_of(Y[k]);
-    on_P[k] = support_of(P[k]);
-    on_PQ[k] = join(on_P[k], support_of(Q[k]));
-    on_R[k] = support_of(R[k]);
-  }
 };
 
 HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
@@ -266,9 +240,8 @@ HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
   rows->at_half.resize(m);
   rows->at_next.resize(m);
   for (auto* c : {&rows->Y, &rows->P, &rows->Q, &rows->R})
-    c->assign(rigid.size(), dealii::Vector<double>(n));
-  for (auto* c : {&rows->on_Y, &rows->on_P, &rows->on_PQ, &rows->on_R})
-    c->assign(rigid.size(), Support());
+    c->assign(rigid.size(), CompactColumn());
+  rows->scratch.reinit(n);
   // The constant rows and their columns, once.
   for (unsigned int i = 0; i < m; ++i)
     if (!system.constraints[i]->depends_on_time())
@@ -288,23 +261,24 @@ HalfExplicitStepMap::HalfExplicitStepMap(const SemiDiscreteSystem& system,
       column(*mass_inverse, s.G, rows->P[k]);
       column(*mass_inverse, s.G_t, rows->Q[k]);
       rows->R[k] = rows->P[k];
-      rows->find_supports(k);
     }
 }
 
 HalfExplicitStepMap::~HalfExplicitStepMap() = default;
 
 void HalfExplicitStepMap::column(const BlockInverse& inverse, const SparseRow& row,
-                                 dealii::Vector<double>& out) const
+                                 CompactColumn& out) const
 {
-  out = 0.;
+  dealii::Vector<double>& x = rows->scratch;
+  x = 0.;
   std::vector<bool> touched(inverse.n_parts(), false);
   for (std::size_t e = 0; e < row.size(); ++e)
   {
-    out(row.index[e]) += row.value[e];
+    x(row.index[e]) += row.value[e];
     touched[inverse.part(row.index[e])] = true;
   }
-  inverse.solve(out, touched);
+  inverse.solve(x, touched);
+  out.assign_truncated(x);
 }
 
 void HalfExplicitStepMap::evaluate_rows(const double t_n, const double t_half,
@@ -325,7 +299,6 @@ void HalfExplicitStepMap::evaluate_rows(const double t_n, const double t_half,
       column(*mass_inverse, rows->at_n[i].G, rows->P[k]);
       column(*mass_inverse, rows->at_half[i].G_t, rows->Q[k]);
       column(*mass_inverse, rows->at_half[i].G, rows->R[k]);
-      rows->find_supports(k);
     }
 }
 
@@ -364,14 +337,14 @@ void HalfExplicitStepMap::apply(const double t_n, const double t_half,
       const ConstraintState& s = sn[rigid[k]];
       if (form)
         for (unsigned int l = 0; l < m; ++l)
-          S(k, l) = s.G.dot(rows->Y[l]);
+          S(k, l) = rows->Y[l].dot(s.G);
       rhs(k) = -(s.G.dot(a) + 2. * s.G_t.dot(x.v) + s.G_tt.dot(x.q));
     }
     if (form)
       S.gauss_jordan();
     S.vmult(lambda, rhs);
     for (unsigned int l = 0; l < m; ++l)
-      add_on(a, lambda(l), rows->Y[l], rows->on_Y[l]);
+      rows->Y[l].add_to(a, lambda(l));
   }
 
   // (40): v* = v_prev + 2 dt a, q* = q + dt (v + v*)/2, then eta and mu.
@@ -393,8 +366,8 @@ void HalfExplicitStepMap::apply(const double t_n, const double t_half,
       for (unsigned int l = 0; form && l < m; ++l)
       {
         const auto &P = rows->P[l], &Q = rows->Q[l], &R = rows->R[l];
-        const double GP = s.G.dot(P), GQ = s.G.dot(Q), GR = s.G.dot(R);
-        const double GtP = s.G_t.dot(P), GtQ = s.G_t.dot(Q), GtR = s.G_t.dot(R);
+        const double GP = P.dot(s.G), GQ = Q.dot(s.G), GR = R.dot(s.G);
+        const double GtP = P.dot(s.G_t), GtQ = Q.dot(s.G_t), GtR = R.dot(s.G_t);
         S(k, l) = h * h * GP + h * GQ;
         S(k, m + l) = h * GR;
         S(m + k, l) = h * h * GtP + h * GtQ + 2. * h * GP;
@@ -409,9 +382,10 @@ void HalfExplicitStepMap::apply(const double t_n, const double t_half,
     for (unsigned int l = 0; l < m; ++l)
     {
       const double eta = solution(l), mu = solution(m + l);
-      add_on(q_new, h * h * eta, rows->P[l], h * eta, rows->Q[l], rows->on_PQ[l]);
-      add_on(q_new, h * mu, rows->R[l], rows->on_R[l]);
-      add_on(v_new, 2. * h * eta, rows->P[l], rows->on_P[l]);
+      rows->P[l].add_to(q_new, h * h * eta);
+      rows->Q[l].add_to(q_new, h * eta);
+      rows->R[l].add_to(q_new, h * mu);
+      rows->P[l].add_to(v_new, 2. * h * eta);
     }
   }
   x.v_prev.swap(x.v); // v_{n} becomes v_prev

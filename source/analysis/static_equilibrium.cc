@@ -2,6 +2,8 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/lac/interleaved_columns.h>
 
+#include <deal.II/lac/dynamic_sparsity_pattern.h>
+
 #include <algorithm>
 #include <cmath>
 #include <set>
@@ -33,11 +35,14 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
   for (unsigned int i = 0; i < m; ++i)
     system.constraints[i]->evaluate(t, states[i]);
   // K^-1 G^T is dense along a wire held only at its ends: m columns of n
-  // cost O(n m) memory, quadratic in the number of spans. Kept within a
-  // budget; beyond it each column is formed again when needed (the same
-  // arithmetic, so the same numbers).
-  const bool keep = static_cast<double>(system.n_dofs()) * m <= column_budget;
-  X.assign(keep ? m : 0, dealii::Vector<double>(system.n_dofs()));
+  // cost O(n m) memory and time, quadratic in the number of spans, and the
+  // inverse of S cubic. Within the budget they are formed here; beyond it
+  // solve() factorises the saddle-point system instead.
+  const double n = system.n_dofs();
+  saddle_point = n * m > column_budget || m > max_dense_constraints;
+  if (saddle_point)
+    return;
+  X.assign(m, dealii::Vector<double>(system.n_dofs()));
   schur.reinit(m, m);
   std::vector<unsigned int> all(m);
   for (unsigned int i = 0; i < m; ++i)
@@ -51,9 +56,8 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
     {
       for (unsigned int k = 0; k < m; ++k)
         schur(k, first + c) = batch.dot(states[k].G, c);
-      if (keep)
-        for (unsigned int i = 0; i < system.n_dofs(); ++i)
-          X[first + c](i) = batch(i, c);
+      for (unsigned int i = 0; i < system.n_dofs(); ++i)
+        X[first + c](i) = batch(i, c);
     }
   }
 }
@@ -72,21 +76,85 @@ StaticEquilibriumSolver::columns(const std::vector<unsigned int>& constraints,
   return count;
 }
 
-void StaticEquilibriumSolver::add_columns_formed_again(
-    const std::vector<unsigned int>& act, const dealii::Vector<double>& lambda,
-    dealii::Vector<double>& q) const
+void StaticEquilibriumSolver::factorize_saddle_point(
+    const std::vector<bool>& active, const std::vector<unsigned int>& act) const
 {
-  InterleavedColumns batch;
-  if (!act.empty())
-    batch.reinit(system.n_dofs());
-  for (unsigned int first = 0; first < act.size(); first += InterleavedColumns::width)
+  if (active == factor_active)
+    return;
+  factor_active.clear(); // until `factor` holds this set's factor
+  const unsigned int n = system.n_dofs(), m = act.size();
+  dealii::DynamicSparsityPattern dsp(n + m, n + m);
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto it = system.stiffness.begin(i); it != system.stiffness.end(i); ++it)
+      dsp.add(i, it->column());
+  for (unsigned int k = 0; k < m; ++k)
   {
-    const unsigned int count = columns(act, first, batch);
-    // In the order of the kept columns' q.add(lambda_k, X_k), k = 0, 1, ...
-    for (unsigned int c = 0; c < count; ++c)
-      for (unsigned int i = 0; i < system.n_dofs(); ++i)
-        q(i) += lambda(first + c) * batch(i, c);
+    for (const unsigned int j : states[act[k]].G.index)
+    {
+      dsp.add(n + k, j);
+      dsp.add(j, n + k);
+    }
+    dsp.add(n + k, n + k);
   }
+  dealii::SparsityPattern pattern;
+  pattern.copy_from(dsp);
+  dealii::SparseMatrix<double> A(pattern);
+  for (unsigned int i = 0; i < n; ++i)
+    for (auto it = system.stiffness.begin(i); it != system.stiffness.end(i); ++it)
+      A.add(i, it->column(), it->value());
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    const SparseRow& G = states[act[k]].G;
+    for (std::size_t e = 0; e < G.size(); ++e)
+    {
+      A.add(n + k, G.index[e], G.value[e]);
+      A.add(G.index[e], n + k, G.value[e]);
+    }
+    // An engaged spring: g + lambda / k = 0, the compliance on the diagonal.
+    const Compliance& law = system.constraints[act[k]]->compliance();
+    if (law.stiffness > 0.)
+      A.add(n + k, n + k, -1. / law.stiffness);
+  }
+  try
+  {
+    factor.factorize(A, "saddle-point system", LinearSolverType::umfpack);
+  }
+  catch (const SimulationError&)
+  {
+    throw SimulationError(dependent_constraints);
+  }
+  factor_active = active;
+}
+
+void StaticEquilibriumSolver::solve_saddle_point(const std::vector<bool>& active,
+                                                 const dealii::Vector<double>& load,
+                                                 StaticEquilibrium& out) const
+{
+  std::vector<unsigned int> act;
+  for (unsigned int i = 0; i < active.size(); ++i)
+    if (active[i])
+      act.push_back(i);
+  factorize_saddle_point(active, act);
+  const unsigned int n = system.n_dofs(), m = act.size();
+  dealii::Vector<double> x(n + m);
+  for (unsigned int i = 0; i < n; ++i)
+    x(i) = load(i);
+  for (unsigned int k = 0; k < m; ++k)
+    x(n + k) = -states[act[k]].z;
+  factor.solve(x);
+  out.q.reinit(n);
+  for (unsigned int i = 0; i < n; ++i)
+    out.q(i) = x(i);
+  out.multipliers.assign(states.size(), 0.);
+  for (unsigned int k = 0; k < m; ++k)
+  {
+    if (!std::isfinite(x(n + k)))
+      throw SimulationError(dependent_constraints);
+    out.multipliers[act[k]] = -x(n + k);
+  }
+  out.gaps.resize(states.size());
+  for (unsigned int i = 0; i < states.size(); ++i)
+    out.gaps[i] = states[i].position_residual(out.q);
 }
 
 const dealii::FullMatrix<double>&
@@ -141,12 +209,9 @@ void StaticEquilibriumSolver::solve_with_active_set(const std::vector<bool>& act
   }
   out.q = q_free;
   out.multipliers.assign(states.size(), 0.);
-  if (X.empty())
-    add_columns_formed_again(act, lambda, out.q);
   for (unsigned int k = 0; k < m; ++k)
   {
-    if (!X.empty())
-      out.q.add(lambda(k), X[act[k]]);
+    out.q.add(lambda(k), X[act[k]]);
     out.multipliers[act[k]] = lambda(k);
   }
   out.gaps.resize(states.size());
@@ -177,9 +242,14 @@ StaticEquilibriumSolver::solve(const dealii::Vector<double>& extra_load,
 {
   Assert(initial_active.size() == states.size(),
          dealii::ExcDimensionMismatch(initial_active.size(), states.size()));
-  dealii::Vector<double> q_free(system.load);
-  q_free += extra_load;
-  K_inverse.solve(q_free);
+  dealii::Vector<double> load(system.load);
+  load += extra_load;
+  dealii::Vector<double> q_free; // K^-1 (f + f_extra): the dense way's start
+  if (!saddle_point)
+  {
+    q_free = load;
+    K_inverse.solve(q_free);
+  }
 
   StaticEquilibrium out;
   out.active = initial_active;
@@ -194,7 +264,10 @@ StaticEquilibriumSolver::solve(const dealii::Vector<double>& extra_load,
       throw SimulationError("static equilibrium: the active set of the unilateral "
                             "constraints cycles after " +
                             std::to_string(iteration - 1) + " iterations");
-    solve_with_active_set(out.active, q_free, out);
+    if (saddle_point)
+      solve_saddle_point(out.active, load, out);
+    else
+      solve_with_active_set(out.active, q_free, out);
     out.active_set_iterations = iteration;
     const int worst = constraint_to_switch(out);
     if (worst < 0)

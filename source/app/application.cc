@@ -6,7 +6,7 @@
 #include <pantocat/app/run_phase.h>
 #include <pantocat/app/sweep_mode.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/studies/convergence_study.h>
 #include <pantocat/studies/work_precision_study.h>
 
@@ -34,18 +34,10 @@ void print_parameters(const std::string& format)
                                                    : dealii::ParameterHandler::PRM);
 }
 
-/// The whole content of @p file, if it is a regular file.
+/// The whole content of @p file, if it is a regular file (not a link) of at most 16 MiB.
 std::optional<std::string> content_of(const std::filesystem::path& file)
 {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(file, error))
-    return std::nullopt;
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (!in)
-    return std::nullopt;
-  return text.str();
+  return read_regular_file(file.string(), std::uint64_t(16) << 20, false).bytes;
 }
 
 /// write_file_atomically(), false instead of an exception.
@@ -63,13 +55,15 @@ bool write_atomically(const std::filesystem::path& file, const std::string& text
 }
 
 /**
- * Creates the output directory and writes the fully resolved parameters into
- * it. discard() undoes that for a run stopped by bad input, so that nothing
- * is left that looks like a result: it removes parameters.prm (and the
- * directory, if it made it and nothing else is in it), or puts back the
- * parameters.prm that was there before. That may be the input file itself
- * (`pantocat-fem out/parameters.prm`), read before this object is made: a
- * refusal leaves it as it was.
+ * Creates the output directory, locks it for this run (DirectoryLock: a
+ * second run into a busy directory is refused before it touches anything)
+ * and writes the fully resolved parameters into it. discard() undoes that
+ * for a run stopped by bad input, so that nothing is left that looks like a
+ * result: it removes parameters.prm (and the directory, if it made it and
+ * nothing else is in it), or puts back the parameters.prm that was there
+ * before. That may be the input file itself (`pantocat-fem
+ * out/parameters.prm`), read before this object is made: a refusal leaves it
+ * as it was.
  */
 class OutputDirectory
 {
@@ -83,6 +77,7 @@ public:
     if (error || !std::filesystem::is_directory(dir, error))
       throw InputError(what + "cannot create this directory" +
                        (error ? " (" + error.message() + ")" : ""));
+    lock_directory(what, dir);
     for (const std::string& name : result_files())
       if (std::filesystem::is_directory(std::filesystem::path(dir) / name, error))
         throw InputError(what + (std::filesystem::path(dir) / name).string() +
@@ -90,28 +85,80 @@ public:
     previous = content_of(parameters);
     std::ostringstream text;
     prm.print_parameters(text, dealii::ParameterHandler::PRM);
-    if (!write_atomically(parameters, text.str()))
+    try
+    {
+      write_file_atomically(parameters.string(), text.str());
+    }
+    catch (const SimulationError& e)
     {
       discard();
-      throw InputError(what + "cannot write " + parameters.string());
+      throw InputError(what + e.what());
     }
   }
-  void discard() const
+  void discard()
   {
     std::error_code ignored;
     if (previous)
       write_atomically(parameters, *previous);
     else
       std::filesystem::remove(parameters, ignored);
+    if (lock && lock->made_file())
+      lock->remove(); // the directory is left as it was
     if (created && std::filesystem::is_empty(parameters.parent_path(), ignored))
       std::filesystem::remove(parameters.parent_path(), ignored);
   }
 
 private:
+  /// Takes the directory's lock; an InputError if another run holds it.
+  void lock_directory(const std::string& what, const std::string& dir)
+  {
+    try
+    {
+      lock.emplace(dir);
+    }
+    catch (const SimulationError& e)
+    {
+      throw InputError(what + e.what());
+    }
+    if (!lock->locked())
+    {
+      const std::string pid = lock->holder();
+      throw InputError(what + "another run" +
+                       (pid.empty() ? "" : " (process " + pid + ")") +
+                       " is writing into this directory; wait until it ends or choose "
+                       "another directory");
+    }
+  }
+
   std::filesystem::path parameters;
+  std::optional<DirectoryLock> lock;   ///< held while the run lasts
   std::optional<std::string> previous; ///< parameters.prm before this run
   bool created = false;
 };
+
+/**
+ * Makes @p output in the process that writes (rank 0 of a study under MPI;
+ * its refusal stops every rank), none on the others.
+ */
+void make_output_directory(std::optional<OutputDirectory>& output,
+                           const dealii::ParameterHandler& prm, const std::string& dir,
+                           const bool writes, const bool mpi)
+{
+  std::string refusal;
+  try
+  {
+    if (writes)
+      output.emplace(prm, dir);
+  }
+  catch (const InputError& e)
+  {
+    refusal = e.what();
+  }
+  if (mpi && dealii::Utilities::MPI::n_mpi_processes(MPI_COMM_WORLD) > 1)
+    refusal = dealii::Utilities::MPI::broadcast(MPI_COMM_WORLD, refusal, 0);
+  if (!refusal.empty())
+    throw InputError(refusal);
+}
 
 /**
  * Holds back the lines that start with "pantocat-fem: warning:" written to a
@@ -287,14 +334,16 @@ int run(const CommandLine& cl, int argc, char** argv)
   // One thread: vectors of a few thousand entries lose more to TBB's
   // scheduling than they gain.
   dealii::MultithreadInfo::set_thread_limit(1);
-  const OutputDirectory output(prm, parameters.output.directory);
+  // Studies write from rank 0 (their runs are spread over the ranks).
+  const bool writes =
+      !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
+  std::optional<OutputDirectory> output;
+  make_output_directory(output, prm, parameters.output.directory, writes,
+                        mpi.has_value());
   // Verbosity = quiet: the screen output goes nowhere (errors go to stderr).
   std::ostream discard(nullptr);
   std::ostream& out =
       parameters.output.verbosity == Verbosity::quiet ? discard : std::cout;
-  // Studies write from rank 0 (their runs are spread over the ranks).
-  const bool writes =
-      !mpi || dealii::Utilities::MPI::this_mpi_process(MPI_COMM_WORLD) == 0;
   RunPhase phase(parameters.output.directory,
                  parameters.mode == RunMode::dynamics && parameters.checkpoint.resume);
   try
@@ -303,15 +352,26 @@ int run(const CommandLine& cl, int argc, char** argv)
   }
   catch (const InputError&)
   {
-    phase.refused();
-    output.discard(); // a refusal leaves the directory as it was
+    if (output)
+    {
+      phase.refused();
+      output->discard(); // a refusal leaves the directory as it was
+    }
     throw;
   }
   catch (const std::exception& e)
   {
     if (writes) // a failed run keeps its outputs, marked failed
-      phase.fail(dynamic_cast<const SimulationError*>(&e) ? e.what()
-                                                          : one_line_message(e));
+      try
+      {
+        phase.fail(dynamic_cast<const SimulationError*>(&e) ? e.what()
+                                                            : one_line_message(e));
+      }
+      catch (const std::exception&)
+      {
+        // The summary cannot be written either (a full disk): the error line
+        // names the file whose failure stopped the run.
+      }
     throw;
   }
   return 0;

@@ -144,6 +144,11 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
     resume_from.emplace(checkpoint_file, p.fingerprint, runner.number_of_steps(),
                         runner.time_step());
   const CheckpointWriter checkpoint_writer(checkpoint_file, p.fingerprint);
+  // The series solution refuses what it cannot compare (a speed ramp, a speed
+  // above the wave speed): before any output is touched too.
+  std::optional<MovingLoadComparison> reference;
+  if (p.scene.is_classical_moving_load() && !p.output.probe_positions.empty())
+    reference.emplace(moving_load_series(runner.case_data()));
   timer.leave_subsection();
   phase.begin("time loop"); // clears the results of an earlier run
   out << "Dynamic run: " << to_string(p.discretisation.method)
@@ -185,9 +190,8 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
                               .get());
   if (p.output.energy)
     observers.push_back(&energy);
-  std::optional<MovingLoadComparison> reference;
-  if (p.scene.is_classical_moving_load() && !p.output.probe_positions.empty())
-    observers.push_back(&reference.emplace(moving_load_series(runner.case_data())));
+  if (reference)
+    observers.push_back(&*reference);
   std::optional<VtuTimeSeriesWriter> vtu;
   if (p.output.vtu_interval > 0.)
     observers.push_back(&vtu.emplace(dir, p.output.vtu_interval, runner.time_step(),

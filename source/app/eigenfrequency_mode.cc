@@ -2,7 +2,7 @@
 #include <pantocat/analysis/stability_limit.h>
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/json_writer.h>
 
 #include <iomanip>

@@ -1,5 +1,6 @@
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/patterns.h>
@@ -22,6 +23,9 @@ namespace
 /// files it includes (a file that includes another twice, which includes a
 /// third twice, ... would otherwise be read 2^depth times).
 constexpr unsigned int max_includes = 1000;
+
+/// A parameter file is a few kilobytes; one larger than this is no parameter file.
+constexpr std::uint64_t max_parameter_file_bytes = std::uint64_t(16) << 20;
 
 std::string collapse_whitespace(const std::string& text)
 {
@@ -277,12 +281,16 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
                          const std::vector<std::string>& overrides,
                          const bool skip_undefined)
 {
-  std::ifstream in(file);
-  if (!in)
+  // Read at once: a FIFO or a device is refused without waiting on it.
+  const FileContent content = read_regular_file(file, max_parameter_file_bytes, true);
+  if (content.missing)
     throw InputError("cannot read parameter file '" + file +
                      "'; write a template with: pantocat-fem --print-parameters > " +
                      file);
   check_parameter_file(file);
+  if (!content.bytes)
+    throw InputError("cannot read parameter file '" + file + "': it " + content.problem);
+  std::istringstream in(*content.bytes);
   try
   {
     prm.parse_input(in, file, "", skip_undefined);

@@ -89,6 +89,8 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   fingerprint = critical_parameters(prm);
 
   make_case().check();
+  if (is_study(mode)) // Study/Contact laws = penalty: Scene's law for every run
+    make_case().check_contact_damping(study.penalty, "Scene/Contact damping");
   require(mode != RunMode::convergence_study || !study.all_combinations,
           "Study/Refinements", "all combinations",
           "a convergence study pairs N+1 and dt row by row and prints the observed "
@@ -107,7 +109,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
       "the static check lets the droppers slacken, which Scene/Droppers = "
       "bilateral forbids; allowed 0 (off) with it, or Droppers = unilateral or elastic");
   checkpoint.check(time_integration.integrator);
-  output.check(time_integration.time_step);
+  output.check(time_integration.time_step, catenary.length());
   statistics.check(time_integration.time_step, pantograph().initial_position,
                    pantograph().final_position, catenary.support_positions());
   if (mode == RunMode::dynamics)

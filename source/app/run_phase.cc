@@ -1,8 +1,9 @@
 #include <pantocat/app/run_phase.h>
+#include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/run_summary.h>
 
 #include <algorithm>
-#include <filesystem>
 
 namespace pantocat
 {
@@ -22,7 +23,6 @@ const std::vector<std::string>& result_files()
                                               "contact_force_over_x.gp",
                                               "solution.pvd",
                                               "checkpoint.bin",
-                                              "checkpoint.bin.tmp",
                                               "static_profile.csv",
                                               "static_profile.vtu",
                                               "dropper_forces.csv",
@@ -50,29 +50,35 @@ void RunPhase::clear_earlier_results()
   if (cleared)
     return;
   cleared = true;
-  namespace fs = std::filesystem;
   // What a resumed run goes on from stays: the checkpoint, the time series
   // (cut back to the checkpoint's step) and the VTU frames before it.
   const std::vector<std::string> kept =
       resuming ? std::vector<std::string>{"parameters.prm", "checkpoint.bin",
                                           "time_series.csv", "solution.pvd"}
                : std::vector<std::string>{"parameters.prm"};
-  std::error_code error;
-  for (const std::string& name : result_files())
-    if (std::find(kept.begin(), kept.end(), name) == kept.end())
-      fs::remove(fs::path(directory) / name, error);
-  // With several pantographs: contact_force_over_x_pantograph_k.png.
-  for (const auto& entry : fs::directory_iterator(directory, error))
+  const auto& results = result_files();
+  const auto is_result = [&](const std::string& name)
+  { return std::find(results.begin(), results.end(), name) != results.end(); };
+  const auto cleared_file = [&](const std::string& name)
   {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("contact_force_over_x_", 0) == 0 && entry.path().extension() == ".png")
-      fs::remove(entry.path(), error);
-  }
-  const fs::path frames = fs::path(directory) / "vtu";
-  if (!resuming && fs::is_directory(frames, error))
-    for (const auto& entry : fs::directory_iterator(frames, error))
-      if (entry.path().extension() == ".vtu")
-        fs::remove(entry.path(), error);
+    // With several pantographs: contact_force_over_x_pantograph_k.png; and
+    // the temporary files of whole-file writes that a killed run left.
+    const auto temporary = name.find(".tmp-");
+    return (is_result(name) && std::find(kept.begin(), kept.end(), name) == kept.end()) ||
+           (name.rfind("contact_force_over_x_", 0) == 0 && name.size() > 4 &&
+            name.compare(name.size() - 4, 4, ".png") == 0) ||
+           (temporary != std::string::npos && is_result(name.substr(0, temporary)));
+  };
+  // A failure to remove is an error: a result left behind would pass for ours.
+  const Directory output = Directory::open(directory);
+  output.remove_files(cleared_file);
+  // vtu/ only if it is a directory: a link there leads out of the output
+  // directory, where nothing is removed (the VTU writer replaces the link).
+  if (const auto frames = Directory::existing_subdirectory(output, "vtu");
+      frames && !resuming)
+    frames->remove_files(
+        [](const std::string& name)
+        { return name.size() > 4 && name.compare(name.size() - 4, 4, ".vtu") == 0; });
 }
 
 void RunPhase::begin(const std::string& next)
@@ -81,6 +87,16 @@ void RunPhase::begin(const std::string& next)
   phase = next;
   if (!first)
     return;
+  // A refused resume (a checkpoint that cannot be resumed is found when the
+  // time loop starts) puts back the summary of the run it refused to go on
+  // with; not a "completed" one, whose results are cleared below.
+  if (resuming)
+    earlier_summary =
+        read_regular_file(directory + "/summary.json", std::uint64_t(64) << 20, false)
+            .bytes;
+  if (earlier_summary &&
+      earlier_summary->find("\"status\": \"completed\"") != std::string::npos)
+    earlier_summary.reset();
   clear_earlier_results();
   write_failed_summary(directory + "/summary.json", phase,
                        "the run has not finished: it is running, or it was killed");
@@ -89,9 +105,19 @@ void RunPhase::begin(const std::string& next)
 
 void RunPhase::refused()
 {
-  std::error_code error;
-  if (wrote_summary)
-    std::filesystem::remove(directory + "/summary.json", error);
+  if (!wrote_summary)
+    return;
+  try
+  {
+    if (earlier_summary)
+      write_file_atomically(directory + "/summary.json", *earlier_summary);
+    else
+      remove_output(directory + "/summary.json");
+  }
+  catch (const SimulationError&)
+  {
+    // The refusal is what the run reports; its summary says "not finished".
+  }
 }
 
 void RunPhase::fail(const std::string& reason)

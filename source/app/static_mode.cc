@@ -1,6 +1,6 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/elasticity_output.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/wire_output.h>

@@ -67,16 +67,36 @@ std::vector<double> CatenaryParameters::steady_arm_positions() const
   return arms;
 }
 
-double CatenaryParameters::presag_height(const unsigned int k, const double x) const
+namespace
 {
-  const double start = support_positions()[k], l = spans()[k];
+double parabola(const double presag, const double start, const double l, const double x)
+{
   const double xi = (x - start) / l;
   return -4. * presag * xi * (1. - xi);
+}
+} // namespace
+
+double CatenaryParameters::presag_height(const unsigned int k, const double x) const
+{
+  return parabola(presag, support_positions()[k], spans()[k], x);
+}
+
+std::vector<double> CatenaryParameters::dropper_presag_heights() const
+{
+  const std::vector<double> start = support_positions(), l = spans();
+  std::vector<double> z(n_droppers());
+  for (unsigned int j = 0; j < n_droppers(); ++j)
+  {
+    const unsigned int k = dropper_spans[j];
+    z[j] = parabola(presag, start[k], l[k], dropper_positions[j]);
+  }
+  return z;
 }
 
 namespace
 {
-std::string list_to_string(const std::vector<double>& values)
+template <typename Number>
+std::string list_to_string(const std::vector<Number>& values)
 {
   std::ostringstream s;
   for (unsigned int i = 0; i < values.size(); ++i)
@@ -100,6 +120,22 @@ void declare_wire(dealii::ParameterHandler& prm, const WireParameters& defaults,
                     "Viscous damping beta [N s/m^2], >= 0.");
 }
 
+/**
+ * The lists of @p text separated by ';', every one kept: an empty list (also
+ * after a last ';') is a span without droppers. (deal.II's split_string_list
+ * drops a last empty element, so "a; b;" would be two lists.)
+ */
+std::vector<std::string> split_lists(const std::string& text)
+{
+  std::vector<std::string> lists{""};
+  for (const char c : text)
+    if (c == ';')
+      lists.emplace_back();
+    else
+      lists.back() += c;
+  return lists;
+}
+
 void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire)
 {
   wire.mass_per_length = prm.get_double("Mass per length");
@@ -115,10 +151,19 @@ void CatenaryParameters::place_droppers(const std::vector<std::vector<double>>& 
   const std::vector<double> l = spans();
   const std::vector<double> supports = support_positions();
   const bool per_span = positions.size() > 1;
-  require(!per_span || positions.size() == l.size(), "Catenary/Droppers/Positions",
-          std::to_string(positions.size()) + " lists",
-          "give one list for every span or one per span (" + std::to_string(l.size()) +
-              " spans), separated by ';'");
+  if (per_span && positions.size() != l.size())
+  {
+    std::string empty; // which lists are empty, e.g. "list 4 empty"
+    for (std::size_t k = 0; k < positions.size(); ++k)
+      if (positions[k].empty())
+        empty += (empty.empty() ? "" : ", ") + std::to_string(k + 1);
+    require(false, "Catenary/Droppers/Positions",
+            std::to_string(positions.size()) + " lists" +
+                (empty.empty() ? "" : " (empty: list " + empty + ")"),
+            "give one list for every span, or one per span (" + std::to_string(l.size()) +
+                " spans) separated by ';'; every ';' starts a list, an empty one "
+                "(also after a last ';') is a span without droppers");
+  }
   dropper_positions.clear();
   dropper_spans.clear();
   std::vector<double> relative;
@@ -128,12 +173,14 @@ void CatenaryParameters::place_droppers(const std::vector<std::vector<double>>& 
     for (unsigned int i = 0; i < in_span.size(); ++i)
     {
       const double x = in_span[i];
-      require(x > 0. && x < l[k], "Catenary/Droppers/Positions", x,
-              "positions are measured from the span's first support and must lie "
-              "inside span " +
-                  std::to_string(k + 1) + ", (0, " + number_to_string(l[k]) + ") m");
-      require(i == 0 || x > in_span[i - 1], "Catenary/Droppers/Positions",
-              list_to_string(in_span), "positions in a span must be strictly increasing");
+      if (!(x > 0. && x < l[k])) // the message only when it fails: O(n) in all
+        require(false, "Catenary/Droppers/Positions", x,
+                "positions are measured from the span's first support and must lie "
+                "inside span " +
+                    std::to_string(k + 1) + ", (0, " + number_to_string(l[k]) + ") m");
+      if (i > 0 && !(x > in_span[i - 1]))
+        require(false, "Catenary/Droppers/Positions", list_to_string(in_span),
+                "positions in a span must be strictly increasing");
       dropper_positions.push_back(supports[k] + x);
       dropper_spans.push_back(k);
       relative.push_back(i);
@@ -184,7 +231,8 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     List(List(Double(), 0, UINT_MAX, ","), 1, UINT_MAX, ";"),
                     "Dropper positions [m] from each span's first support, increasing, "
                     "inside the span: one list for every span, or one list per span "
-                    "separated by ';'.");
+                    "separated by ';' (every ';' starts a list: an empty one, also "
+                    "after a last ';', is a span without droppers).");
   prm.declare_entry("Lengths", list_to_string(d.dropper_lengths), List(Double(0.), 0),
                     "Dropper lengths l_j [m]: one per dropper of a span (reused in every "
                     "span) or one per dropper of the section; not read with Design = "
@@ -255,8 +303,7 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
   prm.enter_subsection("Droppers");
   std::vector<std::vector<double>> positions;
-  for (const std::string& group :
-       dealii::Utilities::split_string_list(prm.get("Positions"), ';'))
+  for (const std::string& group : split_lists(prm.get("Positions")))
     positions.push_back(
         dealii::Utilities::string_to_double(dealii::Utilities::split_string_list(group)));
   const std::vector<double> lengths = dealii::Utilities::string_to_double(
@@ -295,6 +342,10 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
 void CatenaryParameters::check() const
 {
   require(span > 0., "Catenary/Span", span, "must be > 0");
+  // Before the lengths: Design = designed starts every length at l_c.
+  require(support_height > 0., "Catenary/Support height", support_height,
+          "the encumbrance l_c (carrier above the contact wire at the supports) must "
+          "be > 0");
   for (const double l : span_lengths)
     require(l > 0., "Catenary/Span lengths", l, "must be > 0");
   require(carrier.mass_per_length > 0., "Catenary/Carrier/Mass per length",
@@ -312,37 +363,49 @@ void CatenaryParameters::check() const
           list_to_string(dropper_lengths),
           "needs one length per dropper position (" +
               std::to_string(dropper_positions.size()) + " positions given)");
+  const double L = length();
   for (unsigned int j = 0; j < dropper_positions.size(); ++j)
   {
+    // Each message is formed only when its check fails: O(n) in all.
     const double x = dropper_positions[j];
-    require(x > 0. && x < length(), "Catenary/Droppers/Positions", x,
-            "dropper positions must lie inside the section (0, " +
-                number_to_string(length()) + ") m");
-    if (j > 0)
-      require(x > dropper_positions[j - 1], "Catenary/Droppers/Positions",
-              list_to_string(dropper_positions), "positions must be strictly increasing");
-    require(dropper_lengths[j] > 0., "Catenary/Droppers/Lengths", dropper_lengths[j],
-            "must be > 0");
+    if (!(x > 0. && x < L))
+      require(false, "Catenary/Droppers/Positions", x,
+              "dropper positions must lie inside the section (0, " + number_to_string(L) +
+                  ") m");
+    if (j > 0 && !(x > dropper_positions[j - 1]))
+      require(false, "Catenary/Droppers/Positions", list_to_string(dropper_positions),
+              "positions must be strictly increasing");
+    if (!(dropper_lengths[j] > 0.))
+      require(false, "Catenary/Droppers/Lengths", dropper_lengths[j], "must be > 0");
   }
-  check_steady_arm_supports();
+  check_supports();
 }
 
-void CatenaryParameters::check_steady_arm_supports() const
+void CatenaryParameters::check_supports() const
 {
+  require(carrier_support != CarrierSupport::spring || carrier_support_stiffness > 0.,
+          "Catenary/Supports/Carrier support stiffness", carrier_support_stiffness,
+          "must be > 0 with Carrier support = spring (a spring of stiffness 0 holds "
+          "nothing; Carrier support = fixed holds the carrier rigidly)");
+  require(steady_arm_supports.empty() || steady_arm_stiffness > 0.,
+          "Catenary/Supports/Steady arm supports", list_to_string(steady_arm_supports),
+          "names supports for steady arms, but Steady arm stiffness = 0 means no steady "
+          "arms; allowed: a Steady arm stiffness > 0, or an empty list");
   const unsigned int n = number_of_spans();
   const std::string parameter = "Catenary/Supports/Steady arm supports";
   for (unsigned int i = 0; i < steady_arm_supports.size(); ++i)
   {
     const unsigned int k = steady_arm_supports[i];
-    require(k >= 1 && k + 1 <= n, parameter, k,
-            (k == 0 || k == n
-                 ? "support " + std::to_string(k) +
-                       " is a section anchor (both wires pinned there)"
-                 : "support " + std::to_string(k) + " does not exist in a section of " +
-                       std::to_string(n) + " spans") +
-                "; allowed: supports between spans, 1.." + std::to_string(n - 1));
-    require(i == 0 || k > steady_arm_supports[i - 1], parameter, k,
-            "support numbers must be strictly increasing");
+    if (!(k >= 1 && k + 1 <= n))
+      require(false, parameter, k,
+              (k == 0 || k == n
+                   ? "support " + std::to_string(k) +
+                         " is a section anchor (both wires pinned there)"
+                   : "support " + std::to_string(k) + " does not exist in a section of " +
+                         std::to_string(n) + " spans") +
+                  "; allowed: supports between spans, 1.." + std::to_string(n - 1));
+    if (i > 0 && k <= steady_arm_supports[i - 1])
+      require(false, parameter, k, "support numbers must be strictly increasing");
   }
 }
 } // namespace pantocat

@@ -1,5 +1,5 @@
 #include <pantocat/base/number_format.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/elasticity_output.h>
 #include <pantocat/io/plots.h>
 
@@ -59,10 +59,10 @@ bool plot_elasticity(const std::string& dir, const StaticElasticity& e,
 {
   const double a = e.x.front(), b = e.x.back(), margin = 0.02 * (b - a);
   std::ostringstream gp;
-  gp << "# Redraw with: gnuplot elasticity.gp (in this directory)\n"
-     << "set datafile separator ','\n"
+  begin_gnuplot_script(gp, "elasticity.gp");
+  gp << "set datafile separator ','\n"
      << "set terminal pngcairo size 900,500 noenhanced\n"
-     << "set output 'elasticity.png'\n"
+     << gnuplot_output("elasticity.png") << '\n'
      << "set grid\nset key outside right\n"
      << "set xrange [" << a - margin << ":" << b + margin << "]\n"
      << "set yrange [0:*]\nset offsets 0, 0, graph 0.05, 0\n"

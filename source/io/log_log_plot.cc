@@ -1,7 +1,7 @@
 #include <pantocat/io/log_log_plot.h>
 #include <pantocat/io/plots.h>
 
-#include <fstream>
+#include <pantocat/base/safe_files.h>
 
 namespace pantocat
 {
@@ -12,11 +12,11 @@ bool plot_log_log(const std::string& dir, const std::string& name,
 {
   const std::string script = name + ".gp";
   {
-    std::ofstream gp(dir + "/" + script);
-    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "set terminal pngcairo size 1150,650 noenhanced\n"
+    OutputFile gp(dir + "/" + script);
+    begin_gnuplot_script(gp, script);
+    gp << "set terminal pngcairo size 1150,650 noenhanced\n"
        << "set colorsequence podo\n"
-       << "set output '" << name << ".png'\n"
+       << gnuplot_output(name + ".png") << '\n'
        << "set logscale xy\nset format x '%g'\nset format y '%.0e'\n"
        << "set grid xtics ytics mxtics mytics\nset key outside right font ',10'\n"
        << "set title " << gnuplot_string(title) << "\nset xlabel "
@@ -45,6 +45,7 @@ bool plot_log_log(const std::string& dir, const std::string& name,
     else if (drawn.empty())
       gp << "1/0 notitle";
     gp << '\n';
+    gp.close();
   }
   return !run_gnuplot(dir, script, {name + ".png"}).empty();
 }

@@ -60,8 +60,12 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
 }
 
-void OutputParameters::check(const double time_step) const
+void OutputParameters::check(const double time_step, const double length) const
 {
+  // In every mode, also where no run measures them (studies, sweeps).
+  for (const double x : probe_positions)
+    require(x > 0. && x < length, "Output/Probe positions", x,
+            "must lie inside (0, " + number_to_string(length) + ") m, the wires' domain");
   require(vtu_interval == 0. || vtu_interval >= time_step, "Output/VTU interval",
           vtu_interval,
           "must be 0 (no frames) or at least Time integration/Time step = " +

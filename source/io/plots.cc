@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/external_program.h>
 #include <pantocat/io/plot_data.h>
 #include <pantocat/io/plots.h>
@@ -9,7 +10,6 @@
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
-#include <fstream>
 
 namespace pantocat
 {
@@ -49,50 +49,50 @@ bool gnuplot_available()
   return !find_program("gnuplot").empty();
 }
 
-namespace
-{
-/// The @p outputs of @p dir that exist and are not empty.
-std::vector<std::string> written_files(const std::string& dir,
-                                       const std::vector<std::string>& outputs)
-{
-  std::vector<std::string> written;
-  for (const std::string& file : outputs)
-  {
-    std::error_code error;
-    const auto size = std::filesystem::file_size(dir + "/" + file, error);
-    if (!error && size > 0)
-      written.push_back(file);
-  }
-  return written;
-}
-} // namespace
-
 std::vector<std::string> run_gnuplot(const std::string& dir,
                                      const std::vector<PlotScript>& scripts)
 {
-  std::vector<std::string> outputs, arguments;
+  std::vector<std::string> outputs;
   for (const PlotScript& s : scripts)
-  {
     for (const std::string& file : s.outputs)
     {
-      std::filesystem::remove(dir + "/" + file);
+      remove_output(dir + "/" + checked_file_name(file)); // no plot of an earlier run
       outputs.push_back(file);
     }
-    // A plain file name: a leading "./" keeps gnuplot from reading one that
-    // starts with '-' as an option.
-    arguments.push_back("./" + s.script);
-  }
   const std::string gnuplot = find_program("gnuplot");
   if (gnuplot.empty() || scripts.empty())
     return {};
+  // gnuplot writes into a directory of this process only (a link planted at
+  // a plot's name is not followed); the plots are then renamed into place.
+  const PrivateDirectory plots(dir);
+  const std::vector<std::string> prefix{"-e", std::string(gnuplot_output_directory) +
+                                                  " = '" + plots.name() + "/'"};
+  std::vector<std::string> arguments = prefix;
+  for (const PlotScript& s : scripts)
+    // A plain file name: a leading "./" keeps gnuplot from reading one that
+    // starts with '-' as an option.
+    arguments.push_back("./" + checked_file_name(s.script));
+  const auto missing = [&](const PlotScript& s)
+  {
+    return std::any_of(s.outputs.begin(), s.outputs.end(),
+                       [&](const std::string& png) { return plots.size_of(png) == 0; });
+  };
   // One gnuplot for all scripts (one start, not one per script). gnuplot
   // stops at the first script that fails: then each script whose plots are
   // missing runs again alone, so that one failure costs only its own plots.
   if (!run_program(gnuplot, arguments, dir) && scripts.size() > 1)
     for (const PlotScript& s : scripts)
-      if (written_files(dir, s.outputs).size() < s.outputs.size())
-        run_program(gnuplot, {"./" + s.script}, dir);
-  return written_files(dir, outputs);
+      if (missing(s))
+      {
+        arguments = prefix;
+        arguments.push_back("./" + s.script);
+        run_program(gnuplot, arguments, dir);
+      }
+  std::vector<std::string> written;
+  for (const std::string& file : outputs)
+    if (plots.size_of(file) > 0 && plots.move_out(file, dir + "/" + file))
+      written.push_back(file);
+  return written;
 }
 
 std::vector<std::string> run_gnuplot(const std::string& dir, const std::string& script,
@@ -105,11 +105,28 @@ std::string gnuplot_string(const std::string& text)
 {
   std::string quoted = "'";
   for (const char c : text)
-    if (c == '\'')
-      quoted += "''";
-    else
-      quoted += static_cast<unsigned char>(c) < 0x20 || c == 0x7f ? ' ' : c;
+  {
+    const auto u = static_cast<unsigned char>(c);
+    const bool plain =
+        std::isalnum(u) || u >= 0x80 ||
+        std::string(" +-*/=_.,:;()[]<>%#!?&|~^{}").find(c) != std::string::npos;
+    quoted += plain ? c : u < 0x20 || u == 0x7f ? ' ' : '_';
+  }
   return quoted + "'";
+}
+
+void begin_gnuplot_script(std::ostream& gp, const std::string& script,
+                          const std::string& comment)
+{
+  gp << "# Redraw with: gnuplot " << checked_file_name(script) << " (in this directory)\n"
+     << comment << "if (!exists('" << gnuplot_output_directory << "')) "
+     << gnuplot_output_directory << " = ''\n";
+}
+
+std::string gnuplot_output(const std::string& file)
+{
+  return std::string("set output ") + gnuplot_output_directory + ".'" +
+         checked_file_name(file) + "'";
 }
 
 bool plot_contact_force_statistics(const std::string& dir,
@@ -127,12 +144,12 @@ PlotScript contact_force_statistics_script(const std::string& dir,
   // The lines of the figures the run reports first: filtered if filtered.
   const ForceFigures& f = s.filtered ? *s.filtered : s.raw;
   {
-    std::ofstream gp(dir + "/" + script);
-    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "# The curves of contact_force.csv, kept as they are drawn: per half pixel\n"
-       << "# the lowest and the highest point.\n"
-       << "set terminal pngcairo size 900,500 noenhanced\n"
-       << "set output 'contact_force_statistics.png'\n"
+    OutputFile gp(dir + "/" + script);
+    begin_gnuplot_script(gp, script,
+                         "# The curves of contact_force.csv, kept as they are drawn: per "
+                         "half pixel\n# the lowest and the highest point.\n");
+    gp << "set terminal pngcairo size 900,500 noenhanced\n"
+       << gnuplot_output("contact_force_statistics.png") << '\n'
        << "set grid\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\nset "
           "key outside right\n"
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
@@ -161,8 +178,7 @@ PlotScript contact_force_statistics_script(const std::string& dir,
          << ", " << f.mean_minus_3std
          << " with lines dashtype 2 lc rgb '#c00000' title 'mean - 3 std'";
     gp << '\n';
-    if (!gp)
-      throw SimulationError("cannot write " + dir + "/" + script);
+    gp.close();
   }
   return {script, {"contact_force_statistics.png"}};
 }
@@ -215,7 +231,7 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
 {
   const ContactForceStatistics& s = *p.statistics;
   gp << "unset arrow\nunset label\nunset object\n"
-     << "set output " << gnuplot_string(p.png) << '\n'
+     << gnuplot_output(p.png) << '\n'
      << "set title "
      << gnuplot_string(title + ": contact force over x_p, " + p.name + ", window " +
                        s.window.describe())
@@ -263,19 +279,19 @@ PlotScript contact_force_over_x_script(const std::string& dir,
     pngs.push_back(p.png);
   const std::string script = "contact_force_over_x.gp";
   {
-    std::ofstream gp(dir + "/" + script);
-    gp << "# Redraw with: gnuplot " << script << " (in this directory)\n"
-       << "# Shaded: the evaluation window; dashed: the supports. The curves of\n"
-       << "# contact_force.csv, kept as they are drawn: per half pixel the lowest and\n"
-       << "# the highest point.\n"
-       << "set terminal pngcairo size 1200,500 noenhanced\n"
+    OutputFile gp(dir + "/" + script);
+    begin_gnuplot_script(
+        gp, script,
+        "# Shaded: the evaluation window; dashed: the supports. The curves of\n"
+        "# contact_force.csv, kept as they are drawn: per half pixel the lowest and\n"
+        "# the highest point.\n");
+    gp << "set terminal pngcairo size 1200,500 noenhanced\n"
        << "set grid ytics\nset key below horizontal\nset offsets 0, 0, graph 0.08, graph "
           "0.05\n"
        << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n";
     for (const ForceOverXPlot& p : plots)
       plot_over_x(gp, p, dir + "/contact_force.csv", columns, supports, title);
-    if (!gp)
-      throw SimulationError("cannot write " + dir + "/" + script);
+    gp.close();
   }
   return {script, pngs};
 }
@@ -362,11 +378,11 @@ PlotScript time_series_script(const std::string& dir,
   if (plots.empty())
     return {script, {}}; // nothing to draw
   {
-    std::ofstream gp(dir + "/" + script);
-    gp << "# Redraw with: gnuplot time_series.gp (in this directory)\n"
-       << "# The curves of time_series.csv, kept as they are drawn: per half pixel\n"
-       << "# the lowest and the highest point.\n"
-       << "set terminal pngcairo size 900,500 noenhanced\n"
+    OutputFile gp(dir + "/" + script);
+    begin_gnuplot_script(gp, script,
+                         "# The curves of time_series.csv, kept as they are drawn: per "
+                         "half pixel\n# the lowest and the highest point.\n");
+    gp << "set terminal pngcairo size 900,500 noenhanced\n"
        << "set grid\nset xlabel 't [s]'\nset key outside right\n";
     std::vector<std::string> plotted;
     for (const Plot& plot : plots)
@@ -374,13 +390,12 @@ PlotScript time_series_script(const std::string& dir,
     write_plotted_columns(gp, dir + "/time_series.csv", columns, plotted);
     for (const Plot& plot : plots)
     {
-      gp << "set output '" << plot.png << "'\n"
+      gp << gnuplot_output(plot.png) << "\n"
          << "set title " << gnuplot_string(title + ": " + plot.what) << "\n"
          << "set ylabel '" << plot.ylabel << "'\n";
       plot_columns(gp, plotted, plot.names);
     }
-    if (!gp)
-      throw SimulationError("cannot write " + dir + "/" + script);
+    gp.close();
   }
   std::vector<std::string> pngs;
   for (const Plot& plot : plots)

@@ -1,5 +1,5 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>

@@ -1,4 +1,4 @@
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/csv_number.h>
 #include <pantocat/io/statistics_report.h>
 

@@ -1,9 +1,9 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/io/csv_number.h>
 #include <pantocat/io/time_series_writer.h>
 
-#include <filesystem>
 #include <sstream>
 
 namespace pantocat
@@ -62,14 +62,12 @@ void TimeSeriesWriter::take_layout(const SimulationLayout& l)
 void TimeSeriesWriter::start(const SimulationLayout& l)
 {
   take_layout(l);
-  out.open(file_name);
-  if (!out)
-    throw SimulationError("cannot write " + file_name);
-  out.precision(10);
+  out.emplace(file_name);
+  out->precision(10);
   const auto names = column_names(l);
   for (std::size_t i = 0; i < names.size(); ++i)
-    out << (i ? "," : "") << names[i];
-  out << '\n';
+    *out << (i ? "," : "") << names[i];
+  *out << '\n';
 }
 
 namespace
@@ -130,21 +128,24 @@ void TimeSeriesWriter::observe(const TimePoint& p)
   if (layout.energy)
     end = append(end, p.energy);
   *end++ = '\n';
-  out.write(row.data(), end - row.data());
+  out->write(row.data(), end - row.data());
 }
 
 void TimeSeriesWriter::finish()
 {
   reopen_after_resume();
-  out.flush();
-  if (!out)
-    throw SimulationError("writing " + file_name + " failed");
+  out->close(); // throws, naming the file and the reason, if a write failed
 }
 
 void TimeSeriesWriter::save(CheckpointOut& archive) const
 {
-  out.flush();
-  const auto length = static_cast<unsigned long>(out.tellp());
+  if (!out) // resumed, no point seen since: the length it was cut to
+  {
+    archive << seen << resume_length.value_or(0ul);
+    return;
+  }
+  out->check();
+  const auto length = static_cast<unsigned long>(out->tellp());
   archive << seen << length;
 }
 
@@ -153,9 +154,10 @@ void TimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archive)
   take_layout(l);
   unsigned long length = 0;
   archive >> seen >> length;
-  std::error_code error;
-  const auto size = std::filesystem::file_size(file_name, error);
-  if (error || size < length)
+  const RegularFile file = regular_file(file_name);
+  if (!file.size)
+    throw InputError(file_name + " " + file.problem);
+  if (*file.size < length)
     throw InputError(file_name + " is shorter than at the checkpoint (" +
                      std::to_string(length) + " bytes)");
   resume_length = length;
@@ -165,12 +167,8 @@ void TimeSeriesWriter::reopen_after_resume()
 {
   if (!resume_length)
     return;
-  std::error_code error;
-  std::filesystem::resize_file(file_name, *resume_length, error);
+  out.emplace(file_name, OutputFile::Append{resume_length});
   resume_length.reset();
-  out.open(file_name, std::ios::app);
-  if (error || !out)
-    throw SimulationError("cannot resume writing " + file_name);
-  out.precision(10);
+  out->precision(10);
 }
 } // namespace pantocat

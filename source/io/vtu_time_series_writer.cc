@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/base/serialization.h>
 #include <pantocat/io/vtu_time_series_writer.h>
 #include <pantocat/space/catenary_discretisation.h>
@@ -10,20 +11,44 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <optional>
+#include <sstream>
 
 namespace pantocat
 {
 namespace
 {
+/// "wires-00012.vtu": the file of @p frame in vtu/.
 std::string frame_name(const char* stem, const unsigned long frame)
 {
   char name[64];
-  std::snprintf(name, sizeof name, "vtu/%s-%05lu.vtu", stem, frame);
+  std::snprintf(name, sizeof name, "%s-%05lu.vtu", stem, frame);
   return name;
+}
+
+/// True for the frames a run writes into vtu/.
+bool is_frame(const std::string& name)
+{
+  return (name.rfind("wires-", 0) == 0 || name.rfind("pantograph-droppers-", 0) == 0) &&
+         name.size() > 4 && name.compare(name.size() - 4, 4, ".vtu") == 0;
+}
+
+/// Runs @p write on @p out and closes it; a failed write names the file and why.
+template <typename Write>
+void write_frame(OutputFile& out, const Write& write)
+{
+  try
+  {
+    write(out);
+  }
+  catch (const dealii::ExceptionBase&)
+  {
+    out.close(); // throws with the file and the reason of a failed write
+    throw;
+  }
+  out.close();
 }
 
 dealii::DataOutBase::VtkFlags flags_at(const double time)
@@ -74,18 +99,16 @@ void VtuTimeSeriesWriter::start(const SimulationLayout& l)
     dropper_rows.clear();
   next_frame = 0;
   written.clear();
-  std::error_code error;
-  std::filesystem::create_directories(directory + "/vtu", error);
-  if (error)
-    throw SimulationError("cannot create " + directory + "/vtu");
+  bool replaced_link = false;
+  frames_directory.emplace(
+      Directory::subdirectory(Directory::open(directory), "vtu", &replaced_link));
+  if (replaced_link)
+    std::cerr << "pantocat-fem: warning: " << frames_directory->path()
+              << " was a symbolic link; it is replaced by a directory for the frames "
+                 "(the link's target is left as it is)"
+              << std::endl;
   // Frames of an earlier run into the same directory would look like ours.
-  for (const auto& entry : std::filesystem::directory_iterator(directory + "/vtu"))
-  {
-    const std::string name = entry.path().filename().string();
-    if ((name.rfind("wires-", 0) == 0 || name.rfind("pantograph-droppers-", 0) == 0) &&
-        entry.path().extension() == ".vtu")
-      std::filesystem::remove(entry.path(), error);
-  }
+  frames_directory->remove_files(is_frame);
 }
 
 void VtuTimeSeriesWriter::observe_state(const TimePoint& point, const DynamicState& state)
@@ -99,7 +122,7 @@ void VtuTimeSeriesWriter::observe_state(const TimePoint& point, const DynamicSta
   const std::string wires = frame_name("wires", frame);
   write_wires(state, wires);
   write_points(point, state, frame_name("pantograph-droppers", frame));
-  written.emplace_back(point.t, wires);
+  written.emplace_back(point.t, "vtu/" + wires);
   write_pvd();
   while (next_frame * interval - tolerance <= point.t)
     ++next_frame;
@@ -125,10 +148,8 @@ void VtuTimeSeriesWriter::write_wires(const DynamicState& s,
   data_out.add_data_vector(v_w, "contact_wire_velocity");
   data_out.build_patches();
   data_out.set_flags(flags_at(s.t));
-  std::ofstream out(directory + "/" + file);
-  data_out.write_vtu(out);
-  if (!out)
-    throw SimulationError("cannot write " + directory + "/" + file);
+  OutputFile out(*frames_directory, file);
+  write_frame(out, [&](std::ostream& o) { data_out.write_vtu(o); });
 }
 
 void VtuTimeSeriesWriter::write_points(const TimePoint& p, const DynamicState& s,
@@ -157,17 +178,19 @@ void VtuTimeSeriesWriter::write_points(const TimePoint& p, const DynamicState& s
   }
   for (std::size_t j = 0; j < dropper_rows.size(); ++j)
     add(dropper_x[j], dropper_rows[j].dot(s.q), layout.dropper_indices[j], j + 1.);
-  std::ofstream out(directory + "/" + file);
-  dealii::DataOutBase::write_vtu(patches, {"force", "active", "id"}, {}, flags_at(s.t),
-                                 out);
-  if (!out)
-    throw SimulationError("cannot write " + directory + "/" + file);
+  OutputFile out(*frames_directory, file);
+  write_frame(out,
+              [&](std::ostream& o)
+              {
+                dealii::DataOutBase::write_vtu(patches, {"force", "active", "id"}, {},
+                                               flags_at(s.t), o);
+              });
 }
 
 void VtuTimeSeriesWriter::write_pvd() const
 {
   // Two parts per time step: ParaView opens them as one multiblock data set.
-  std::ofstream pvd(directory + "/solution.pvd");
+  std::ostringstream pvd;
   pvd << "<?xml version=\"1.0\"?>\n"
       << "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "  <Collection>\n"
@@ -175,14 +198,13 @@ void VtuTimeSeriesWriter::write_pvd() const
   for (std::size_t k = 0; k < written.size(); ++k)
   {
     pvd << "    <DataSet timestep=\"" << written[k].first
-        << "\" group=\"\" part=\"0\" file=\"" << frame_name("wires", k) << "\"/>\n";
+        << "\" group=\"\" part=\"0\" file=\"vtu/" << frame_name("wires", k) << "\"/>\n";
     pvd << "    <DataSet timestep=\"" << written[k].first
-        << "\" group=\"\" part=\"1\" file=\"" << frame_name("pantograph-droppers", k)
+        << "\" group=\"\" part=\"1\" file=\"vtu/" << frame_name("pantograph-droppers", k)
         << "\"/>\n";
   }
   pvd << "  </Collection>\n</VTKFile>\n";
-  if (!pvd)
-    throw SimulationError("cannot write " + directory + "/solution.pvd");
+  write_file_atomically(directory + "/solution.pvd", pvd.str());
 }
 
 void VtuTimeSeriesWriter::save(CheckpointOut& archive) const
@@ -194,5 +216,14 @@ void VtuTimeSeriesWriter::resume(const SimulationLayout& l, CheckpointIn& archiv
 {
   layout = l;
   archive >> next_frame >> written;
+  // The frames written before the checkpoint stay; they must still be there.
+  frames_directory = Directory::existing_subdirectory(Directory::open(directory), "vtu");
+  for (unsigned long k = 0; k < written.size(); ++k)
+    for (const char* stem : {"wires", "pantograph-droppers"})
+      if (!frames_directory || !frames_directory->contains(frame_name(stem, k)))
+        throw InputError("its frame " + directory + "/vtu/" + frame_name(stem, k) +
+                         " is missing (" + directory + "/vtu was removed or changed)");
+  if (!frames_directory)
+    frames_directory.emplace(Directory::subdirectory(Directory::open(directory), "vtu"));
 }
 } // namespace pantocat

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/wire_output.h>
 
 #include <deal.II/dofs/dof_handler.h>
@@ -7,7 +8,6 @@
 #include <deal.II/grid/tria.h>
 #include <deal.II/numerics/data_out.h>
 
-#include <fstream>
 #include <iomanip>
 
 namespace pantocat
@@ -35,13 +35,12 @@ void write_wire_profiles(const CatenaryDiscretisation& d,
                                         : dealii::Vector<double>(d.n_dofs(Wire::carrier));
   const dealii::Vector<double> qw = block_values(system, q, "contact wire");
 
-  std::ofstream csv(csv_file);
-  if (!csv)
-    throw SimulationError("cannot write " + csv_file);
+  OutputFile csv(csv_file);
   csv << "x_m,w_carrier_m,w_contact_wire_m\n" << std::setprecision(12);
   for (const double x : d.grid_points())
     csv << x << ',' << d.displacement(Wire::carrier, qc, x) << ','
         << d.displacement(Wire::contact_wire, qw, x) << '\n';
+  csv.close();
 
   // VTU: sample both wires on a finer linear grid.
   dealii::Triangulation<1> tria;
@@ -66,9 +65,16 @@ void write_wire_profiles(const CatenaryDiscretisation& d,
   dealii::DataOutBase::VtkFlags flags;
   flags.time = time;
   data_out.set_flags(flags);
-  std::ofstream vtu(vtu_file);
-  if (!vtu)
-    throw SimulationError("cannot write " + vtu_file);
-  data_out.write_vtu(vtu);
+  OutputFile vtu(vtu_file);
+  try
+  {
+    data_out.write_vtu(vtu);
+  }
+  catch (const dealii::ExceptionBase&)
+  {
+    vtu.close(); // names the file and the reason of a failed write
+    throw;
+  }
+  vtu.close();
 }
 } // namespace pantocat

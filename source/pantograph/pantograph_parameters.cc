@@ -52,7 +52,9 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "T_r [s]: the pantograph starts from rest and reaches v_p at the "
                     "constant acceleration v_p / T_r, over v_p T_r / 2 metres (a smooth "
                     "start away from an anchor); 0: at v_p from t = 0. The aerodynamic "
-                    "force keeps its value at v_p.");
+                    "force keeps its value at v_p. Allowed: 0, or at least one time "
+                    "step. The run ends when x_p reaches Final position, T_r / 2 later "
+                    "than at v_p throughout.");
   prm.declare_entry("Initial contact force",
                     number_to_string(defaults.initial_contact_force), Double(0.),
                     "lambda_p(0) [N]: the contact load of the initial static catenary.");

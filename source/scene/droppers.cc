@@ -2,28 +2,50 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/scene/droppers.h>
 
+#include <algorithm>
+#include <tuple>
+
 namespace pantocat
 {
 namespace
 {
-/// A dropper must sit on a free node, and no two on the same one (FDM, coarse grids).
+/**
+ * A dropper must sit on a free node, and no two on the same one (FDM, coarse
+ * grids): the rows sorted, equal ones are neighbours (O(n log n)). Names the
+ * pair that a check of every pair in order would name first.
+ */
 void check_dropper_rows(const SceneAssembly& a, const std::vector<SparseRow>& rows)
 {
   const auto& x = a.catenary.dropper_positions;
   const std::string parameter = "Discretisation/Number of intervals";
   const unsigned int n = a.space.n_intervals();
+  std::vector<unsigned int> order(rows.size());
   for (unsigned int j = 0; j < rows.size(); ++j)
-  {
-    require(rows[j].size() > 0, parameter, n,
-            "grid too coarse: dropper " + std::to_string(j + 1) +
-                " at x = " + number_to_string(x[j]) + " m falls on a boundary node");
-    for (unsigned int i = 0; i < j; ++i)
-      require(rows[i].index != rows[j].index || rows[i].value != rows[j].value, parameter,
-              n,
-              "grid too coarse: droppers " + std::to_string(i + 1) + " and " +
-                  std::to_string(j + 1) + " fall on the same node");
-  }
+    order[j] = j;
+  const auto key = [&rows](const unsigned int j)
+  { return std::tie(rows[j].index, rows[j].value); };
+  std::stable_sort(order.begin(), order.end(),
+                   [&](const unsigned int i, const unsigned int j)
+                   { return key(i) < key(j); });
+  // In a run of equal rows the first two are the run's smallest dropper numbers.
+  unsigned int first = 0, second = rows.size();
+  for (unsigned int k = 1; k < order.size(); ++k)
+    if (key(order[k]) == key(order[k - 1]) &&
+        (k < 2 || key(order[k - 2]) != key(order[k])) && order[k] < second)
+      first = order[k - 1], second = order[k];
+  unsigned int boundary = 0;
+  while (boundary < rows.size() && rows[boundary].size() > 0)
+    ++boundary;
+  if (boundary < rows.size() && boundary <= second)
+    require(false, parameter, n,
+            "grid too coarse: dropper " + std::to_string(boundary + 1) + " at x = " +
+                number_to_string(x[boundary]) + " m falls on a boundary node");
+  if (second < rows.size())
+    require(false, parameter, n,
+            "grid too coarse: droppers " + std::to_string(first + 1) + " and " +
+                std::to_string(second + 1) + " fall on the same node");
 }
+
 } // namespace
 
 std::string Droppers::name() const

@@ -40,13 +40,11 @@ void parse_contact_law(dealii::ParameterHandler& prm, PantographCase& p)
   p.contact_compliance = {};
   if (law != "penalty")
     return;
-  const std::string where =
-      p.parameters.subsection == "Pantograph" ? "Scene/" : p.parameters.subsection + "/";
   p.contact_compliance = {prm.get_double("Contact stiffness"),
                           prm.get_double("Contact damping")};
-  require(p.contact_compliance.stiffness > 0., where + "Contact stiffness",
+  require(p.contact_compliance.stiffness > 0., p.contact_entry("Contact stiffness"),
           p.contact_compliance.stiffness, "must be > 0 with Contact = penalty");
-  require(p.contact_compliance.damping >= 0., where + "Contact damping",
+  require(p.contact_compliance.damping >= 0., p.contact_entry("Contact damping"),
           p.contact_compliance.damping, "must be >= 0");
 }
 
@@ -70,6 +68,13 @@ std::string PantographCase::model_parameter() const
 {
   return parameters.subsection == "Pantograph" ? "Scene/Pantograph"
                                                : parameters.subsection + "/Model";
+}
+
+std::string PantographCase::contact_entry(const std::string& entry) const
+{
+  return (parameters.subsection == "Pantograph" ? "Scene/"
+                                                : parameters.subsection + "/") +
+         entry;
 }
 
 std::string PantographCase::contact_law() const

@@ -9,15 +9,6 @@
 
 namespace pantocat
 {
-namespace
-{
-/// t at which @p p reaches its final position.
-double arrival_time(const PantographParameters& p)
-{
-  return (p.final_position - p.initial_position) / p.speed;
-}
-} // namespace
-
 bool InstallationDeviations::any() const
 {
   return !dropper_lengths.empty() || !steady_arm_heights.empty() ||
@@ -58,10 +49,10 @@ double Case::end_time() const
   double t = std::numeric_limits<double>::infinity();
   for (const PantographCase& p : scene.pantographs)
     if (!p.is_absent())
-      t = std::min(t, arrival_time(p.parameters));
+      t = std::min(t, p.parameters.end_time());
   return t < std::numeric_limits<double>::infinity()
              ? t
-             : arrival_time(scene.pantographs.front().parameters);
+             : scene.pantographs.front().parameters.end_time();
 }
 
 void Case::check() const
@@ -77,13 +68,56 @@ void Case::check() const
             "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
             "Hermite (or Method = fdm)");
   }
+  // k_d = 0 would be Compliance{0}, a rigid dropper: refused, not reinterpreted.
+  require(scene.droppers != DropperModel::elastic || catenary.dropper_stiffness > 0.,
+          "Catenary/Droppers/Stiffness", catenary.dropper_stiffness,
+          "must be > 0 with Scene/Droppers = elastic (the tension-only spring k_d; "
+          "rigid droppers are Droppers = unilateral or bilateral)");
   discretisation.check(catenary.length());
   const double eps = discretisation.load_shape == LoadShape::smoothed_delta
                          ? discretisation.load_half_width
                          : 0.;
   scene.check_spacing(catenary.length(), eps);
   for (const PantographCase& p : scene.pantographs)
+  {
     p.parameters.check(catenary.length(), eps);
+    check_speed_ramp(p.parameters);
+    check_contact_damping(p.contact_compliance, p.contact_entry("Contact damping"));
+  }
+}
+
+void Case::check_contact_damping(const Compliance& law,
+                                 const std::string& parameter) const
+{
+  if (law.stiffness == 0.)
+    return; // rigid: no damping
+  // In contact, lambda = -k_c g - c_c dg/dt: the spring acts on the time
+  // scale c_c / k_c of the damper. Beyond the run the contact is a damper
+  // only, and the implicit methods' rows g + (c_c / k_c) dg/dt lose the gap
+  // in round-off (the active set then cycles); c_c <= k_c t_e keeps
+  // (c_c / k_c) / dt below the number of steps.
+  const double t_e = end_time(), largest = law.stiffness * t_e;
+  require(law.damping <= largest, parameter, law.damping,
+          "the relaxation time c_c / k_c of the penalty contact must not exceed the run "
+          "(t_e = " +
+              number_to_string(t_e) + " s); allowed: 0 <= c_c <= k_c t_e = " +
+              number_to_string(largest) + " N s/m");
+}
+
+void Case::check_speed_ramp(const PantographParameters& p) const
+{
+  // The acceleration v_p / T_r acts from t = 0 to T_r: a ramp shorter than a
+  // step is not resolved (1e-300 s would make it 1e302 m/s^2, and the step
+  // maps overflow).
+  const double dt = time_integration.time_step;
+  require(p.speed_ramp == 0. || p.speed_ramp >= dt, p.subsection + "/Speed ramp",
+          p.speed_ramp,
+          "the ramp from rest to v_p must last at least one time step, or be 0 (no "
+          "ramp): its acceleration v_p / T_r = " +
+              number_to_string(p.speed / p.speed_ramp) +
+              " m/s^2 is not resolved by steps of " + number_to_string(dt) +
+              " s; allowed: 0 or >= Time integration/Time step = " +
+              number_to_string(dt) + " s");
 }
 
 void Case::check_dynamics() const
@@ -97,7 +131,10 @@ void Case::check_dynamics() const
   const PantographParameters& p = scene.pantographs[0].parameters;
   std::ostringstream run;
   run << "the run from x_p = " << p.initial_position << " to " << p.final_position
-      << " m at v_p = " << p.speed << " m/s (" << end_time() << " s)";
+      << " m at v_p = " << p.speed << " m/s";
+  if (p.speed_ramp > 0.)
+    run << " after a speed ramp of " << p.speed_ramp << " s";
+  run << " (" << end_time() << " s)";
   time_integration.check_number_of_steps(end_time(), run.str());
 }
 } // namespace pantocat

@@ -229,6 +229,8 @@ std::string CaseRunner::step_size_problem() const
             << compliant_stiffness_note(system());
     return step_size_reason = message.str();
   }
+  if (const std::string damping = explicit_damping_problem(); !damping.empty())
+    return step_size_reason = damping;
   // Below 2/omega_max: the moving contact's rows (doc/stability.md).
   if (!has_moving_constraints(system(), initial.active))
     return step_size_reason = "";
@@ -240,6 +242,8 @@ std::string CaseRunner::step_size_problem() const
     return step_size_reason = "";
   const HalfExplicitStepLimit l = half_explicit_step_limit(
       system(), initial.active, ti.time_step / options.margin, initial.t, options);
+  if (l.critical == 0.)
+    return step_size_reason = no_stable_step(l, options.steps);
   message << "exceeds the limit " << l.allowed << " s of the " << ti.integrator
           << " method with the moving contact: perturbations grow by a factor "
           << std::setprecision(5) << l.growth_unstable << std::setprecision(3)
@@ -251,11 +255,64 @@ std::string CaseRunner::step_size_problem() const
   return step_size_reason = message.str();
 }
 
+std::string CaseRunner::explicit_damping_problem() const
+{
+  const ExplicitDampingLimit l = explicit_damping_limit(system(), initial.t);
+  const double dt = data.time_integration.time_step;
+  const double margin = StepLimitOptions().margin; // as for the moving contact
+  if (!(dt > margin * l.step))
+    return "";
+  // The parameter: the penalty contact's Contact damping of its pantograph.
+  std::string parameter =
+      "the damping of '" + system().constraints[l.constraint]->name() + "'";
+  for (unsigned int k = 0; k < layout_.pantographs.size(); ++k)
+    if (layout_.pantographs[k].contact == l.constraint)
+      parameter = data.scene.pantographs[k].contact_entry("Contact damping");
+  std::ostringstream m;
+  m << std::setprecision(3) << parameter << " = " << number_to_string(l.damping)
+    << ": the " << data.time_integration.integrator
+    << " method takes this damping force explicitly, stable only for dt c G M^-1 G^T "
+       "<= 2 (G M^-1 G^T = "
+    << l.mass_factor << " 1/kg); allowed at Time integration/Time step = " << dt
+    << " s with the margin " << margin
+    << ": 0 <= c <= " << margin * 2. / (dt * l.mass_factor)
+    << " N s/m (or a step of at most " << margin * l.step
+    << " s, or an implicit integrator: bdf2, generalized-alpha, ida)";
+  damping_refusal = m.str();
+  return "above the limit " + number_to_string(margin * l.step) +
+         " s of the explicit damping of " + parameter + " = " +
+         number_to_string(l.damping) + " N s/m";
+}
+
+std::string CaseRunner::no_stable_step(const HalfExplicitStepLimit& l,
+                                       const unsigned int steps) const
+{
+  std::ostringstream m;
+  m << std::setprecision(3) << "finds no stable step of the "
+    << data.time_integration.integrator << " method with the moving contact down to "
+    << l.unstable << " s: perturbations grow by ";
+  if (std::isfinite(l.growth_unstable))
+    m << "a factor " << l.growth_unstable << " per step there";
+  else
+    m << "more than the largest number per step there (the one-step map (39)-(41) "
+         "overflows)";
+  m << " over " << steps << " steps from x_p = " << initial_contact_position() << " m";
+  for (const ScenePantograph& p : scene->built.pantographs)
+    if (p.motion.acceleration(initial.t) > 0.)
+      m << "; the pantograph accelerates at v_p / T_r = "
+        << p.motion.acceleration(initial.t) << " m/s^2 (Speed ramp " << p.motion.ramp_time
+        << " s)";
+  m << compliant_stiffness_note(system());
+  return m.str();
+}
+
 void CaseRunner::check_step_size() const
 {
   const std::string problem = step_size_problem();
   if (problem.empty())
     return;
+  if (!damping_refusal.empty())
+    throw InputError(damping_refusal);
   if (!data.time_integration.force_step_size)
     throw InputError("Time integration/Time step = " + number_to_string(asked_time_step) +
                      ": " + problem +
@@ -326,12 +383,15 @@ void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
     workspace.rows.resize(m);
     workspace.time_dependent.resize(m);
     workspace.compliant.resize(m);
+    workspace.unilateral.resize(m);
     for (unsigned int i = 0; i < m; ++i)
     {
       workspace.time_dependent[i] = sys.constraints[i]->depends_on_time();
       workspace.compliant[i] = sys.constraints[i]->is_compliant();
+      workspace.unilateral[i] = sys.constraints[i]->is_unilateral();
     }
   }
+  require_pushing_unilateral_forces(s, workspace.unilateral);
   for (unsigned int i = 0; i < m; ++i)
   {
     ConstraintState& own = workspace.rows[i];
@@ -365,6 +425,22 @@ void CaseRunner::fill_time_point(const DynamicState& s, TimePoint& p,
       workspace.energy.emplace(sys);
     p.energy = (*workspace.energy)(s.q, s.v, s.t);
   }
+}
+
+void CaseRunner::require_pushing_unilateral_forces(
+    const DynamicState& s, const std::vector<char>& unilateral) const
+{
+  for (unsigned int i = 0; i < unilateral.size(); ++i)
+    if (unilateral[i] && s.lambda[i] < 0.)
+    {
+      std::ostringstream m;
+      m << "internal error at t = " << number_to_string(s.t, 10)
+        << " s: the force of the unilateral constraint " << layout_.constraint_names[i]
+        << " is " << number_to_string(s.lambda[i], 6)
+        << " N, but a unilateral constraint only pushes (lambda >= 0, Sec. 5.3): the "
+           "integrator's step is inconsistent, and this time point is not written";
+      throw SimulationError(m.str());
+    }
 }
 
 RunGuard CaseRunner::make_guard() const

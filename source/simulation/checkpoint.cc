@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/simulation/checkpoint.h>
 #include <pantocat/time/dynamic_state_serialization.h>
 
@@ -10,7 +11,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <filesystem>
 #include <sstream>
 
 namespace pantocat
@@ -26,6 +26,8 @@ namespace
  */
 const std::string checkpoint_magic = "pantocat-fem checkpoint 3\n";
 const std::size_t header_size = checkpoint_magic.size() + 8 + 4;
+/// A checkpoint holds the state and the observers' records: far below this.
+constexpr std::uint64_t max_checkpoint_bytes = std::uint64_t(4) << 30;
 
 std::uint32_t crc32_of(const std::string& bytes)
 {
@@ -144,19 +146,7 @@ void CheckpointWriter::write(const unsigned long step, const TimeIntegrator& int
   append_little_endian(header, static_cast<std::uint64_t>(bytes.size()), 8);
   append_little_endian(header, crc32_of(bytes), 4);
 
-  const std::string temporary = file_name + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << header << bytes;
-    out.flush();
-    if (!out)
-      throw SimulationError("cannot write the checkpoint " + temporary);
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, file_name, error); // atomic on POSIX
-  if (error)
-    throw SimulationError("cannot rename " + temporary + " to " + file_name + ": " +
-                          error.message());
+  write_file_atomically(file_name, header + bytes);
 }
 
 CheckpointReader::CheckpointReader(const std::string& file,
@@ -164,15 +154,15 @@ CheckpointReader::CheckpointReader(const std::string& file,
                                    const unsigned long run_steps, const double dt)
     : file_name(file), time_step(dt)
 {
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
+  // Not through a link, not a FIFO or device (read at once, never waited on).
+  const FileContent content = read_regular_file(file, max_checkpoint_bytes, false);
+  if (content.missing)
     throw InputError(refusal() + "there is no checkpoint " + file +
                      " (write one with Checkpoint/Interval > 0)");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (!in)
-    throw InputError(refusal() + "cannot read the checkpoint " + file);
-  payload.str(verified_payload(bytes.str()));
+  if (!content.bytes)
+    throw InputError(refusal() + "the checkpoint " + file + " " + content.problem +
+                     "; start afresh (Resume from checkpoint = false)");
+  payload.str(verified_payload(*content.bytes));
   ParameterFingerprint saved;
   try
   {

@@ -56,7 +56,6 @@ MovingLoadSeries moving_load_series(const Case& c)
     delta.emplace(c.discretisation.load_half_width);
   const PantographCase& load = c.scene.pantographs.front();
   return MovingLoadSeries(wire, c.catenary.length(), load.moving_force,
-                          {load.parameters.initial_position, load.parameters.speed},
-                          delta);
+                          load.parameters.motion(), delta);
 }
 } // namespace pantocat

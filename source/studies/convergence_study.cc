@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/log_log_plot.h>
 #include <pantocat/studies/convergence_study.h>
 #include <pantocat/studies/run_distribution.h>
@@ -6,7 +7,6 @@
 #include <deal.II/base/convergence_table.h>
 
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <sstream>
@@ -175,8 +175,7 @@ void ConvergenceStudy::write_errors(std::ostream& out, const std::string& name) 
   const std::string dir = parameters.output.directory;
   const bool space = plan_.refines_space();
   const std::vector<Column> cols = columns(s, space);
-  std::ofstream txt(dir + "/" + name + ".txt");
-  std::ofstream csv(dir + "/" + name + ".csv");
+  std::ostringstream txt, csv;
   csv << "discretisation,integrator,contact_law,n_intervals,time_step";
   for (const auto& c : cols)
     csv << ',' << c.csv << ',' << c.csv << "_order";
@@ -275,8 +274,8 @@ void ConvergenceStudy::write_errors(std::ostream& out, const std::string& name) 
           << to_string(r.status) << '\n';
     }
   }
-  if (!txt || !csv)
-    throw SimulationError("cannot write " + dir + "/" + name + ".txt or .csv");
+  write_file_atomically(dir + "/" + name + ".txt", txt.str());
+  write_file_atomically(dir + "/" + name + ".csv", csv.str());
   out << "  wrote " << name << ".txt, " << name << ".csv";
   if (parameters.output.plots)
   {
@@ -338,14 +337,12 @@ void ConvergenceStudy::write_contact_statistics(std::ostream& out,
          << "): " << (smallest->figures.min_unilateral_force >= 0. ? ">= 0" : "NEGATIVE")
          << '\n';
   out << text.str();
-  std::ofstream txt(dir + "/" + name + "_contact.txt");
-  std::ofstream csv(dir + "/" + name + "_contact.csv");
-  txt << text.str();
+  std::ostringstream csv;
   csv << ContactConvergence::csv_header() << '\n';
   for (const ContactConvergence& c : contact_)
     c.write_csv(csv);
-  if (!txt || !csv)
-    throw SimulationError("cannot write " + dir + "/" + name + "_contact.txt or .csv");
+  write_file_atomically(dir + "/" + name + "_contact.txt", text.str());
+  write_file_atomically(dir + "/" + name + "_contact.csv", csv.str());
   out << "  wrote " << name << "_contact.txt, " << name << "_contact.csv to " << dir
       << '\n';
 }

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/studies/study_parameters.h>
 #include <pantocat/time/integrator_registry.h>
 
@@ -67,8 +68,9 @@ void StudyParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "relative error in lambda_p (max norm, and in max lambda_p) is "
                     "at most this.");
   prm.declare_entry("Output name", "", dealii::Patterns::Anything(),
-                    "Base name of the tables and the plot; empty: convergence or "
-                    "work_precision.");
+                    "Base name of the tables and the plot: 1 to 64 letters, digits, "
+                    "'-', '_' and '.', not starting with '.' or '-'; empty: "
+                    "convergence or work_precision.");
   prm.leave_subsection();
 }
 
@@ -137,7 +139,6 @@ void StudyParameters::parse_parameters(dealii::ParameterHandler& prm)
           "Study/Time steps", dt_text,
           "give one value or as many as Study/Number of intervals (" + std::to_string(n) +
               ")");
-  require(output_name.find('/') == std::string::npos, "Study/Output name", output_name,
-          "a file base name without '/'");
+  require_output_name("Study/Output name", output_name);
 }
 } // namespace pantocat

@@ -1,5 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/studies/sweep_parameters.h>
 
 #include <deal.II/base/utilities.h>
@@ -195,7 +196,8 @@ void SweepParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "For tests: stop the sweep after this many runs as if it were "
                     "killed (the partial file stays, exit 1); 0: never.");
   prm.declare_entry("Output name", "", Anything(),
-                    "Base name of the tables and plots; empty: speed_sweep, "
+                    "Base name of the tables and plots: 1 to 64 letters, digits, '-', "
+                    "'_' and '.', not starting with '.' or '-'; empty: speed_sweep, "
                     "parameter_sweep or monte_carlo.");
   prm.leave_subsection();
 }
@@ -221,8 +223,7 @@ void SweepParameters::parse_parameters(dealii::ParameterHandler& prm,
   output_name = prm.get("Output name");
   prm.leave_subsection();
 
-  require(output_name.find('/') == std::string::npos, "Sweep/Output name", output_name,
-          "a file base name without '/'");
+  require_output_name("Sweep/Output name", output_name);
   entries.clear(), values.clear(), values_text.clear(), speeds_kmh.clear();
   if (mode == "speed sweep")
   {

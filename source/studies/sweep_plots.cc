@@ -1,11 +1,11 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/studies/sweep_plots.h>
 #include <pantocat/studies/sweep_study.h>
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iomanip>
 #include <limits>
 #include <set>
@@ -112,15 +112,6 @@ std::string of_pantograph(const unsigned int p, const unsigned int c,
          " ? column(" + std::to_string(c) + ") : NaN)";
 }
 
-std::ofstream open_script(const std::string& file)
-{
-  std::ofstream gp(file);
-  gp << "# Redraw with: gnuplot " << file.substr(file.rfind('/') + 1)
-     << " (in this directory)\n"
-     << "set datafile separator ','\nset datafile missing ''\n";
-  return gp;
-}
-
 /// The speed sweep's plot of pantograph @p p.
 void speed_script(std::ostream& gp, const std::string& csv, const std::string& png,
                   const SweepTable& t, const unsigned int p, const double wave_speed)
@@ -136,8 +127,9 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
       "' skip 1 every " + std::to_string(all.size()) +
       "::" + std::to_string(std::find(all.begin(), all.end(), p) - all.begin()) +
       " using 1:";
-  const std::string data = "'" + csv + rows;
-  gp << "set terminal pngcairo size 1000,800 noenhanced\nset output '" << png << "'\n"
+  const std::string data = "'" + checked_file_name(csv) + rows;
+  gp << "set terminal pngcairo size 1000,800 noenhanced\n"
+     << gnuplot_output(png) << '\n'
      << "set multiplot layout 2,1\nset grid\nset key outside right\n"
      << "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
      << "set xlabel 'speed [km/h]'\nset ylabel 'contact force [N]'\n"
@@ -232,7 +224,8 @@ void parameter_script(std::ostream& gp, const std::string& png, const SweepTable
                                                      : what + ", " + t.key_columns[1] +
                                                            " = " + second));
     }
-  gp << "set terminal pngcairo size 900,600 noenhanced\nset output '" << png << "'\n"
+  gp << "set terminal pngcairo size 900,600 noenhanced\n"
+     << gnuplot_output(png) << '\n'
      << "set grid\nset key below\nset xlabel " << gnuplot_string(t.key_columns[0])
      << "\nset ylabel " << gnuplot_string(s) << "\nset title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
@@ -254,7 +247,8 @@ void monte_carlo_script(std::ostream& gp, const std::string& csv, const std::str
       {f + "mean", "mean [N]"},
       {"contact_loss_percent", "contact loss, raw [%]"},
       {"max_support_uplift_m", "max steady-arm uplift [m]"}};
-  gp << "set terminal pngcairo size 1200,700 noenhanced\nset output '" << png << "'\n"
+  gp << "set terminal pngcairo size 1200,700 noenhanced\n"
+     << gnuplot_output(png) << '\n'
      << "set multiplot layout 2,3 title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " +
                        std::to_string(sorted_values(t, p, 0).size()) + " samples" +
@@ -268,8 +262,8 @@ void monte_carlo_script(std::ostream& gp, const std::string& csv, const std::str
         range > 0. ? range / 10. : std::max(std::abs(v.empty() ? 1. : v[0]) * 1e-3, 1e-9);
     gp << "set xlabel " << gnuplot_string(label) << "\nw = " << std::setprecision(10)
        << width << "\nbin(x) = w * floor(x / w) + w / 2\n"
-       << "set boxwidth w * 0.9\nplot '" << csv << "' skip 1 using (bin("
-       << of_pantograph(p, csv_column(s, 1), 2)
+       << "set boxwidth w * 0.9\nplot '" << checked_file_name(csv)
+       << "' skip 1 using (bin(" << of_pantograph(p, csv_column(s, 1), 2)
        << ")):(1.0) smooth frequency with boxes\n";
   }
   gp << "unset multiplot\n";
@@ -399,15 +393,16 @@ std::vector<std::string> plot_sweep(const std::string& dir, const std::string& n
     {
       const std::string script = png.substr(0, png.size() - 4) + ".gp";
       {
-        std::ofstream gp = open_script(dir + "/" + script);
+        OutputFile gp(dir + "/" + script);
+        begin_gnuplot_script(gp, script);
+        gp << "set datafile separator ','\nset datafile missing ''\n";
         if (kind == SweepKind::speed)
           speed_script(gp, csv, png, t, p, wave_speed);
         else if (kind == SweepKind::parameter)
           parameter_script(gp, png, t, p, statistic);
         else
           monte_carlo_script(gp, csv, png, t, p);
-        if (!gp)
-          throw SimulationError("cannot write " + dir + "/" + script);
+        gp.close();
       }
       for (const std::string& file : run_gnuplot(dir, script, {png}))
         drawn.push_back(file);

@@ -1,6 +1,6 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
-#include <pantocat/io/atomic_file.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/studies/run_distribution.h>
 #include <pantocat/studies/sweep_partial.h>
 #include <pantocat/studies/sweep_plots.h>
@@ -282,14 +282,15 @@ std::string SweepStudy::partial_file() const
 void SweepStudy::read_partial()
 {
   const std::string file = partial_file();
-  std::ifstream in(file, std::ios::binary);
-  require(static_cast<bool>(in), "Sweep/Resume", "true",
+  // Not through a link, not a FIFO or device (refused without reading it).
+  const FileContent content = read_regular_file(file, std::uint64_t(1) << 30, false);
+  require(!content.missing, "Sweep/Resume", "true",
           "there is no " + file +
               " to resume from (a completed sweep removes it); "
               "allowed: Resume = false to start the sweep");
-  std::ostringstream text;
-  text << in.rdbuf();
-  PartialRuns finished = read_partial_file(text.str(), file, plan);
+  require(content.bytes.has_value(), "Sweep/Resume", "true",
+          file + " " + content.problem + "; allowed: Resume = false to start the sweep");
+  PartialRuns finished = read_partial_file(*content.bytes, file, plan);
   rows = std::move(finished.rows);
   dropped_lines = finished.dropped_lines;
 }
@@ -308,10 +309,9 @@ void SweepStudy::start()
 
 void SweepStudy::append_to_partial(const std::string& text) const
 {
-  std::ofstream partial(partial_file(), std::ios::app | std::ios::binary);
-  partial << text << std::flush;
-  if (!partial)
-    throw SimulationError("cannot append to " + partial_file());
+  OutputFile partial(partial_file(), OutputFile::Append{});
+  partial << text;
+  partial.close();
 }
 
 void SweepStudy::finished(const unsigned int k, const SweepOutcome& outcome,
@@ -340,15 +340,13 @@ void SweepStudy::finished(const unsigned int k, const SweepOutcome& outcome,
   out << std::endl;
 }
 
-void SweepStudy::run(std::ostream& out)
+void SweepStudy::start_on_every_rank(const RunDistribution& distribution)
 {
-  const RunDistribution distribution;
-  const bool root = distribution.is_root();
   // Rank 0 reads (or starts) the partial file; a refusal there must stop
   // every rank, not leave the others waiting for runs. The first character
   // says which: 'i' bad input (InputError), 's' a file that cannot be changed.
   std::string refusal;
-  if (root)
+  if (distribution.is_root())
     try
     {
       start();
@@ -367,6 +365,13 @@ void SweepStudy::run(std::ostream& out)
     throw InputError(refusal.substr(1));
   if (!refusal.empty())
     throw SimulationError(refusal.substr(1));
+}
+
+void SweepStudy::run(std::ostream& out)
+{
+  const RunDistribution distribution;
+  const bool root = distribution.is_root();
+  start_on_every_rank(distribution);
   std::vector<unsigned int> order;
   for (unsigned int k = 0; k < plan.size(); ++k)
     if (!rows.count(k))

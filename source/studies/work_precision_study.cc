@@ -1,11 +1,12 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/io/log_log_plot.h>
 #include <pantocat/studies/run_distribution.h>
 #include <pantocat/studies/work_precision_study.h>
 
 #include <algorithm>
-#include <fstream>
 #include <iomanip>
+#include <sstream>
 
 namespace pantocat
 {
@@ -80,7 +81,7 @@ void WorkPrecisionStudy::write(std::ostream& out) const
                                : parameters.study.output_name;
   const std::string dir = parameters.output.directory;
   const double target = parameters.study.target_relative_error;
-  std::ofstream csv(dir + "/" + name + ".csv");
+  std::ostringstream csv;
   csv << "discretisation,integrator,contact_law,n_intervals,parameter,error_l2,error_max,"
          "relative_error_max,relative_error_peak,cpu_seconds,steps,status\n";
   out << "Errors in lambda_p against " << plan_.runs().back().label()
@@ -145,8 +146,7 @@ void WorkPrecisionStudy::write(std::ostream& out) const
   if (interpolated)
     out << "  (the reference's step does not divide every run's step: lambda_p_ref "
            "interpolated linearly in time)\n";
-  if (!csv)
-    throw SimulationError("cannot write " + dir + "/" + name + ".csv");
+  write_file_atomically(dir + "/" + name + ".csv", csv.str());
   out << "  wrote " << name << ".csv";
   if (parameters.output.plots)
   {

@@ -1105,6 +1105,7 @@ void Bdf2Integrator::richardson_start()
   rho_v *= 1. / dt;
   form_history(full.c, rho_q, rho_v);
   const DynamicState coarse = implicit_step(full, rho_q, rho_v, x0.t + dt, x0.active);
+  const std::vector<unsigned int> coarse_forces = active_set.force_indices();
   rho_q = x0.q;
   rho_v = x0.v;
   rho_q *= 2. / dt;
@@ -1119,20 +1120,37 @@ void Bdf2Integrator::richardson_start()
   DynamicState fine = implicit_step(half, rho_q, rho_v, x0.t + dt, mid.active);
   // The impulses of both half steps.
   fine.impulse = combined_impulses(mid.impulse, 1., fine.impulse, 1.);
-  if (fine.active == coarse.active && mid.impulse.empty() == coarse.impulse.empty())
+  // Extrapolated where both results solve the same equations: the same
+  // constraints hold, the same of them carry a force (a touching one has
+  // lambda = 0), and an impact falls in the dt step iff in the first half.
+  if (fine.active == coarse.active && active_set.force_indices() == coarse_forces &&
+      mid.impulse.empty() == coarse.impulse.empty())
   {
-    fine.q.sadd(2., -1., coarse.q);
-    fine.v.sadd(2., -1., coarse.v);
-    fine.a.sadd(2., -1., coarse.a);
-    for (unsigned int i = 0; i < fine.lambda.size(); ++i)
-      fine.lambda[i] = 2. * fine.lambda[i] - coarse.lambda[i];
-    clamp_compliant_forces(system, fine.lambda);
-    fine.impulse = combined_impulses(fine.impulse, 2., coarse.impulse, -1.);
+    DynamicState x = fine;
+    x.q.sadd(2., -1., coarse.q);
+    x.v.sadd(2., -1., coarse.v);
+    x.a.sadd(2., -1., coarse.a);
+    for (unsigned int i = 0; i < x.lambda.size(); ++i)
+      x.lambda[i] = 2. * x.lambda[i] - coarse.lambda[i];
+    clamp_compliant_forces(system, x.lambda);
+    x.impulse = combined_impulses(fine.impulse, 2., coarse.impulse, -1.);
+    if (satisfies_unilateral_constraints(x))
+      fine = std::move(x);
   }
-  // else: the active set changed inside the first step, or an impact falls in
-  // one half and not in the other; keep the dt/2 result.
+  // Else the start keeps the dt/2 result, which the active-set iteration of
+  // its two steps made consistent (Sec. 5.3).
   previous = x0;
   current = std::move(fine);
+}
+
+bool Bdf2Integrator::satisfies_unilateral_constraints(const DynamicState& x)
+{
+  const std::vector<ConstraintState>& rows = at_next.at(x.t);
+  for (unsigned int i = 0; i < system.n_constraints(); ++i)
+    if (system.constraints[i]->is_rigid_unilateral() &&
+        (x.active[i] ? x.lambda[i] < 0. : rows[i].position_residual(x.q) < 0.))
+      return false;
+  return true;
 }
 
 void Bdf2Integrator::advance()

@@ -1483,15 +1483,27 @@ void HalfExplicitIntegrator::advance()
 
 void HalfExplicitIntegrator::finish()
 {
-  // Step 1 alone at the final time: a_N and lambda_N with the current active set.
-  prepare_step();
+  // Step 1 alone at the final time: a_N and lambda_N with the current active
+  // set, on acceleration level as in a step (Sec. 5.3): a rigid unilateral
+  // constraint with lambda_N < 0 holds without force (it touches: g = dg/dt
+  // = 0 at t_N come from the step that reached t_N), and step 1 is repeated.
   std::vector<unsigned int> A;
   for (unsigned int i = 0; i < active_now.size(); ++i)
     if (active_now[i] && !system.constraints[i]->is_compliant())
       A.push_back(i);
-  compute_acceleration(A);
-  free_acceleration_ready = false;
-  reset_moving_columns();
+  for (;;)
+  {
+    prepare_step();
+    compute_acceleration(A);
+    free_acceleration_ready = false;
+    reset_moving_columns();
+    const auto pulls = [&](const unsigned int i)
+    { return system.constraints[i]->is_unilateral() && lambda[i] < 0.; };
+    const auto kept = std::remove_if(A.begin(), A.end(), pulls);
+    if (kept == A.end())
+      break;
+    A.erase(kept, A.end());
+  }
   if (previous == &reported.v) // v_{n-1} stays the integrator's own
   {
     v_prev = reported.v;

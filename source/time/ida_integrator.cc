@@ -611,6 +611,28 @@ void IdaIntegrator::read_state(const double t)
   pending_impulse.clear();
 }
 
+void IdaIntegrator::restart(const double t)
+{
+  collect_counters();
+  counted = stats.counters; // IDAReInit resets IDA's counters
+  if (IDAReInit(sun->memory, t, sun->y, sun->yp) != IDA_SUCCESS)
+    throw SimulationError("IDA: restart after an event failed");
+}
+
+void IdaIntegrator::release_pulling_constraints(const double t)
+{
+  const double* lambda = N_VGetArrayPointer(sun->y) + 2 * n;
+  std::vector<bool> set = active;
+  bool pulls = false;
+  for (unsigned int k = 0; k < m; ++k)
+    if (active[k] && system.constraints[k]->is_rigid_unilateral() && lambda[k] < 0.)
+      set[k] = false, pulls = true;
+  if (!pulls)
+    return;
+  make_consistent(t, set);
+  restart(t);
+}
+
 void IdaIntegrator::advance()
 {
   const double t_out = current.t + dt;
@@ -636,10 +658,7 @@ void IdaIntegrator::advance()
         if (found[k] != 0)
           set[k] = !active[k];
       make_consistent(t, set);
-      collect_counters();
-      counted = stats.counters; // IDAReInit resets IDA's counters
-      if (IDAReInit(sun->memory, t, sun->y, sun->yp) != IDA_SUCCESS)
-        throw SimulationError("IDA: restart after an event failed");
+      restart(t);
       continue;
     }
     if (flag < 0)
@@ -652,6 +671,7 @@ void IdaIntegrator::advance()
       throw SimulationError(s.str());
     }
   }
+  release_pulling_constraints(t_out);
   // The derivative at t_out (IDA returns y' with y).
   read_state(t_out);
   ++stats.steps;

@@ -58,10 +58,12 @@ private:
   class BlockInverse;
   struct Forces;
   struct Rows;
+  struct CompactColumn;
 
   void evaluate_rows(double t_n, double t_half, double t_next);
+  /// @p out = the column inverse^-1 row^T on its support (CompactColumn).
   void column(const BlockInverse& inverse, const SparseRow& row,
-              dealii::Vector<double>& out) const;
+              CompactColumn& out) const;
 
   const SemiDiscreteSystem& system;
   double dt;

@@ -33,6 +33,38 @@ double largest_circular_frequency(const SemiDiscreteSystem& system);
 double compliant_frequency_bound(const SemiDiscreteSystem& system, double t = 0.);
 
 /**
+ * G_i M^-1 G_i^T of every compliant constraint i at time @p t (0 for the
+ * others): what a unit force on its row does to the acceleration of its gap.
+ * With a banded mass, the columns M^-1 G_i^T are solved locally
+ * (SparseDirectSolver::solve_local(): they decay away from the row), so all
+ * of them cost O(m) and not O(n m).
+ */
+std::vector<double> compliant_mass_factors(const SemiDiscreteSystem& system,
+                                           double t = 0.);
+
+/// The step limit of the half-explicit method's explicit compliant damping.
+struct ExplicitDampingLimit
+{
+  /// 2 / max_i c_i G_i M^-1 G_i^T [s]; infinite without compliant damping.
+  double step = 0.;
+  unsigned int constraint = 0; ///< the constraint i of the maximum
+  double damping = 0.;         ///< its c_i [N s/m]
+  double mass_factor = 0.;     ///< its G_i M^-1 G_i^T [1/kg]
+};
+
+/**
+ * The half-explicit method takes a compliant constraint's damping force
+ * -c_i dg/dt explicitly, with the velocity (v_{n-1} + v_n)/2 of (41), in
+ * v_{n+1} = v_{n-1} + 2 dt a_n. On the damper alone the gap's rate then
+ * follows r^2 + h r + h - 1 = 0, h = dt c_i G_i M^-1 G_i^T, with the roots
+ * -1 and 1 - h: stable only for h <= 2. Returns the largest such dt over
+ * the compliant constraints at time @p t (a necessary condition; the springs
+ * and the wires' own frequencies lower the limit further).
+ */
+ExplicitDampingLimit explicit_damping_limit(const SemiDiscreteSystem& system,
+                                            double t = 0.);
+
+/**
  * For the step-size refusal: ", including the compliant constraints
  * (stiffest: '<name>', k = <k> N/m), explicit forces of this method that
  * raise omega_max by k G M^-1 G^T" if @p system has compliant constraints,
@@ -88,8 +120,10 @@ bool half_explicit_step_allowed(const SemiDiscreteSystem& system,
 
 /**
  * The critical step below @p upper (an unstable step, e.g. dt / margin) by
- * bisection; the lower end starts at upper / 2 and is halved while unstable
- * (at most 10 times, then std::runtime_error).
+ * bisection; the lower end starts at upper / 2 and is halved while unstable,
+ * at most 10 times: if upper / 2^11 is still unstable, the result has
+ * critical = allowed = 0, and `unstable`, `growth_unstable` that smallest
+ * step and its growth (infinite where the one-step map overflows).
  */
 HalfExplicitStepLimit half_explicit_step_limit(const SemiDiscreteSystem& system,
                                                const std::vector<bool>& active,

@@ -35,33 +35,49 @@ struct StaticEquilibrium
  * force is positive, iterated like the active set (a taut elastic dropper
  * pulls, a slack one does not).
  *
- * The constructor factorises K once by a sparse direct solver (the banded
- * Cholesky of SparseDirectSolver; K is symmetric positive definite and banded
- * within each body) and forms X = K^-1 G^T and the Schur complement
- * S = G K^-1 G^T of every constraint (back-substitutions of four constraints
- * side by side); a solve() is then one
- * back-substitution for its load plus, per active-set iteration, a small dense
- * solve with the rows and columns of S of the active constraints. K, G and z
- * do not depend on the load, so any number of loads (the static elasticity:
- * one per load point and force; the dropper design's iterations) share this
- * work, and the inverse of the last active set's S is kept for the next
- * solve with the same set.
+ * Two ways to the same solution (to round-off):
+ *
+ *  - Few constraints (n m within the column budget and m <= max_dense_constraints,
+ *    every shipped case): the constructor factorises K once by a sparse direct
+ *    solver (the banded Cholesky of SparseDirectSolver; K is symmetric positive
+ *    definite and banded within each body) and forms X = K^-1 G^T and the Schur
+ *    complement S = G K^-1 G^T of every constraint (back-substitutions of four
+ *    constraints side by side); a solve() is then one back-substitution for its
+ *    load plus, per active-set iteration, a small dense solve with the rows and
+ *    columns of S of the active constraints. K, G and z do not depend on the
+ *    load, so any number of loads (the static elasticity: one per load point and
+ *    force; the dropper design's iterations) share this work, and the inverse of
+ *    the last active set's S is kept for the next solve with the same set.
+ *  - Many constraints (a long section: X costs O(n m), S O(m^2) memory and its
+ *    inverse O(m^3) time): the saddle-point system
+ *
+ *      [ K    G_a^T ] [     q     ]   [ f + f_extra ]
+ *      [ G_a  -C_a  ] [ -lambda_a ] = [    -z_a     ]
+ *
+ *    of the active constraints a (C_a their compliances 1/k, 0 for rigid ones)
+ *    is factorised by UMFPACK, whose fill-reducing ordering keeps the factor of
+ *    this banded-plus-point-rows matrix O(n + m): time and memory near-linear in
+ *    the length of the section. The factor of the last active set is kept for
+ *    the next solve with the same set.
  *
  * Keeps a reference to @p system, which must outlive it. Not for solve()
- * calls from several threads at once (the kept inverse).
+ * calls from several threads at once (the kept inverse or factor).
  */
 class StaticEquilibriumSolver
 {
 public:
   /**
-   * The columns K^-1 G_i^T are kept while n m stays within this many numbers
-   * (8 MB): all shipped cases. Beyond, solve() forms the active ones again.
+   * The dense Schur complement (the first way of the class comment) is taken
+   * while n m stays within this many numbers (8 MB of columns K^-1 G^T) ...
    */
   static constexpr double default_column_budget = 1 << 20;
+  /// ... and m is at most this (its inverse costs m^3 / 3 operations).
+  static constexpr unsigned int max_dense_constraints = 512;
 
   /**
    * Throws SimulationError if K is singular. @p column_budget: see
-   * default_column_budget (the results do not depend on it, to the bit).
+   * default_column_budget (0: always the saddle-point system; the results
+   * agree to round-off).
    */
   explicit StaticEquilibriumSolver(const SemiDiscreteSystem& system, double t = 0.,
                                    double column_budget = default_column_budget);
@@ -82,6 +98,8 @@ public:
                           const std::vector<bool>& initial_active) const;
 
   unsigned int n_constraints() const { return states.size(); }
+  /// True if solve() factorises the saddle-point system (many constraints).
+  bool uses_saddle_point_system() const { return saddle_point; }
 
 private:
   /// Solves for the multipliers of the constraints in @p active; fills q and lambda.
@@ -100,11 +118,15 @@ private:
    */
   unsigned int columns(const std::vector<unsigned int>& constraints, unsigned int first,
                        InterleavedColumns& batch) const;
-  /// q += sum_k lambda_k K^-1 G_{act_k}^T, the columns formed again four at a time
-  /// (beyond the column budget), with the arithmetic of the kept columns.
-  void add_columns_formed_again(const std::vector<unsigned int>& act,
-                                const dealii::Vector<double>& lambda,
-                                dealii::Vector<double>& q) const;
+  /// The saddle-point way: solves for q and the multipliers of @p active under
+  /// the load @p load (f + f_extra); fills q and lambda.
+  void solve_saddle_point(const std::vector<bool>& active,
+                          const dealii::Vector<double>& load,
+                          StaticEquilibrium& out) const;
+  /// Factorises the saddle-point matrix of the constraints @p act (the flags
+  /// @p active) unless it is the kept one. Throws SimulationError if singular.
+  void factorize_saddle_point(const std::vector<bool>& active,
+                              const std::vector<unsigned int>& act) const;
   /**
    * (G K^-1 G^T + C)^-1 of the constraints @p act (the flags @p active), C
    * the engaged compliances; inverted when the active set differs from the
@@ -116,10 +138,13 @@ private:
   S_inverse_of(const std::vector<bool>& active,
                const std::vector<unsigned int>& act) const;
 
+  bool saddle_point = false;             ///< the second way of the class comment
   std::vector<dealii::Vector<double>> X; ///< K^-1 G_i^T of every constraint i, or empty
-  dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints
+  dealii::FullMatrix<double> schur;      ///< G K^-1 G^T of all constraints, or empty
   mutable std::vector<bool> inverse_active;     ///< the set S_inverse belongs to
   mutable dealii::FullMatrix<double> S_inverse; ///< see S_inverse_of()
+  mutable std::vector<bool> factor_active;      ///< the set `factor` belongs to
+  mutable SparseDirectSolver factor;            ///< see factorize_saddle_point()
 };
 
 /**

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,7 +22,11 @@ const std::vector<std::string>& result_files();
  *   killed is never taken for a completed one;
  * - fail() writes summary.json "failed" with the phase and the reason (in
  *   "setup" after clearing the earlier results); refused() removes begin()'s
- *   summary.json again for a refusal.
+ *   summary.json again for a refusal, or, for a refused resume, puts back
+ *   the stopped run's summary.json that begin() replaced.
+ * An earlier result that cannot be removed is an error (SimulationError
+ * naming the file); nothing is removed through a link (vtu/ a link: left
+ * alone).
  */
 class RunPhase
 {
@@ -39,7 +44,8 @@ public:
   void fail(const std::string& reason);
   /**
    * Undoes begin()'s summary.json for a refusal after the setup (a damaged
-   * checkpoint is found when the time loop starts): a refusal leaves no result.
+   * checkpoint is found when the time loop starts): a refusal leaves no
+   * result, and the summary of a stopped run it refused to resume stays.
    */
   void refused();
   const std::string& name() const { return phase; }
@@ -52,5 +58,6 @@ private:
   std::string phase = "setup";
   bool cleared = false;
   bool wrote_summary = false;
+  std::optional<std::string> earlier_summary; ///< summary.json before begin()
 };
 } // namespace pantocat

@@ -20,8 +20,10 @@ struct SweepInput
 
 /**
  * Checks the entries and values of Mode = parameter sweep against the
- * declared parameters in @p prm: each entry must exist and be numeric
- * (pattern Double or Integer), each value must match its pattern. Throws
+ * declared parameters in @p prm: each entry must exist, be one the runs of a
+ * sweep read (not of subsection Output, Checkpoint, Study, Eigenfrequencies,
+ * Elasticity or Sweep) and be numeric (pattern Double or Integer), each
+ * value must match its pattern. Throws
  * InputError naming Sweep/Parameter (or Values, Second ...), the value and
  * what is allowed.
  */
@@ -32,8 +34,11 @@ void check_swept_entries(const dealii::ParameterHandler& prm,
  * Mode = speed sweep | parameter sweep | monte carlo (every rank calls it):
  * the plan of runs from subsection Sweep, each run's case made by reading
  * @p input again with the run's settings (a speed, the entries' values) or,
- * for Monte Carlo, the base case with the sample's installation deviations;
- * run by SweepStudy over the MPI ranks.
+ * for Monte Carlo, the base case with the sample's installation deviations
+ * (a dropper length tolerance that reaches the shortest dropper is refused);
+ * run by SweepStudy over the MPI ranks. The plan carries the parameters that
+ * decide the rows (all but those check_swept_entries() refuses to sweep),
+ * which a resumed sweep's partial file must match.
  */
 void run_sweep(const ProgramParameters& parameters, const dealii::ParameterHandler& prm,
                const SweepInput& input, std::ostream& out);

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <cmath>
+
 namespace pantocat
 {
 /**
@@ -31,6 +33,18 @@ struct ContactPointMotion
   double acceleration(const double t) const
   {
     return t < ramp_time ? speed / ramp_time : 0.;
+  }
+  /**
+   * The time t >= 0 at which x_p(t) = @p x (the inverse of position(), for
+   * x >= x_{p,0}): inside the ramp t = sqrt(2 (x - x_{p,0}) T_r / v_p), after it
+   * t = (x - x_{p,0}) / v_p + T_r / 2.
+   */
+  double time_at(const double x) const
+  {
+    const double distance = x - initial_position;
+    if (distance < 0.5 * speed * ramp_time)
+      return std::sqrt(2. * distance * ramp_time / speed);
+    return distance / speed + 0.5 * ramp_time;
   }
 };
 } // namespace pantocat

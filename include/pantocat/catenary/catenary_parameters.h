@@ -125,6 +125,8 @@ struct CatenaryParameters
 
   /// Target height of the static contact wire at @p x in span @p k (pre-sag parabola).
   double presag_height(unsigned int k, double x) const;
+  /// presag_height() at every dropper, in O(n) for all of them.
+  std::vector<double> dropper_presag_heights() const;
 
   /// Gravity load of a clamp and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2)
   /// g, Eq. (4), on the carrier (@p carrier_side) or the contact wire.
@@ -144,8 +146,9 @@ struct CatenaryParameters
   void check() const;
 
 private:
-  /// Steady arms only between spans, in increasing order (section ends are anchors).
-  void check_steady_arm_supports() const;
+  /// Spring supports with a stiffness; steady arms only between spans, in
+  /// increasing order (section ends are anchors), and only with a stiffness.
+  void check_supports() const;
   /// The section's droppers from the per-span @p positions and the @p lengths given.
   void place_droppers(const std::vector<std::vector<double>>& positions,
                       const std::vector<double>& lengths);

@@ -33,8 +33,9 @@ struct OutputParameters
   /**
    * Checks against the run's time step: a VTU interval in (0, @p time_step)
    * asks for frames closer than the time points there are (and one of
-   * 1e-300 s would count frames for ever); throws InputError.
+   * 1e-300 s would count frames for ever), and against the wires' domain
+   * [0, @p length]: every probe inside it; throws InputError.
    */
-  void check(double time_step) const;
+  void check(double time_step, double length) const;
 };
 } // namespace pantocat

@@ -2,6 +2,7 @@
 
 #include <pantocat/simulation/contact_statistics.h>
 
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -92,8 +93,11 @@ bool gnuplot_available();
 /**
  * Runs @p script (a file name in @p directory) with gnuplot inside @p
  * directory, without a shell (run_program()): the directory's name may hold
- * any character. Removes the @p outputs first and returns those gnuplot then
- * wrote (non-empty files); none if it is not installed or fails.
+ * any character. Removes the @p outputs first; gnuplot writes them into a
+ * directory made for this call (PrivateDirectory, passed to the script as
+ * gnuplot_output_directory), from where those written are renamed into
+ * @p directory: no link planted at a plot's name is followed. Returns the
+ * outputs written (non-empty files); none if gnuplot is not installed or fails.
  */
 std::vector<std::string> run_gnuplot(const std::string& directory,
                                      const std::string& script,
@@ -108,8 +112,27 @@ std::vector<std::string> run_gnuplot(const std::string& directory,
                                      const std::vector<PlotScript>& scripts);
 
 /**
- * @p text as a single-quoted gnuplot string: quotes doubled, control
- * characters (a newline would end the command) replaced by spaces.
+ * @p text as a single-quoted gnuplot string holding only characters that
+ * gnuplot takes literally there: letters, digits, bytes above 0x7f, space
+ * and + - * / = _ . , : ; ( ) [ ] < > % # ! ? & | ~ ^ { } (the terminals are
+ * noenhanced). Every other character becomes '_' (a quote, a back quote,
+ * '@', '$', '\\', '"'), a control character a space (a newline would end
+ * the command). The one way user text (titles, labels, column names, values)
+ * enters a script.
  */
 std::string gnuplot_string(const std::string& text);
+
+/// The gnuplot variable that holds the directory the plots are written to.
+constexpr const char* gnuplot_output_directory = "output_directory";
+
+/**
+ * The first lines of a script: "# Redraw with: gnuplot <script> ...",
+ * @p comment (whole lines), and the default of gnuplot_output_directory (the
+ * script's own directory when it is run by hand).
+ */
+void begin_gnuplot_script(std::ostream& gp, const std::string& script,
+                          const std::string& comment = "");
+
+/// "set output output_directory.'<file>'" for the checked file name @p file.
+std::string gnuplot_output(const std::string& file);
 } // namespace pantocat

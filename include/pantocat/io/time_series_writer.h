@@ -1,8 +1,8 @@
 #pragma once
 
+#include <pantocat/base/safe_files.h>
 #include <pantocat/simulation/time_point.h>
 
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -46,7 +46,7 @@ private:
 
   std::optional<unsigned long> resume_length; ///< set by resume() until reopened
   std::string file_name;
-  mutable std::ofstream out; ///< opened by start() or resume()
+  mutable std::optional<OutputFile> out; ///< opened by start() or resume()
   SimulationLayout layout;
   unsigned int every;
   unsigned long seen = 0;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/base/safe_files.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
@@ -10,6 +11,7 @@
 #include <deal.II/fe/fe_q.h>
 #include <deal.II/grid/tria.h>
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -30,7 +32,10 @@ namespace pantocat
  *    head at (x_p, w_p1) and each dropper clamp at (x_d, w_w(x_d)), with their
  *    constraint force [N], active flag and id (0: pantograph, j: dropper j).
  * Both VTU files carry the physical time (VTK field TIME). start() removes
- * the frames of an earlier run from vtu/. An interval below @p time_step is
+ * the frames of an earlier run from vtu/ (a symbolic link vtu is replaced by
+ * a directory, with a warning: nothing outside the output directory is
+ * removed or written); resume() refuses to go on when a frame written before
+ * the checkpoint is missing. An interval below @p time_step is
  * taken as @p time_step (a frame every time point; OutputParameters::check
  * refuses such an input): the frame counter then advances at most once per
  * time step, where a tiny interval made it count for ever.
@@ -62,6 +67,8 @@ private:
   void write_pvd() const;
 
   std::string directory;
+  /// vtu/ inside it, opened without following a link (start(), resume()).
+  std::optional<Directory> frames_directory;
   double interval, tolerance;
   unsigned long next_frame = 0;
   dealii::TimerOutput* timer;

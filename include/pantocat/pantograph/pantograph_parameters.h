@@ -2,8 +2,6 @@
 
 #include <pantocat/base/contact_point_motion.h>
 
-#include <cmath>
-
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
@@ -114,15 +112,10 @@ struct PantographParameters
   ContactPointMotion motion() const { return {initial_position, speed, speed_ramp}; }
   /// x_p(t).
   double position(double t) const { return motion().position(t); }
-  /// End time t_e with x_p(t_e) = final position (with a ramp: T_r / 2 later, or
-  /// inside the ramp if the run is shorter than the v_p T_r / 2 it takes).
-  double end_time() const
-  {
-    const double distance = final_position - initial_position;
-    if (distance < 0.5 * speed * speed_ramp)
-      return std::sqrt(2. * distance * speed_ramp / speed);
-    return distance / speed + 0.5 * speed_ramp;
-  }
+  /// The time t_e with x_p(t_e) = final position (ContactPointMotion::time_at():
+  /// with a ramp T_r / 2 later than at v_p throughout, or inside the ramp if the
+  /// run is shorter than the v_p T_r / 2 it takes).
+  double end_time() const { return motion().time_at(final_position); }
 
   /// The prm subsection these were read from ("Pantograph", "Pantograph 2", ...).
   std::string subsection = "Pantograph";

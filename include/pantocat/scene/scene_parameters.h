@@ -52,6 +52,9 @@ struct PantographCase
   bool is_absent() const { return model == "absent"; }
   /// "Scene/Pantograph" for pantograph 1, "Pantograph k/Model" for the others.
   std::string model_parameter() const;
+  /// The full name of its contact entry @p entry ("Contact damping", ...):
+  /// Scene/<entry> for pantograph 1, Pantograph k/<entry> for pantograph k.
+  std::string contact_entry(const std::string& entry) const;
   /// The Scene/Contact value: unilateral, bilateral or penalty.
   std::string contact_law() const;
 };

@@ -60,7 +60,8 @@ struct Case
 
   /**
    * The end time t_e of a dynamic run: the first pantograph (moving force or
-   * body) to reach its final position ends it; without any, pantograph 1's.
+   * body) to reach its final position ends it (PantographParameters::end_time(),
+   * with its speed ramp); without any, pantograph 1's.
    */
   double end_time() const;
 
@@ -70,6 +71,10 @@ struct Case
    * InputError naming the parameter, the value and what is allowed.
    */
   void check() const;
+  /// A speed ramp of 0 or at least one time step; throws InputError naming it.
+  void check_speed_ramp(const PantographParameters& p) const;
+  /// A penalty contact's damping within k_c t_e; throws InputError naming @p parameter.
+  void check_contact_damping(const Compliance& law, const std::string& parameter) const;
 
   /**
    * What a dynamic run needs beyond check(): unknowns to integrate, and a

@@ -18,6 +18,7 @@
 
 namespace pantocat
 {
+struct HalfExplicitStepLimit;
 class CheckpointWriter;
 class CheckpointReader;
 
@@ -131,7 +132,15 @@ public:
    * allowed, a bisection of about eight for one that is not.
    */
   std::string step_size_problem() const;
-  /// Builds the time point of a state (gaps and residuals evaluated here).
+  /**
+   * Builds the time point of a state (gaps and residuals evaluated here).
+   * The last line of defence of the outputs: a unilateral constraint only
+   * pushes (lambda_i >= 0, Sec. 5.3; a compliant one by its law max(0, ...)),
+   * so a state with a negative force of a unilateral constraint is an
+   * internal error of the integrator's step. It throws a SimulationError
+   * that names the time, the constraint and its force, before any observer
+   * sees the time point: such a force is never written, nor clamped.
+   */
   TimePoint time_point(const DynamicState& state) const;
   /// The constraint rows fill_time_point() keeps from one time point to the next.
   struct TimePointWorkspace
@@ -139,7 +148,7 @@ public:
     /// Per constraint; the constant ones evaluated at the first time point only.
     std::vector<ConstraintState> rows;
     /// Each constraint's kind, read at the first time point.
-    std::vector<char> time_dependent, compliant;
+    std::vector<char> time_dependent, compliant, unilateral;
     /// E(t) of the energy column, made at the first time point that needs it.
     std::optional<EnergyFunctional> energy;
   };
@@ -161,9 +170,20 @@ private:
   /// / 2.
   RunGuard make_guard() const;
   void check_step_size() const;
+  /**
+   * The half-explicit method's explicit compliant damping above its limit
+   * (explicit_damping_limit()): the reason for step_size_problem(), and the
+   * refusal naming the damping parameter in damping_refusal; "" if within.
+   */
+  std::string explicit_damping_problem() const;
+  /// The reason for step_size_problem() when no step is stable (@p l.critical = 0).
+  std::string no_stable_step(const HalfExplicitStepLimit& l, unsigned int steps) const;
   void check_load_resolution() const;
   /// x_p(t_0) of the first pantograph in contact (NaN if none).
   double initial_contact_position() const;
+  /// Throws the internal error of time_point() if a unilateral force of @p s is < 0.
+  void require_pushing_unilateral_forces(const DynamicState& s,
+                                         const std::vector<char>& unilateral) const;
 
   Case data;
   double asked_time_step; ///< Time integration/Time step as given
@@ -177,5 +197,6 @@ private:
   mutable bool warned = false;
   mutable bool step_size_checked = false;
   mutable std::string step_size_reason;
+  mutable std::string damping_refusal; ///< see explicit_damping_problem()
 };
 } // namespace pantocat

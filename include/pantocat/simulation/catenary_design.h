@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
 #include <pantocat/space/catenary_discretisation.h>
@@ -37,11 +38,18 @@ struct CatenaryDesignResult
  *    are the reactions of the supports held fixed in that static state, so
  *    that the sprung catenary is at rest in exactly the same state.
  *
+ * The static solves share one StaticEquilibriumSolver: the dense Schur
+ * complement for few constraints, the saddle-point system (time and memory
+ * near-linear in the length of the section) for many, or for every section
+ * with @p column_budget = 0 (see StaticEquilibriumSolver; the results agree
+ * to round-off).
+ *
  * Throws InputError when the pre-sag asks for a dropper of length <= 0.
  */
-CatenaryDesignResult design_catenary(const SceneParameters& scene,
-                                     const CatenaryParameters& catenary,
-                                     const CatenaryDiscretisation& space);
+CatenaryDesignResult
+design_catenary(const SceneParameters& scene, const CatenaryParameters& catenary,
+                const CatenaryDiscretisation& space,
+                double column_budget = StaticEquilibriumSolver::default_column_budget);
 
 /// True if @p catenary needs design_catenary(): designed lengths or preloaded springs.
 bool needs_design(const SceneParameters& scene, const CatenaryParameters& catenary);

@@ -8,7 +8,6 @@
 
 #include <deal.II/base/parameter_handler.h>
 
-#include <fstream>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -34,9 +33,11 @@ ParameterFingerprint critical_parameters(const dealii::ParameterHandler& prm);
  * Writes checkpoints of a dynamic run: the fingerprint of its parameters, the
  * step counter, the integrator's internal state and each observer's state,
  * in a Boost binary archive (the payload). The file holds a header line, the
- * payload's length and its CRC-32, then the payload. It is written to a
- * temporary file in the same directory and renamed over the old checkpoint:
- * a run killed while writing leaves the previous checkpoint intact.
+ * payload's length and its CRC-32, then the payload. It is written as a whole by
+ * write_file_atomically() (a temporary file of a random name in the same
+ * directory, renamed over the old checkpoint): a run killed while writing
+ * leaves the previous checkpoint intact, and no link at the checkpoint's
+ * name is followed.
  */
 class CheckpointWriter
 {
@@ -52,7 +53,9 @@ private:
 };
 
 /**
- * Reads a checkpoint. The constructor reads the whole file and checks,
+ * Reads a checkpoint. The constructor refuses a file that is no regular file
+ * (a link, a FIFO, a device: read_regular_file(), without reading it) or
+ * holds more than 4 GiB, reads the whole file and checks,
  * before deserialising anything, its header, the payload's length and its
  * CRC-32 (any flipped bit or byte, a file cut short or extended is refused);
  * then that it was made with @p fingerprint (an InputError names the first

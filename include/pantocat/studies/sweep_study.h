@@ -12,6 +12,8 @@
 
 namespace pantocat
 {
+class RunDistribution;
+
 /// Which study a sweep is.
 enum class SweepKind
 {
@@ -113,6 +115,8 @@ private:
   void read_partial();
   /// Rank 0: the partial file read (Resume) or started, earlier results removed.
   void start();
+  /// start() on rank 0; its refusal or failure thrown on every rank.
+  void start_on_every_rank(const RunDistribution& distribution);
   /// Rank 0: records run @p k's outcome, appends its rows, prints progress.
   void finished(unsigned int k, const SweepOutcome& outcome, std::ostream& out);
   /// Rank 0: <name>.csv, <name>_runs.csv, the distribution and the plots.

@@ -126,7 +126,24 @@ private:
                              const std::vector<bool>& active_at_start,
                              const std::vector<bool>* held_before = nullptr,
                              DynamicState storage = {});
+  /**
+   * The start of Sec. 5.2: backward Euler with dt (x_dt) and twice with dt/2
+   * (x_{dt/2}), each with its own active-set iteration (Sec. 5.3), and the
+   * Richardson extrapolation 2 x_{dt/2} - x_dt where both solve the same
+   * equations (the same constraints hold and carry force, an impact in both
+   * or in neither) and the extrapolated state is consistent itself
+   * (satisfies_unilateral_constraints()); else x_{dt/2}. After an impact the
+   * two Euler results need not be close: with a touching constraint in one
+   * and a force lambda in the other, or a force that falls to zero within
+   * the step, the extrapolation gave negative forces (-2 lambda).
+   */
   void richardson_start();
+  /**
+   * Sec. 5.3's test of a step's result @p x: every active rigid unilateral
+   * constraint has lambda_i >= 0, every inactive one g_i(t, q) >= 0 (rows at
+   * x.t).
+   */
+  bool satisfies_unilateral_constraints(const DynamicState& x);
   /// history = rho_v + c rho_q.
   void form_history(double c, const dealii::Vector<double>& rho_q,
                     const dealii::Vector<double>& rho_v);

@@ -76,6 +76,16 @@ private:
   /// consistent state for the set @p active at time t, written into y, y'.
   void make_consistent(double t, std::vector<bool> active);
   void read_state(double t);
+  /**
+   * The sign test of Sec. 5.3 at the output point @p t: the root finding
+   * sees lambda_i at the ends of IDA's own steps, so a force that falls
+   * through zero and rises again inside one step escapes it. A negative
+   * force of an active rigid unilateral constraint at @p t is that release,
+   * located at @p t: make_consistent() without it, and IDA restarts there.
+   */
+  void release_pulling_constraints(double t);
+  /// IDA from the state in y, y' at @p t (after make_consistent()).
+  void restart(double t);
   /// The root function of compliant unilateral constraint @p k at (q, v).
   double compliant_root(unsigned int k, const ConstraintState& c, const double* q,
                         const double* v) const;
