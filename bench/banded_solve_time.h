@@ -5,9 +5,9 @@
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/system/sparse_row.h>
-#include <pantocat/time/fixed_constraint_schur.h>
-#include <pantocat/time/iteration_matrix.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/fixed_constraint_schur.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/vector.h>

@@ -24,7 +24,7 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
-#include <pantocat/time/iteration_matrix.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/base/mpi.h>

@@ -18,13 +18,13 @@
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/damping_over_mass.h>
 #include <pantocat/time/disjoint_fixed_constraints.h>
-#include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/half_explicit_integrator.h>
-#include <pantocat/time/iteration_matrix.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
-#include <pantocat/time/truncated_columns.h>
+#include <pantocat/constrained_fast/truncated_columns.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 

@@ -7,7 +7,7 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/time/bdf2_integrator.h>
-#include <pantocat/time/iteration_matrix.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/simulation/initial_state.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <deal.II/base/numbers.h>
 

@@ -1,7 +1,7 @@
 #include <pantocat/base/input_error.h>
 #include <pantocat/time/bdf2_integrator.h>
 #include <pantocat/time/dynamic_state_serialization.h>
-#include <pantocat/time/multiplier_system.h>
+#include <pantocat/constrained_fast/multiplier_system.h>
 
 #include <algorithm>
 #include <array>

@@ -2,7 +2,7 @@
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/ida_integrator.h>
-#include <pantocat/time/multiplier_system.h>
+#include <pantocat/constrained_fast/multiplier_system.h>
 
 #include <idas/idas.h>
 #include <nvector/nvector_serial.h>

@@ -8,8 +8,8 @@
 #include <pantocat/time/ggl_fixed_block.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
-#include <pantocat/time/iteration_matrix.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pantocat/system/sparse_row.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <vector>
 

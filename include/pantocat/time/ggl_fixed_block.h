@@ -4,9 +4,9 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/constraint.h>
 #include <pantocat/time/damping_over_mass.h>
-#include <pantocat/time/fixed_constraint_schur.h>
-#include <pantocat/time/mass_inverse.h>
-#include <pantocat/time/truncated_columns.h>
+#include <pantocat/constrained_fast/fixed_constraint_schur.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
+#include <pantocat/constrained_fast/truncated_columns.h>
 
 #include <deal.II/lac/sparse_matrix.h>
 #include <deal.II/lac/sparsity_pattern.h>

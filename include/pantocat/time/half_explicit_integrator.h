@@ -4,10 +4,10 @@
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/disjoint_fixed_constraints.h>
-#include <pantocat/time/fixed_constraint_schur.h>
+#include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/time/impact_projection.h>
 #include <pantocat/time/integrator_registry.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <deal.II/lac/full_matrix.h>

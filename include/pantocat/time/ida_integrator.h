@@ -2,7 +2,7 @@
 
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/integrator_registry.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <memory>

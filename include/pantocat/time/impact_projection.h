@@ -1,15 +1,17 @@
 #pragma once
 
+#include <pantocat/constrained/constrained_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/time/fixed_constraint_schur.h>
-#include <pantocat/time/mass_inverse.h>
 
 #include <deal.II/lac/vector.h>
 
+#include <memory>
 #include <vector>
 
 namespace pantocat
 {
+class MassInverse;
+
 /**
  * The inelastic impact (restitution 0) of Sec. 5.3 at one time point, as an
  * event-driven integrator does it at a located event: with the constraints
@@ -26,14 +28,15 @@ namespace pantocat
  * project at t_{n+1}, so the impact is located to within one step and the
  * step's own multipliers never carry the impact (a force of order 1/dt).
  *
- * Cost O(n + m): the constraints with constant rows (droppers, supports)
- * enter through G_F M^-1 G_F^T (FixedConstraintSchur, made at the first
- * impact, factorised per holding set), the moving ones (the contacts) border
- * it with their columns M^-1 G^T.
+ * The projections are multiplier systems of the operator M
+ * (ConstrainedOperator::project()).
  */
 class ImpactProjection
 {
 public:
+  /// With the operator @p mass = M (kept by reference).
+  ImpactProjection(const SemiDiscreteSystem& system, ConstrainedOperator& mass);
+  /// With the fast operator on @p mass_inverse = M^-1 (kept by reference).
   ImpactProjection(const SemiDiscreteSystem& system, const MassInverse& mass_inverse);
 
   /// What an impact did.
@@ -104,11 +107,7 @@ private:
                                     Residual residual, dealii::Vector<double>& x);
 
   const SemiDiscreteSystem& system;
-  const MassInverse& mass_inverse;
-  std::vector<unsigned int> fixed; ///< rigid constraints with constant rows
-  std::vector<int> position;       ///< of constraint i in fixed, or -1
-  FixedConstraintSchur fixed_mass; ///< G_F M^-1 G_F^T
-  bool fixed_ready = false;
-  std::vector<bool> keep;
+  std::unique_ptr<ConstrainedOperator> own_mass; ///< the second constructor's
+  ConstrainedOperator& mass;
 };
 } // namespace pantocat

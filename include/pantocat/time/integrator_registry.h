@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/constrained/constrained_operator.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <functional>
@@ -28,6 +29,14 @@ struct IntegratorEntry
   std::function<std::unique_ptr<TimeIntegrator>(const SemiDiscreteSystem&,
                                                 const TimeIntegrationParameters&)>
       create;
+  /**
+   * For an integrator whose linear algebra is ConstrainedOperator's: make it
+   * with the implementation @p algebra (create() makes it with the fast
+   * one; the tests compare it with the reference). Empty for the others.
+   */
+  std::function<std::unique_ptr<TimeIntegrator>(
+      const SemiDiscreteSystem&, const TimeIntegrationParameters&, LinearAlgebra)>
+      create_with_linear_algebra;
 };
 
 /// Every integrator, in the order of the parameter documentation.

@@ -1,5 +1,5 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/time/multiplier_system.h>
+#include <pantocat/constrained_fast/multiplier_system.h>
 
 #include <cmath>
 #include <sstream>

@@ -1,6 +1,6 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/time/fixed_constraint_schur.h>
-#include <pantocat/time/truncated_columns.h>
+#include <pantocat/constrained_fast/fixed_constraint_schur.h>
+#include <pantocat/constrained_fast/truncated_columns.h>
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 #include <deal.II/lac/sparsity_tools.h>

@@ -1,4 +1,4 @@
-#include <pantocat/time/iteration_matrix.h>
+#include <pantocat/constrained_fast/iteration_matrix.h>
 
 namespace pantocat
 {

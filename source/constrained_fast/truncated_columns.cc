@@ -1,4 +1,4 @@
-#include <pantocat/time/truncated_columns.h>
+#include <pantocat/constrained_fast/truncated_columns.h>
 
 #include <deal.II/base/exceptions.h>
 

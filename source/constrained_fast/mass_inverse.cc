@@ -1,5 +1,5 @@
 #include <pantocat/base/input_error.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <algorithm>
 

@@ -4,7 +4,7 @@
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/sparse_row.h>
-#include <pantocat/time/mass_inverse.h>
+#include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>
