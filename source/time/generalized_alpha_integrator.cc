@@ -30,6 +30,69 @@ ConstrainedOperator::Definition iteration_matrix(const SemiDiscreteSystem& syste
   return S;
 }
 
+/// The predictors of one unknown from its q_n, v_n, a_n and a_c,n: formed
+/// where they are used, in the passes of predict() and newmark_update(),
+/// instead of being stored (each pass over the state costs as much as the
+/// arithmetic of a step on long sections).
+struct Predictor
+{
+  double h, hq, hv, wm, wf;
+  /// q^ = q_n + h v_n + h^2 (1/2 - beta) a_n.
+  double q_hat(const double q, const double v, const double a) const
+  {
+    return q + h * v + hq * a;
+  }
+  /// v^ = v_n + h (1 - gamma) a_n.
+  double v_hat(const double v, const double a) const { return v + hv * a; }
+  /// w = (alpha_m a_n - alpha_f a_c,n) / (1 - alpha_f).
+  double w(const double a, const double a_c) const { return wm * a + wf * a_c; }
+};
+
+Predictor predictor_of(const GeneralizedAlphaIntegrator::Coefficients& k, const double h)
+{
+  return {h, h * h * (0.5 - k.beta), h * (1. - k.gamma), k.alpha_m / (1. - k.alpha_f),
+          -k.alpha_f / (1. - k.alpha_f)};
+}
+
+/**
+ * predict()'s pass: mass_part = c_q q^ - w, damping_part = c_v q^ - v^ for
+ * the unknowns [0, n) (restrict pointers and an AVX2 clone so that the pass
+ * vectorises: it costs as much as the step's banded solve otherwise).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+right_hand_side_parts(const unsigned int n, const Predictor P, const double c_q,
+                      const double c_v, const double* __restrict q,
+                      const double* __restrict v, const double* __restrict a,
+                      const double* __restrict a_c, double* __restrict mass_part,
+                      double* __restrict damping_part)
+{
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    const double q_hat = P.q_hat(q[i], v[i], a[i]);
+    mass_part[i] = c_q * q_hat - P.w(a[i], a_c[i]);
+    damping_part[i] = c_v * q_hat - P.v_hat(v[i], a[i]);
+  }
+}
+
+/**
+ * newmark_update()'s pass: a_next = (q - q^) fa, v = v^ + fv a_next,
+ * a = fw a_next + w for the unknowns [0, n) (as right_hand_side_parts()).
+ */
+__attribute__((target_clones("avx2", "default"))) void
+newmark_pass(const unsigned int n, const Predictor P, const double fa, const double fv,
+             const double fw, const double* __restrict q, const double* __restrict q_n,
+             const double* __restrict v_n, const double* __restrict a_n,
+             const double* __restrict a_c, double* __restrict a_next,
+             double* __restrict v, double* __restrict a)
+{
+  for (unsigned int i = 0; i < n; ++i)
+  {
+    a_next[i] = (q[i] - P.q_hat(q_n[i], v_n[i], a_n[i])) * fa;
+    v[i] = P.v_hat(v_n[i], a_n[i]) + fv * a_next[i];
+    a[i] = fw * a_next[i] + P.w(a_n[i], a_c[i]);
+  }
+}
+
 ConstrainedOperator::Definition mass_matrix(const LinearSolverType solver)
 {
   ConstrainedOperator::Definition M;
@@ -74,39 +137,49 @@ void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
 
 void GeneralizedAlphaIntegrator::predict()
 {
-  const dealii::Vector<double>& a_n = pseudo_acceleration;
-  q_hat = current.q;
-  q_hat.add(h, current.v, h * h * (0.5 - k.beta), a_n);
-  v_hat = current.v;
-  v_hat.add(h * (1. - k.gamma), a_n);
-  w = a_n;
-  w.sadd(k.alpha_m / (1. - k.alpha_f), -k.alpha_f / (1. - k.alpha_f), current.a);
+  // The right-hand side's parts M (c_q q^ - w) and D (c_v q^ - v^) of the
+  // step's system, in one pass.
+  const unsigned int n = system.n_dofs();
+  mass_part.reinit(n, true);
+  damping_part.reinit(n, true);
+  right_hand_side_parts(n, predictor_of(k, h), c_q, c_v, current.q.begin(),
+                        current.v.begin(), pseudo_acceleration.begin(), current.a.begin(),
+                        mass_part.begin(), damping_part.begin());
 }
 
-double GeneralizedAlphaIntegrator::newmark_rate(const ConstraintState& row,
+double GeneralizedAlphaIntegrator::newmark_rate(const unsigned int i,
+                                                const ConstraintState& row,
                                                 const dealii::Vector<double>& q) const
 {
   // dg/dt = G_t q + G v + z_t with v = v^ + c_v (q - q^).
-  return row.G_t.dot(q) + c_v * (row.G.dot(q) - row.G.dot(q_hat)) + row.G.dot(v_hat) +
-         row.z_t;
+  return row.G_t.dot(q) + c_v * (row.G.dot(q) - G_q_hat[i]) + G_v_hat[i] + row.z_t;
 }
 
 void GeneralizedAlphaIntegrator::solve_without_forces(
     const std::vector<ConstraintState>& rows, const double t1)
 {
   // S q0 = f(t_{n+1}) + M (c_q q^ - w) + D (c_v q^ - v^).
-  dealii::Vector<double> mass_part(q_hat), damping_part(q_hat);
-  mass_part.sadd(c_q, -1., w);
-  damping_part.sadd(c_v, -1., v_hat);
   S->solve_history(t1, mass_part, damping_part, q0);
+  const Predictor P = predictor_of(k, h);
   const unsigned int m = system.n_constraints();
   base_gap.assign(m, 0.);
   base_rate.assign(m, 0.);
+  G_q_hat.assign(m, 0.);
+  G_v_hat.assign(m, 0.);
   for (unsigned int i = 0; i < m; ++i)
   {
     base_gap[i] = rows[i].position_residual(q0);
-    if (system.constraints[i]->is_compliant())
-      base_rate[i] = newmark_rate(rows[i], q0);
+    if (!system.constraints[i]->is_compliant())
+      continue;
+    const SparseRow& G = rows[i].G;
+    for (std::size_t e = 0; e < G.index.size(); ++e)
+    {
+      const unsigned int j = G.index[e];
+      G_q_hat[i] +=
+          G.value[e] * P.q_hat(current.q[j], current.v[j], pseudo_acceleration[j]);
+      G_v_hat[i] += G.value[e] * P.v_hat(current.v[j], pseudo_acceleration[j]);
+    }
+    base_rate[i] = newmark_rate(i, rows[i], q0);
   }
 }
 
@@ -125,13 +198,17 @@ bool GeneralizedAlphaIntegrator::trial(const std::vector<ConstraintState>& rows,
   S->solve_multipliers(set, x.lambda, "generalized-alpha step");
   x.q = q0;
   S->add_columns(x.lambda, x.q);
-  q_newmark = x.q;
-  if (active_set.force_indices().size() != active_set.active_indices().size())
-    // Touching constraints hold by the position projection alone.
+  touching = active_set.force_indices().size() != active_set.active_indices().size();
+  if (touching)
+  {
+    // Touching constraints hold by the position projection alone (the
+    // Newmark relations take q before it).
+    q_newmark = x.q;
     M->project(
         active_set.active_indices(),
         [&](const unsigned int i) { return rows[i].position_residual(x.q); }, x.q,
         position_multipliers, "position projection");
+  }
   const unsigned int m = system.n_constraints();
   gaps.assign(m, 0.);
   rates.assign(m, 0.);
@@ -140,7 +217,7 @@ bool GeneralizedAlphaIntegrator::trial(const std::vector<ConstraintState>& rows,
     if (active_set.reads_gap(i))
       gaps[i] = rows[i].position_residual(x.q);
     if (active_set.reads_rate(i))
-      rates[i] = newmark_rate(rows[i], x.q);
+      rates[i] = newmark_rate(i, rows[i], x.q);
   }
   return active_set.accept(gaps, x.lambda, t1, step_number + 1, rates);
 }
@@ -149,15 +226,15 @@ void GeneralizedAlphaIntegrator::newmark_update(const dealii::Vector<double>& q,
                                                 DynamicState& x)
 {
   // a_{n+1} = (q - q^) / (h^2 beta), v = v^ + h gamma a_{n+1},
-  // a_c = (1 - alpha_m) / (1 - alpha_f) a_{n+1} + w.
-  dealii::Vector<double> a_next(q);
-  a_next.add(-1., q_hat);
-  a_next *= 1. / (h * h * k.beta);
-  x.v = v_hat;
-  x.v.add(h * k.gamma, a_next);
-  x.a = w;
-  x.a.add((1. - k.alpha_m) / (1. - k.alpha_f), a_next);
-  pseudo_acceleration.swap(a_next);
+  // a_c = (1 - alpha_m) / (1 - alpha_f) a_{n+1} + w, in one pass.
+  const unsigned int n = system.n_dofs();
+  dealii::Vector<double>& a_next = next_pseudo_acceleration;
+  for (auto* y : {&a_next, &x.v, &x.a})
+    y->reinit(n, true);
+  newmark_pass(n, predictor_of(k, h), 1. / (h * h * k.beta), h * k.gamma,
+               (1. - k.alpha_m) / (1. - k.alpha_f), q.begin(), current.q.begin(),
+               current.v.begin(), pseudo_acceleration.begin(), current.a.begin(),
+               a_next.begin(), x.v.begin(), x.a.begin());
 }
 
 void GeneralizedAlphaIntegrator::project_velocities(
@@ -188,7 +265,7 @@ void GeneralizedAlphaIntegrator::project_velocities(
     if (x.active[i])
       holding.push_back(i);
   impacts.restart_acceleration(at_next.at(t1), holding, t1, x.q, x.v, x.lambda, x.a);
-  pseudo_acceleration = x.a;
+  next_pseudo_acceleration = x.a;
 }
 
 void GeneralizedAlphaIntegrator::advance()
@@ -199,8 +276,9 @@ void GeneralizedAlphaIntegrator::advance()
   M->set_rows(rows, t1);
   predict();
   solve_without_forces(rows, t1);
-  DynamicState x;
+  DynamicState x = std::move(spare); // its vectors' memory
   x.t = t1;
+  x.impulse.clear();
   active_set.start(current.active);
   while (!trial(rows, t1, x))
     ++stats.active_set_iterations;
@@ -209,8 +287,10 @@ void GeneralizedAlphaIntegrator::advance()
   clamp_compliant_forces(system, x.lambda);
   // a, v, a_c from q before the position projection (mu corrects positions
   // only, like the GGL multiplier of (38)).
-  newmark_update(q_newmark, x);
+  newmark_update(touching ? q_newmark : x.q, x);
   project_velocities(rows, t1, x);
+  pseudo_acceleration.swap(next_pseudo_acceleration);
+  spare = std::move(current);
   current = std::move(x);
   ++step_number;
   ++stats.steps;

@@ -98,20 +98,26 @@ public:
   };
 
 private:
-  /// The predictors q^, v^ and w of the step from x_n.
+  /// M (c_q q^ - w) and D (c_v q^ - v^) of the step's system, with the
+  /// predictors q^, v^ and w from x_n.
   void predict();
-  /// q0 = S^-1 (f(t_{n+1}) + M (c_q q^ - w) + D (c_v q^ - v^)), and g0, r0 at q0.
+  /// q0 = S^-1 (f(t_{n+1}) + M (c_q q^ - w) + D (c_v q^ - v^)), and g0, r0 at
+  /// q0 (with G q^ and G v^ of the compliant constraints).
   void solve_without_forces(const std::vector<ConstraintState>& rows, double t1);
-  /// dg/dt of constraint @p i at t_{n+1} for q, with v = v^ + c_v (q - q^).
-  double newmark_rate(const ConstraintState& row, const dealii::Vector<double>& q) const;
+  /// dg/dt of constraint @p i (rows @p row) at t_{n+1} for q, with
+  /// v = v^ + c_v (q - q^).
+  double newmark_rate(unsigned int i, const ConstraintState& row,
+                      const dealii::Vector<double>& q) const;
   /**
    * One trial of the active set: lambda of the position level on the active
    * rigid and engaged compliant constraints, q = q0 + S^-1 G^T lambda, and
-   * for touching constraints the position projection (q_newmark keeps q
-   * before it). Returns true if the active set accepts the trial.
+   * for touching constraints the position projection (`touching`;
+   * q_newmark keeps q before it). Returns true if the active set accepts
+   * the trial.
    */
   bool trial(const std::vector<ConstraintState>& rows, double t1, DynamicState& x);
-  /// The Newmark relations: a_{n+1}, v_{n+1} and a_c,{n+1} from q_{n+1}.
+  /// The Newmark relations: a_{n+1} (into next_pseudo_acceleration),
+  /// v_{n+1} and a_c,{n+1} from q_{n+1}.
   void newmark_update(const dealii::Vector<double>& q, DynamicState& x);
   /// The velocity projection onto dg/dt = 0, or the impact's (Sec. 5.3).
   void project_velocities(const std::vector<ConstraintState>& rows, double t1,
@@ -129,9 +135,15 @@ private:
   unsigned long step_number = 0;
   std::vector<double> ratio; ///< d of each constraint's law (damping_ratio())
 
-  /// Workspace of a step: predictors, q0, its g and dg/dt, and q before the
-  /// position projection.
-  dealii::Vector<double> q_hat, v_hat, w, q0, q_newmark;
-  std::vector<double> base_gap, base_rate, gaps, rates, position_multipliers;
+  /// Workspace of a step, kept so that a step allocates nothing: the
+  /// right-hand side's parts, q0, q before the position projection, a_{n+1},
+  /// the state before current (its vectors' memory for the next step's);
+  /// per constraint g and dg/dt at q0, G q^ and G v^ (compliant ones), the
+  /// gaps and rates of a trial and the position projection's multipliers.
+  dealii::Vector<double> mass_part, damping_part, q0, q_newmark, next_pseudo_acceleration;
+  DynamicState spare;
+  bool touching = false;
+  std::vector<double> base_gap, base_rate, G_q_hat, G_v_hat, gaps, rates,
+      position_multipliers;
 };
 } // namespace pantocat
