@@ -160,6 +160,7 @@ void GeneralizedAlphaIntegrator::solve_without_forces(
 {
   // S q0 = f(t_{n+1}) + M (c_q q^ - w) + D (c_v q^ - v^).
   S->solve_history(t1, mass_part, damping_part, q0);
+  q0_current = true;
   const Predictor P = predictor_of(k, h);
   const unsigned int m = system.n_constraints();
   base_gap.assign(m, 0.);
@@ -196,7 +197,12 @@ bool GeneralizedAlphaIntegrator::trial(const std::vector<ConstraintState>& rows,
   for (const unsigned int i : set)
     x.lambda[i] = -(base_gap[i] + ratio[i] * base_rate[i]) / (1. + ratio[i] * c_v);
   S->solve_multipliers(set, x.lambda, "generalized-alpha step");
-  x.q = q0;
+  // x.q takes q0's vector (no copy of the state); a repeated trial solves
+  // for q0 again, the same bits.
+  if (!q0_current)
+    S->solve_history(t1, mass_part, damping_part, q0);
+  x.q.swap(q0);
+  q0_current = false;
   S->add_columns(x.lambda, x.q);
   touching = active_set.force_indices().size() != active_set.active_indices().size();
   if (touching)

@@ -143,6 +143,7 @@ private:
   dealii::Vector<double> mass_part, damping_part, q0, q_newmark, next_pseudo_acceleration;
   DynamicState spare;
   bool touching = false;
+  bool q0_current = false; ///< q0 holds the step's solution (a trial takes its vector)
   std::vector<double> base_gap, base_rate, G_q_hat, G_v_hat, gaps, rates,
       position_multipliers;
 };
