@@ -137,8 +137,8 @@ void GeneralizedAlphaIntegrator::initialize(const DynamicState& initial)
 
 void GeneralizedAlphaIntegrator::predict()
 {
-  // The right-hand side's parts M (c_q q^ - w) and D (c_v q^ - v^) of the
-  // step's system, in one pass.
+  // h = c_q q^ - w and r = c_v q^ - v^ of the step's right-hand side
+  // f + M h + D r, in one pass.
   const unsigned int n = system.n_dofs();
   mass_part.reinit(n, true);
   damping_part.reinit(n, true);

@@ -98,8 +98,8 @@ public:
   };
 
 private:
-  /// M (c_q q^ - w) and D (c_v q^ - v^) of the step's system, with the
-  /// predictors q^, v^ and w from x_n.
+  /// h = c_q q^ - w and r = c_v q^ - v^ of the step's right-hand side
+  /// f + M h + D r, with the predictors q^, v^ and w from x_n.
   void predict();
   /// q0 = S^-1 (f(t_{n+1}) + M (c_q q^ - w) + D (c_v q^ - v^)), and g0, r0 at
   /// q0 (with G q^ and G v^ of the compliant constraints).
