@@ -91,7 +91,7 @@ Agreement run_side_by_side(const Case& c, const IntegratorEntry& entry)
   std::vector<bool> previous = runner.initial_state().active;
   for (unsigned long n = 0; n < runner.number_of_steps(); ++n)
   {
-    if (n > 0)
+    if (n > 0 && entry.writes_checkpoints)
       carry_over(*reference, *fast);
     fast->advance();
     reference->advance();
@@ -116,6 +116,29 @@ Agreement run_side_by_side(const Case& c, const IntegratorEntry& entry)
   return a;
 }
 
+/// The case's time step.
+double p_time_step(const Case& c)
+{
+  return c.time_integration.time_step;
+}
+
+/**
+ * The bound on the multipliers' relative difference in a step. BDF-2 solves
+ * one system over the levels g, dg/dt and d2g/dt2 of (38), whose rows scale
+ * like 1, c and c^2 (c = 3/(2 dt) in 1/s): its condition number grows like
+ * c^2, and the two implementations' solves may differ by about c^2 eps
+ * relative, 1e-7 at dt = 5e-5 s (measured up to 6.1e-9 on benchmark-32). The
+ * other methods solve one level at a time: 1e-9, the cancellation in g(q0)
+ * described above.
+ */
+double multiplier_tolerance(const IntegratorEntry& entry, const double dt)
+{
+  if (entry.name != "bdf2")
+    return 1e-9;
+  const double c = 1.5 / dt;
+  return std::max(1e-9, c * c * 1.1e-16);
+}
+
 /// Runs @p file (with @p overrides) with every integrator on the switch.
 void check_case(const std::string& file, const std::vector<std::string>& overrides,
                 const unsigned long least_switches = 0)
@@ -138,7 +161,7 @@ void check_case(const std::string& file, const std::vector<std::string>& overrid
     EXPECT_TRUE(a.same_active_sets);
     EXPECT_LT(a.q.relative(), 1e-10);
     EXPECT_LT(a.v.relative(), 1e-10);
-    EXPECT_LT(a.lambda.relative(), 1e-9);
+    EXPECT_LT(a.lambda.relative(), multiplier_tolerance(entry, p_time_step(c)));
     EXPECT_LT(a.impulse.relative(), 1e-9);
     // The case exercises what it is chosen for (the switches of the
     // unilateral constraints at 48 m/s).
@@ -188,4 +211,30 @@ TEST(IntegratorOracle, SectionS55WithTwoPantographs)
   check_case("prm/catenary/section-s55-two-pantographs.prm",
              {"Pantograph/Final position=205", "Pantograph/Speed ramp=0",
               "Statistics/Window spans="});
+}
+
+TEST(IntegratorOracle, IdaLocatesTheSameEventsWithBothImplementations)
+{
+  // IDA writes no checkpoints, so the two runs go side by side from the start
+  // (Sec. 6 at 48 m/s, FDM, to t = 0.27 s: dropper 2 slackens and re-tensions
+  // with an impact). The service serves its projections at the events; their
+  // round-off moves IDA's own step sequence, so the runs agree as IDA's error
+  // control makes them: the same active sets at every output point; q and v
+  // within its relative tolerance (1e-6; measured 4.6e-8 and 4.0e-8); the
+  // multipliers, which IDA leaves out of its error test (algebraic), within
+  // 1e-2 of the largest force (measured 6.6e-4).
+  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
+  const Case c = read_case(source_file("prm/benchmark-48.prm"),
+                           {"Discretisation/Method=fdm", "Pantograph/Final position=14.96"})
+                     .make_case();
+  const Agreement a = run_side_by_side(c, integrator_entry("ida"));
+  std::cout << "[ oracle   ] benchmark-48 FDM, ida: " << a.steps << " output points, "
+            << a.switches << " switching; largest relative difference: q "
+            << a.q.relative() << ", v " << a.v.relative() << ", lambda "
+            << a.lambda.relative() << "\n";
+  EXPECT_TRUE(a.same_active_sets);
+  EXPECT_GE(a.switches, 2u);
+  EXPECT_LT(a.q.relative(), 1e-6);
+  EXPECT_LT(a.v.relative(), 1e-6);
+  EXPECT_LT(a.lambda.relative(), 1e-2);
 }

@@ -2,7 +2,6 @@
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/ida_integrator.h>
-#include <pantocat/constrained_fast/multiplier_system.h>
 
 #include <idas/idas.h>
 #include <nvector/nvector_serial.h>
@@ -157,6 +156,13 @@ SUNLinearSolver make_dealii_solver(LinearSolverType type, SUNContext context)
   S->ops->free = DealiiDirectSolver::free;
   return S;
 }
+/// The mass matrix M of the projections at events.
+ConstrainedOperator::Definition mass_matrix()
+{
+  ConstrainedOperator::Definition M;
+  M.what = "mass matrix M";
+  return M;
+}
 } // namespace
 
 /// SUNDIALS objects and the callbacks of IDA (residual, Jacobian, roots).
@@ -211,6 +217,13 @@ struct IdaIntegrator::Sundials
   /// (if @p engaged) by q, v and lambda, and mu = 0.
   void add_compliant_columns(unsigned int k, const ConstraintState& c, bool engaged,
                              Columns& column) const;
+  /// The entries of M, D, K (with cj of IDA's derivative).
+  void add_matrix_columns(double cj, Columns& column) const;
+  /// The entries of the constraints' rows at @p c (by the active set).
+  void add_constraint_columns(const std::vector<ConstraintState>& c,
+                              Columns& column) const;
+  /// @p column into the CSC matrix @p Jac; a new pattern re-analysed (KLU).
+  void write_columns(Columns& column, SUNMatrix Jac);
 
   IdaIntegrator& owner;
   SUNContext context = nullptr;
@@ -275,11 +288,19 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
 {
   Sundials& S = *static_cast<Sundials*>(data);
   IdaIntegrator& I = S.owner;
-  const unsigned int n = I.n, m = I.m;
-  const auto& sys = I.system;
-  const auto& c = I.rows.at(t, 1);
-  // Columns of J = dF/dy + cj dF/dy' (CSC). M, D, K are symmetric: column j = row j.
-  Columns column(2 * n + 2 * m);
+  // Columns of J = dF/dy + cj dF/dy' (CSC).
+  Columns column(2 * I.n + 2 * I.m);
+  S.add_matrix_columns(cj, column);
+  S.add_constraint_columns(I.rows.at(t, 1), column);
+  S.write_columns(column, Jac);
+  return 0;
+}
+
+void IdaIntegrator::Sundials::add_matrix_columns(const double cj, Columns& column) const
+{
+  const unsigned int n = owner.n;
+  const SemiDiscreteSystem& sys = owner.system;
+  // M, D, K are symmetric: column j = row j.
   for (unsigned int j = 0; j < n; ++j)
   {
     for (auto it = sys.mass.begin(j); it != sys.mass.end(j); ++it)
@@ -293,10 +314,16 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
     for (auto it = sys.stiffness.begin(j); it != sys.stiffness.end(j); ++it)
       column[j].push_back({n + it->column(), it->value()});
   }
+}
+
+void IdaIntegrator::Sundials::add_constraint_columns(
+    const std::vector<ConstraintState>& c, Columns& column) const
+{
+  const unsigned int n = owner.n, m = owner.m;
   for (unsigned int k = 0; k < m; ++k)
-    if (sys.constraints[k]->is_compliant())
-      S.add_compliant_columns(k, c[k], I.active[k], column);
-    else if (I.active[k])
+    if (owner.system.constraints[k]->is_compliant())
+      add_compliant_columns(k, c[k], owner.active[k], column);
+    else if (owner.active[k])
     {
       for (std::size_t e = 0; e < c[k].G.size(); ++e)
       {
@@ -315,6 +342,10 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
       column[2 * n + k].push_back({2 * n + k, 1.});
       column[2 * n + m + k].push_back({2 * n + m + k, 1.});
     }
+}
+
+void IdaIntegrator::Sundials::write_columns(Columns& column, SUNMatrix Jac)
+{
   sunindextype total = 0;
   for (auto& col : column)
   {
@@ -347,15 +378,14 @@ int IdaIntegrator::Sundials::jacobian(realtype t, realtype cj, N_Vector, N_Vecto
   // The moving contact row changes the pattern: KLU's numeric refactorisation
   // assumes the pattern of its symbolic analysis, so a new pattern needs a
   // new analysis (SUNLinSol_KLUReInit frees the factorisations).
-  std::vector<sunindextype> pattern(start, start + column.size() + 1);
-  pattern.insert(pattern.end(), row, row + e);
-  if (pattern != S.pattern)
+  std::vector<sunindextype> new_pattern(start, start + column.size() + 1);
+  new_pattern.insert(new_pattern.end(), row, row + e);
+  if (new_pattern != pattern)
   {
-    S.pattern.swap(pattern);
-    if (I.linear_solver == IdaLinearSolver::sundials_klu)
-      SUNLinSol_KLUReInit(S.solver, Jac, SM_NNZ_S(Jac), SUNKLU_REINIT_PARTIAL);
+    pattern.swap(new_pattern);
+    if (owner.linear_solver == IdaLinearSolver::sundials_klu)
+      SUNLinSol_KLUReInit(solver, Jac, SM_NNZ_S(Jac), SUNKLU_REINIT_PARTIAL);
   }
-  return 0;
 }
 
 void IdaIntegrator::Sundials::add_compliant_columns(const unsigned int k,
@@ -418,54 +448,71 @@ int IdaIntegrator::Sundials::roots(realtype t, N_Vector yy, N_Vector, realtype* 
 IdaIntegrator::IdaIntegrator(const SemiDiscreteSystem& system, const double output_step,
                              const double relative_tolerance,
                              const double absolute_tolerance,
-                             const IdaLinearSolver solver)
+                             const IdaLinearSolver solver, const LinearAlgebra algebra)
     : TimeIntegrator(system), dt(output_step), rtol(relative_tolerance),
       atol(absolute_tolerance), linear_solver(solver), n(system.n_dofs()),
-      m(system.n_constraints()), rows(system)
+      m(system.n_constraints()),
+      M(make_constrained_operator(system, mass_matrix(), algebra)), rows(system),
+      load_scratch(system.n_dofs())
 {
-  mass_inverse.initialize(system.mass, system.mass_is_diagonal, "mass matrix M");
   stats.events_localised = true;
 }
 
 IdaIntegrator::~IdaIntegrator() = default;
+
+std::vector<unsigned int> IdaIntegrator::held_rigid(const std::vector<bool>& set) const
+{
+  std::vector<unsigned int> held;
+  for (unsigned int k = 0; k < m; ++k)
+    if (set[k] && !system.constraints[k]->is_compliant())
+      held.push_back(k);
+  return held;
+}
+
+void IdaIntegrator::accelerations(const double t, const std::vector<ConstraintState>& c,
+                                  const std::vector<bool>& set,
+                                  const dealii::Vector<double>& q,
+                                  const dealii::Vector<double>& v,
+                                  dealii::Vector<double>& a, std::vector<double>& lambda)
+{
+  // M a = f - K q - D v + G^T lambda of the compliant constraints (engaged as
+  // in the set: at a root the toggled branch, the sign of the crossing), then
+  // the rigid ones' lambda on acceleration level:
+  // G a + 2 G_t v + G_tt q + z_tt = 0.
+  system.load_at(t, a);
+  system.stiffness.vmult(load_scratch, q);
+  a -= load_scratch;
+  system.damping.vmult(load_scratch, v);
+  a -= load_scratch;
+  std::vector<double> forces(m, 0.);
+  for (unsigned int k = 0; k < m; ++k)
+    if (set[k] && system.constraints[k]->is_compliant())
+    {
+      forces[k] = system.constraints[k]->trial_force(c[k].position_residual(q),
+                                                     c[k].velocity_residual(q, v));
+      c[k].G.add_transpose_to(a, forces[k]);
+    }
+  M->apply_inverse(a);
+  M->project(
+      held_rigid(set),
+      [&](unsigned int k)
+      { return c[k].G.dot(a) + 2. * c[k].G_t.dot(v) + c[k].G_tt.dot(q) + c[k].z_tt; },
+      a, lambda, "IDA event");
+  for (unsigned int k = 0; k < m; ++k)
+    if (system.constraints[k]->is_compliant())
+      lambda[k] = forces[k];
+}
 
 void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
 {
   double* y = N_VGetArrayPointer(sun->y);
   double* yp = N_VGetArrayPointer(sun->yp);
   const auto& c = rows.at(t, 2);
-  dealii::Vector<double> q(n), v(n);
+  M->set_rows(c, t);
+  dealii::Vector<double> q(n), v(n), a(n);
   std::copy(y, y + n, q.begin());
   std::copy(y + n, y + 2 * n, v.begin());
-  // Columns Y_k = M^-1 G_k^T of all constraints.
-  std::vector<dealii::Vector<double>> Y(m, dealii::Vector<double>(n));
-  for (unsigned int k = 0; k < m; ++k)
-  {
-    c[k].G.add_transpose_to(Y[k], 1.);
-    mass_inverse.apply(Y[k]);
-  }
-  auto project = [&](dealii::Vector<double>& x, auto residual, const char* what)
-  {
-    std::vector<unsigned int> A; // the rigid constraints that hold
-    for (unsigned int k = 0; k < m; ++k)
-      if (set[k] && !system.constraints[k]->is_compliant())
-        A.push_back(k);
-    dealii::FullMatrix<double> W(A.size(), A.size());
-    dealii::Vector<double> rhs(A.size()), sol(A.size());
-    for (unsigned int i = 0; i < A.size(); ++i)
-    {
-      for (unsigned int l = 0; l < A.size(); ++l)
-        W(i, l) = c[A[i]].G.dot(Y[A[l]]);
-      rhs(i) = -residual(A[i]);
-    }
-    solve_multiplier_system(W, rhs, sol, t, what);
-    for (unsigned int l = 0; l < A.size(); ++l)
-      x.add(sol(l), Y[A[l]]);
-    return std::make_pair(A, sol);
-  };
-  dealii::Vector<double> a(n), f(n);
-  system.load_at(t, f);
-  std::vector<double> lambda(m, 0.);
+  std::vector<double> lambda(m, 0.), position_correction, impulse;
   bool closes = false;
   for (unsigned int k = 0; k < m; ++k)
     closes =
@@ -478,46 +525,42 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
     // Positions and velocities onto g = dg/dt = 0 (an inelastic impact where a
     // constraint closes; round-off elsewhere). v += M^-1 G^T P: P is the
     // impulse [N s].
-    project(
-        q, [&](unsigned int k) { return c[k].position_residual(q); }, "IDA event");
-    const auto [held, impulse] = project(
-        v, [&](unsigned int k) { return c[k].velocity_residual(q, v); }, "IDA event");
-    if (closes)
-      for (unsigned int l = 0; l < held.size(); ++l)
-      {
-        pending_impulse[held[l]] += impulse(l);
-        event_impulse[held[l]] += impulse(l);
-      }
-    // Multipliers on acceleration level: G a + 2 G_t v + G_tt q + z_tt = 0,
-    // with the forces of the compliant constraints (engaged as in the set:
-    // at a root the toggled branch, the sign of the crossing) in the load.
-    system.stiffness.vmult(a, q);
-    system.damping.vmult_add(a, v);
-    a.sadd(-1., 1., f);
-    std::fill(lambda.begin(), lambda.end(), 0.);
-    for (unsigned int k = 0; k < m; ++k)
-      if (set[k] && system.constraints[k]->is_compliant())
-      {
-        lambda[k] = system.constraints[k]->trial_force(c[k].position_residual(q),
-                                                       c[k].velocity_residual(q, v));
-        c[k].G.add_transpose_to(a, lambda[k]);
-      }
-    mass_inverse.apply(a);
-    const auto [A, sol] = project(
-        a,
-        [&](unsigned int k)
-        { return c[k].G.dot(a) + 2. * c[k].G_t.dot(v) + c[k].G_tt.dot(q) + c[k].z_tt; },
+    const std::vector<unsigned int> held = held_rigid(set);
+    M->project(
+        held, [&](unsigned int k) { return c[k].position_residual(q); }, q,
+        position_correction, "IDA event");
+    M->project(
+        held, [&](unsigned int k) { return c[k].velocity_residual(q, v); }, v, impulse,
         "IDA event");
+    if (closes)
+      for (const unsigned int k : held)
+      {
+        pending_impulse[k] += impulse[k];
+        event_impulse[k] += impulse[k];
+      }
+    accelerations(t, c, set, q, v, a, lambda);
+    // A constraint that pulls separates: g'' > 0 without it.
     bool released = false;
-    for (unsigned int l = 0; l < A.size(); ++l)
-    {
-      lambda[A[l]] = sol(l);
-      if (sol(l) < 0. && system.constraints[A[l]]->is_unilateral())
-        set[A[l]] = false, released = true; // separates: g'' > 0 without it
-    }
+    for (const unsigned int k : held)
+      if (lambda[k] < 0. && system.constraints[k]->is_unilateral())
+        set[k] = false, released = true;
     if (!released)
       break;
   }
+  record_events(t, set, closes, event_impulse);
+  std::copy(q.begin(), q.end(), y);
+  std::copy(v.begin(), v.end(), y + n);
+  for (unsigned int k = 0; k < m; ++k)
+    y[2 * n + k] = lambda[k], y[2 * n + m + k] = 0.;
+  std::copy(v.begin(), v.end(), yp);
+  std::copy(a.begin(), a.end(), yp + n);
+  std::fill(yp + 2 * n, yp + 2 * n + 2 * m, 0.);
+}
+
+void IdaIntegrator::record_events(const double t, const std::vector<bool>& set,
+                                  const bool closes,
+                                  const std::vector<double>& event_impulse)
+{
   for (unsigned int k = 0; k < m; ++k)
     if (set[k] != active[k])
     {
@@ -526,13 +569,6 @@ void IdaIntegrator::make_consistent(const double t, std::vector<bool> set)
       ++stats.active_set_changes;
     }
   active = set;
-  std::copy(q.begin(), q.end(), y);
-  std::copy(v.begin(), v.end(), y + n);
-  for (unsigned int k = 0; k < m; ++k)
-    y[2 * n + k] = lambda[k], y[2 * n + m + k] = 0.;
-  std::copy(v.begin(), v.end(), yp);
-  std::copy(a.begin(), a.end(), yp + n);
-  std::fill(yp + 2 * n, yp + 2 * n + 2 * m, 0.);
 }
 
 void IdaIntegrator::initialize(const DynamicState& initial)
@@ -709,14 +745,20 @@ IntegratorEntry IdaIntegrator::registry_entry()
   e.explicit_step_limit = false;
   e.writes_checkpoints = false;
   e.locates_events = true;
-  e.create = [](const SemiDiscreteSystem& system, const TimeIntegrationParameters& p)
+  e.create_with_linear_algebra = [](const SemiDiscreteSystem& system,
+                                    const TimeIntegrationParameters& p,
+                                    const LinearAlgebra algebra)
   {
     return std::make_unique<IdaIntegrator>(
         system, p.time_step, p.ida_relative_tolerance, p.ida_absolute_tolerance,
         p.ida_linear_solver == "umfpack"        ? IdaLinearSolver::umfpack
         : p.ida_linear_solver == "trilinos-klu" ? IdaLinearSolver::trilinos_klu
-                                                : IdaLinearSolver::sundials_klu);
+                                                : IdaLinearSolver::sundials_klu,
+        algebra);
   };
+  e.create = [make = e.create_with_linear_algebra](const SemiDiscreteSystem& system,
+                                                   const TimeIntegrationParameters& p)
+  { return make(system, p, LinearAlgebra::fast); };
   return e;
 }
 } // namespace pantocat

@@ -1,8 +1,8 @@
 #pragma once
 
+#include <pantocat/constrained/constrained_operator.h>
 #include <pantocat/time/constraint_evaluator.h>
 #include <pantocat/time/integrator_registry.h>
-#include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/time/time_integrator.h>
 
 #include <memory>
@@ -60,7 +60,8 @@ public:
 
   IdaIntegrator(const SemiDiscreteSystem& system, double output_step,
                 double relative_tolerance, double absolute_tolerance,
-                IdaLinearSolver solver = IdaLinearSolver::sundials_klu);
+                IdaLinearSolver solver = IdaLinearSolver::sundials_klu,
+                LinearAlgebra algebra = LinearAlgebra::fast);
   ~IdaIntegrator() override;
 
   std::string name() const override { return "ida"; }
@@ -75,6 +76,20 @@ private:
   /// Impact projection, multipliers on acceleration level, releases: a
   /// consistent state for the set @p active at time t, written into y, y'.
   void make_consistent(double t, std::vector<bool> active);
+  /// The rigid constraints of @p set (those the projections hold).
+  std::vector<unsigned int> held_rigid(const std::vector<bool>& set) const;
+  /**
+   * @p a from M a = f - K q - D v + G^T lambda with the compliant forces of
+   * @p set and the rigid ones' lambda on acceleration level (G a + 2 G_t v +
+   * G_tt q + z_tt = 0), all into @p lambda.
+   */
+  void accelerations(double t, const std::vector<ConstraintState>& rows,
+                     const std::vector<bool>& set, const dealii::Vector<double>& q,
+                     const dealii::Vector<double>& v, dealii::Vector<double>& a,
+                     std::vector<double>& lambda);
+  /// The switches from the active set to @p set, in the statistics; @p set active.
+  void record_events(double t, const std::vector<bool>& set, bool closes,
+                     const std::vector<double>& event_impulse);
   void read_state(double t);
   /**
    * The sign test of Sec. 5.3 at the output point @p t: the root finding
@@ -95,8 +110,9 @@ private:
   double rtol, atol;
   IdaLinearSolver linear_solver;
   unsigned int n, m;
-  MassInverse mass_inverse;
+  std::unique_ptr<ConstrainedOperator> M; ///< of the projections
   ConstraintEvaluator rows;
+  dealii::Vector<double> load_scratch;
   std::unique_ptr<Sundials> sun;
   std::vector<bool> active;
   /// Impulses [N s] of the impacts since the last output point (empty: none).

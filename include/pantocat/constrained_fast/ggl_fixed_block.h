@@ -3,7 +3,7 @@
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/system/constraint.h>
-#include <pantocat/time/damping_over_mass.h>
+#include <pantocat/constrained_fast/damping_over_mass.h>
 #include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/constrained_fast/truncated_columns.h>

@@ -1,5 +1,4 @@
-#include <pantocat/time/active_set.h>
-#include <pantocat/time/ggl_fixed_block.h>
+#include <pantocat/constrained_fast/ggl_fixed_block.h>
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +20,9 @@ void GglFixedBlock::initialize(const std::vector<const SparseRow*>& G,
   std::vector<double> compliance(m, 0.);
   for (unsigned int k = 0; k < m; ++k)
   {
-    ratio[k] = pantocat::damping_ratio(*constraints[k]);
+    ratio[k] = constraints[k]->is_compliant() ? constraints[k]->compliance().damping /
+                                                    constraints[k]->compliance().stiffness
+                                              : 0.;
     if (constraints[k]->is_compliant())
       compliance[k] = 1. / (constraints[k]->compliance().stiffness * (1. + ratio[k] * c));
   }

@@ -1,4 +1,4 @@
-#include <pantocat/time/damping_over_mass.h>
+#include <pantocat/constrained_fast/damping_over_mass.h>
 
 #include <algorithm>
 #include <cmath>
