@@ -693,7 +693,12 @@ TEST(Impacts, AFallingMassStopsWithTheImpulseOfItsMomentum)
   // IDA locates t* by root finding: m v* to its tolerance. After the impact
   // the mass rests (x = v = 0 to round-off), the floor carries m g, and no
   // force of the floor is ever negative or larger than m g: the impact is an
-  // impulse, not a force of order 1/dt.
+  // impulse, not a force of order 1/dt (m v* / dt = 1e5 N here). For
+  // generalized-alpha, whose accelerations after the impact are the step's
+  // (the free fall's, GeneralizedAlphaIntegrator), the floor's force
+  // overshoots while that history decays, by a bound that does not grow as
+  // dt shrinks: at most 2 m g (measured 1.69 m g at both steps, the excess
+  // shrinking about fourfold per step).
   const FallingMass drop;
   const SemiDiscreteSystem system = drop.system();
   const double exact = drop.m * drop.impact_speed(), t_star = drop.impact_time();
@@ -708,7 +713,8 @@ TEST(Impacts, AFallingMassStopsWithTheImpulseOfItsMomentum)
       for (const DynamicState& p : points)
       {
         ASSERT_GE(p.lambda[0], 0.) << who << " at t = " << p.t;
-        EXPECT_LE(p.lambda[0], drop.m * gravity * (1. + 1e-9))
+        EXPECT_LE(p.lambda[0],
+                  drop.m * gravity * (name == "generalized-alpha" ? 2. : 1. + 1e-9))
             << who << " at t = " << p.t;
         if (p.impulse.empty())
           continue;

@@ -262,16 +262,8 @@ void GeneralizedAlphaIntegrator::project_velocities(
   x.impulse.swap(r.impulse);
   for (const unsigned int i : r.separated)
     x.active[i] = false;
-  // The pseudo-acceleration restarts, a_{n+1} = a_c,{n+1}, from the
-  // acceleration of the end state with every holding constraint held; its
-  // forces are not reported (x.lambda stays the step's), the next step's
-  // active set decides on releases.
-  std::vector<unsigned int> holding;
-  for (const unsigned int i : active_set.holding_indices())
-    if (x.active[i])
-      holding.push_back(i);
-  impacts.restart_acceleration(at_next.at(t1), holding, t1, x.q, x.v, x.lambda, x.a);
-  next_pseudo_acceleration = x.a;
+  // The impact changes the velocities only: a_{n+1} and a_c,{n+1} stay
+  // those of the step, the smooth part of the motion (doc/impacts.md).
 }
 
 void GeneralizedAlphaIntegrator::advance()

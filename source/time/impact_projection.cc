@@ -11,9 +11,8 @@ ImpactProjection::ImpactProjection(const SemiDiscreteSystem& system,
 
 ImpactProjection::ImpactProjection(const SemiDiscreteSystem& system,
                                    const MassInverse& mass_inverse)
-    : system(system),
-      own_mass(std::make_unique<FastConstrainedOperator>(system, mass_inverse,
-                                                         "mass matrix M (impacts)")),
+    : system(system), own_mass(std::make_unique<FastConstrainedOperator>(
+                          system, mass_inverse, "mass matrix M (impacts)")),
       mass(*own_mass)
 {
 }
@@ -76,31 +75,4 @@ ImpactProjection::project(const std::vector<ConstraintState>& rows,
   return r;
 }
 
-void ImpactProjection::restart_acceleration(
-    const std::vector<ConstraintState>& rows, const std::vector<unsigned int>& holding,
-    const double t, const dealii::Vector<double>& q, const dealii::Vector<double>& v,
-    const std::vector<double>& lambda, dealii::Vector<double>& a)
-{
-  // a_free = M^-1 (f - K q - D v + G_c^T lambda_c), the compliant forces included.
-  const unsigned int n = system.n_dofs();
-  dealii::Vector<double> work(n);
-  a.reinit(n, true);
-  system.load_at(t, a);
-  system.stiffness.vmult(work, q);
-  a -= work;
-  system.damping.vmult(work, v);
-  a -= work;
-  for (unsigned int i = 0; i < rows.size(); ++i)
-    if (system.constraints[i]->is_compliant() && lambda[i] != 0.)
-      rows[i].G.add_transpose_to(a, lambda[i]);
-  mass.apply_inverse(a);
-  project_level(
-      rows, holding, t,
-      [&](const unsigned int i)
-      {
-        const ConstraintState& r = rows[i];
-        return r.G.dot(a) + 2. * r.G_t.dot(v) + r.G_tt.dot(q) + r.z_tt;
-      },
-      a);
-}
 } // namespace pantocat

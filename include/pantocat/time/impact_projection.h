@@ -76,29 +76,6 @@ public:
                  const std::vector<double>& lambda, double dt, dealii::Vector<double>& q,
                  dealii::Vector<double>& v);
 
-  /**
-   * The acceleration from which a one-step method with an acceleration
-   * variable restarts after an impact (generalized-alpha: a = a_c, as at t_0):
-   * a = M^-1 (f - K q - D v + G^T y) with G_i a + 2 G_t,i v + G_tt,i q +
-   * z_tt,i = 0 on every constraint of @p holding (rows @p rows with G_tt at
-   * t), the compliant constraints' forces taken from @p lambda. The
-   * multipliers y are a start value only: none is released for its sign and
-   * none is reported. Why: on the consistent Hermite mass M^-1 G^T P spreads
-   * an impact's impulse into the highest modes, and the velocity terms
-   * 2 G_t v of a moving contact above a dropper that has just re-tensioned
-   * then give accelerations of either sign (-52 ... -436 N for the contact,
-   * FEM at 48 m/s). Releasing on that sign opened the contact for a step at
-   * every re-tension (15 one-step losses at 48 m/s, where BDF-2 and IDA show
-   * one of 0.05-0.1 ms); the step that follows decides on releases with its
-   * own forces. For the falling mass (no velocity terms) y is m g, and the
-   * mass rests.
-   */
-  void restart_acceleration(const std::vector<ConstraintState>& rows,
-                            const std::vector<unsigned int>& holding, double t,
-                            const dealii::Vector<double>& q,
-                            const dealii::Vector<double>& v,
-                            const std::vector<double>& lambda, dealii::Vector<double>& a);
-
 private:
   /// x <- x + M^-1 G^T y with residual_i + G_i M^-1 G^T y = 0 on @p holding; y.
   template <typename Residual>
