@@ -4,7 +4,7 @@
 #include <pantocat/lac/sparse_direct_solver.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/system/pattern_operators.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 #include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/constrained_fast/iteration_matrix.h>
 #include <pantocat/constrained_fast/mass_inverse.h>

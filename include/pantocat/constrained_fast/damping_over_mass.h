@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <vector>
 

@@ -5,7 +5,7 @@
 #include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/lac/local_columns.h>
 #include <pantocat/system/pattern_operators.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>

@@ -3,7 +3,7 @@
 #include <pantocat/lac/column_runs.h>
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 #include <pantocat/constrained_fast/mass_inverse.h>
 
 #include <deal.II/lac/full_matrix.h>

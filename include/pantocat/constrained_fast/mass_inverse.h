@@ -3,7 +3,7 @@
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/local_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/sparse_matrix.h>

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pantocat/lac/column_runs.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
 

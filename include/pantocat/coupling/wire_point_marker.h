@@ -2,7 +2,7 @@
 
 #include <pantocat/base/contact_point_motion.h>
 #include <pantocat/space/catenary_discretisation.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 namespace pantocat
 {

@@ -1,7 +1,7 @@
 #pragma once
 
 #include <pantocat/lac/sparse_direct_solver.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <cstddef>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
 
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
 

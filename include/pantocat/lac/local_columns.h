@@ -2,7 +2,7 @@
 
 #include <pantocat/lac/interleaved_columns.h>
 #include <pantocat/lac/sparse_direct_solver.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <deal.II/lac/vector.h>
 

@@ -4,7 +4,7 @@
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <optional>
 #include <vector>

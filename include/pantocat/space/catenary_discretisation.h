@@ -5,7 +5,7 @@
 #include <pantocat/space/smoothed_delta.h>
 #include <pantocat/system/block_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/system/sparse_row.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <functional>
 #include <memory>
