@@ -57,13 +57,7 @@ void ReferenceImplicitStepSystem::start(const std::vector<ConstraintState>& r,
                                         const std::vector<bool>* /*held*/,
                                         const NextHistory* n, const bool /*continued*/)
 {
-  rows = &r;
-  time = t;
-  rho_q = &rq;
-  rho_v = &rv;
-  with_next = n != nullptr;
-  if (n)
-    next = *n;
+  keep_step(r, t, rq, rv, n);
   // The base solution: S q = f + M (rho_v + c rho_q) + D rho_q, v = c q - rho_q,
   // a = c v - rho_v.
   dealii::Vector<double> h(rv);
@@ -197,9 +191,9 @@ void ReferenceImplicitStepSystem::solve(const std::vector<Role>& roles,
   if (with_next)
   {
     next_rho_q = q;
-    next_rho_q.sadd(next.f, next.fp, *next.q_n);
+    next_rho_q.sadd(next_request.f, next_request.fp, *next_request.q_n);
     next_rho_v = v;
-    next_rho_v.sadd(next.f, next.fp, *next.v_n);
+    next_rho_v.sadd(next_request.f, next_request.fp, *next_request.v_n);
   }
 }
 

@@ -298,14 +298,9 @@ void FastImplicitStepSystem::start(const std::vector<ConstraintState>& r, const 
                                    const bool continued)
 {
   const unsigned int n = system.n_dofs();
-  rows = &r;
-  time = t;
-  rho_q = &rq;
-  rho_v = &rv;
-  with_next = next != nullptr;
+  keep_step(r, t, rq, rv, next);
   if (with_next)
   {
-    next_request = *next;
     for (auto* y : {&next_rho_q, &next_rho_v, &next_h})
       y->reinit(n, true);
   }

@@ -98,8 +98,28 @@ public:
                                  dealii::Vector<double>& rho_v) = 0;
 
 protected:
+  /// Keeps the inputs of start() for the step's solves.
+  void keep_step(const std::vector<ConstraintState>& step_rows, const double t,
+                 const dealii::Vector<double>& step_rho_q,
+                 const dealii::Vector<double>& step_rho_v, const NextHistory* next)
+  {
+    rows = &step_rows;
+    time = t;
+    rho_q = &step_rho_q;
+    rho_v = &step_rho_v;
+    with_next = next != nullptr;
+    if (with_next)
+      next_request = *next;
+  }
+
   const SemiDiscreteSystem& system;
   const double c;
+  /// The step's rows, time, history and next-history request (keep_step()).
+  const std::vector<ConstraintState>* rows = nullptr;
+  double time = 0.;
+  const dealii::Vector<double>*rho_q = nullptr, *rho_v = nullptr;
+  NextHistory next_request;
+  bool with_next = false;
 };
 
 /**

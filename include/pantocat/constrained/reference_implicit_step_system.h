@@ -63,11 +63,6 @@ private:
   const Response& response(unsigned int i, unsigned int kind);
 
   ReferenceConstrainedOperator S, M;
-  const std::vector<ConstraintState>* rows = nullptr;
-  double time = 0.;
-  const dealii::Vector<double>*rho_q = nullptr, *rho_v = nullptr;
-  NextHistory next;
-  bool with_next = false;
   Response base;
   std::map<std::pair<unsigned int, unsigned int>, Response> responses;
   dealii::Vector<double> next_rho_q, next_rho_v;

@@ -178,16 +178,11 @@ private:
   /// One block of all rows without a damping split (HistoryPass::blocks).
   const std::vector<PatternOperators::Shift> whole_rows;
 
-  const std::vector<ConstraintState>* rows = nullptr;
-  double time = 0.;
-  const dealii::Vector<double>*rho_q = nullptr, *rho_v = nullptr;
   /// rho_v + c rho_q (+ mu rho_q of the damping split); history_ready: formed
   /// by the last solve with the vectors take_next_history() handed out.
   dealii::Vector<double> history, next_rho_q, next_rho_v, next_h;
   bool history_ready = false;
   bool base_taken = false; ///< a solve took the base's vector for q
-  NextHistory next_request;
-  bool with_next = false;
 
   bool settling = true;
   unsigned int settled_count = 0;
