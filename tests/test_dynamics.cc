@@ -7,6 +7,8 @@
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/constrained_fast/damping_over_mass.h>
+#include <pantocat/constrained_fast/disjoint_fixed_constraints.h>
+#include <pantocat/constrained_fast/fast_half_explicit_step_system.h>
 #include <pantocat/constrained_fast/fast_implicit_step_system.h>
 #include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/constrained_fast/ggl_fixed_block.h>
@@ -23,7 +25,6 @@
 #include <pantocat/system/pattern_operators.h>
 #include <pantocat/time/active_set.h>
 #include <pantocat/time/bdf2_integrator.h>
-#include <pantocat/time/disjoint_fixed_constraints.h>
 #include <pantocat/time/half_explicit_integrator.h>
 #include <pantocat/time/time_integrator.h>
 
@@ -496,25 +497,27 @@ struct SettledComparison
 };
 
 /**
- * A half-explicit run, set up by @p setup: the integrator and how many fixed
- * constraints its latest step settled.
+ * A half-explicit run on FastHalfExplicitStepSystem, set up by @p setup: the
+ * integrator and how many fixed constraints its latest step settled.
  */
 struct HalfExplicitRun
 {
   template <typename Setup>
   HalfExplicitRun(const SemiDiscreteSystem& system, const TimeIntegrationParameters& p,
                   const Setup& setup)
-      : integrator(create_time_integrator(system, p)),
-        method(dynamic_cast<HalfExplicitIntegrator&>(*integrator))
   {
-    setup(method);
+    auto levels = std::make_unique<FastHalfExplicitStepSystem>(system, p.time_step);
+    setup(*levels);
+    method = levels.get();
+    integrator = std::make_unique<HalfExplicitIntegrator>(system, std::move(levels),
+                                                          p.max_active_set_iterations);
   }
   void before_step() {}
-  unsigned int settled() const { return method.settled_in_latest_step(); }
+  unsigned int settled() const { return method->settled_in_latest_step(); }
   unsigned int local_border() const { return 0; }
 
+  FastHalfExplicitStepSystem* method = nullptr;
   std::unique_ptr<TimeIntegrator> integrator;
-  HalfExplicitIntegrator& method;
 };
 
 /**

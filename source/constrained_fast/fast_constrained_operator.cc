@@ -10,10 +10,10 @@ namespace pantocat
 {
 FastConstrainedOperator::FastConstrainedOperator(const SemiDiscreteSystem& system,
                                                  const Definition& d)
-    : ConstrainedOperator(system), definition(d), inverse(&own_inverse)
+    : ConstrainedOperator(system), definition(d)
 {
   if (d.mass == 1. && d.damping == 0. && d.stiffness == 0.)
-    own_inverse.initialize(system.mass, system.mass_is_diagonal, d.what, d.solver);
+    inverse.initialize(system.mass, system.mass_is_diagonal, d.what, d.solver);
   else
   {
     // Formed as every iteration matrix is (K, then + c_D D, then + c_M M).
@@ -27,17 +27,8 @@ FastConstrainedOperator::FastConstrainedOperator(const SemiDiscreteSystem& syste
       A.add(d.damping, system.damping);
       A.add(d.mass, system.mass);
     }
-    own_inverse.initialize(A, false, d.what, d.solver);
+    inverse.initialize(A, false, d.what, d.solver);
   }
-  partition();
-}
-
-FastConstrainedOperator::FastConstrainedOperator(const SemiDiscreteSystem& system,
-                                                 const MassInverse& mass_inverse,
-                                                 const std::string& what)
-    : ConstrainedOperator(system), inverse(&mass_inverse)
-{
-  definition.what = what;
   partition();
 }
 
@@ -83,10 +74,9 @@ void FastConstrainedOperator::initialize_fixed()
     C.push_back(compliance(i));
     fixed_G.push_back(r.G);
   }
-  schur.initialize(G, *inverse, system.n_dofs(),
-                   "matrix G A^-1 G^T + C of the fixed constraints, A the " +
-                       definition.what,
-                   C);
+  schur.initialize(
+      G, inverse, system.n_dofs(),
+      "matrix G A^-1 G^T + C of the fixed constraints, A the " + definition.what, C);
   fixed_at_row.build(fixed_G, system.n_dofs());
   keep.assign(fixed.size(), false);
   factors.assign(fixed.size(), 0.);
@@ -108,14 +98,14 @@ void FastConstrainedOperator::update_moving_columns()
     X.add_row(0, r.G, 1.);
     if (rate_weight(moving[c]) != 0.)
       X.add_row(1, r.G_t, 1.);
-    inverse->apply(X);
+    inverse.apply(X);
   }
   columns_current = true;
 }
 
 void FastConstrainedOperator::apply_inverse(dealii::Vector<double>& v) const
 {
-  inverse->apply(v);
+  inverse.apply(v);
 }
 
 void FastConstrainedOperator::solve_history(const double t,
@@ -123,20 +113,21 @@ void FastConstrainedOperator::solve_history(const double t,
                                             const dealii::Vector<double>& r,
                                             dealii::Vector<double>& out)
 {
-  const SparseDirectSolver* factor = inverse->factorised();
+  const SparseDirectSolver* factor = inverse.factorised();
   const bool split = factor && definition.stiffness != 0.;
   if (!operators)
-    operators = split ? std::make_unique<PatternOperators>(
-                            system, PatternOperators::IterationFactors{
-                                        definition.mass, definition.damping,
-                                        definition.stiffness})
-                      : std::make_unique<PatternOperators>(system);
+    operators = split
+                    ? std::make_unique<PatternOperators>(
+                          system,
+                          PatternOperators::IterationFactors{
+                              definition.mass, definition.damping, definition.stiffness})
+                    : std::make_unique<PatternOperators>(system);
   operators->set_time(t);
   out.reinit(system.n_dofs(), true);
   if (!split)
   {
     operators->history(h, r, out);
-    inverse->apply(out);
+    inverse.apply(out);
     return;
   }
   // The damping split: A^-1 (f + M (h + mu r) + E r) + gamma r.
@@ -186,8 +177,7 @@ void FastConstrainedOperator::fill_border(const unsigned int c, const unsigned i
 }
 
 void FastConstrainedOperator::solve_multipliers(const std::vector<unsigned int>& set,
-                                                std::vector<double>& y,
-                                                const char* what)
+                                                std::vector<double>& y, const char* what)
 {
   update_moving_columns();
   std::fill(keep.begin(), keep.end(), false);

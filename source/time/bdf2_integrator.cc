@@ -20,15 +20,6 @@ std::vector<double> combined_impulses(const std::vector<double>& a, const double
     sum[i] += fb * b[i];
   return sum;
 }
-
-/// The mass matrix M, for the impacts' projections.
-ConstrainedOperator::Definition mass_matrix(const LinearSolverType solver)
-{
-  ConstrainedOperator::Definition M;
-  M.what = "mass matrix M";
-  M.solver = solver;
-  return M;
-}
 } // namespace
 
 Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double time_step,
@@ -50,8 +41,7 @@ Bdf2Integrator::Bdf2Integrator(const SemiDiscreteSystem& system, const double ti
     : TimeIntegrator(system), dt(time_step),
       make_step_system(std::move(make_step_system)), at_next(system),
       active_set(system, max_iterations),
-      M(make_constrained_operator(system, mass_matrix(linear_solver), algebra)),
-      impacts(system, *M)
+      M(make_mass_operator(system, algebra, linear_solver)), impacts(system, *M)
 {
 }
 

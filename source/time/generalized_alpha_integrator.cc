@@ -92,14 +92,6 @@ newmark_pass(const unsigned int n, const Predictor P, const double fa, const dou
     a[i] = fw * a_next[i] + P.w(a_n[i], a_c[i]);
   }
 }
-
-ConstrainedOperator::Definition mass_matrix(const LinearSolverType solver)
-{
-  ConstrainedOperator::Definition M;
-  M.what = "mass matrix M";
-  M.solver = solver;
-  return M;
-}
 } // namespace
 
 GeneralizedAlphaIntegrator::Coefficients::Coefficients(const double rho)
@@ -118,8 +110,7 @@ GeneralizedAlphaIntegrator::GeneralizedAlphaIntegrator(
       c_v(k.gamma / (k.beta * h)),
       S(make_constrained_operator(
           system, iteration_matrix(system, c_q, c_v, linear_solver), algebra)),
-      M(make_constrained_operator(system, mass_matrix(linear_solver), algebra)),
-      at_next(system),
+      M(make_mass_operator(system, algebra, linear_solver)), at_next(system),
       active_set(system, max_iterations, ActiveSetIteration::ClosingConstraint::touching),
       impacts(system, *M)
 {

@@ -9,26 +9,13 @@
 
 namespace pantocat
 {
-namespace
-{
-
-/// The mass matrix M of the projections at events.
-ConstrainedOperator::Definition mass_matrix()
-{
-  ConstrainedOperator::Definition M;
-  M.what = "mass matrix M";
-  return M;
-}
-} // namespace
-
 IdaIntegrator::IdaIntegrator(const SemiDiscreteSystem& system, const double output_step,
                              const double relative_tolerance,
                              const double absolute_tolerance,
                              const IdaLinearSolver solver, const LinearAlgebra algebra)
     : TimeIntegrator(system), dt(output_step), rtol(relative_tolerance),
       atol(absolute_tolerance), linear_solver(solver), n(system.n_dofs()),
-      m(system.n_constraints()),
-      M(make_constrained_operator(system, mass_matrix(), algebra)), rows(system),
+      m(system.n_constraints()), M(make_mass_operator(system, algebra)), rows(system),
       load_scratch(system.n_dofs())
 {
   stats.events_localised = true;

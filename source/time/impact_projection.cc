@@ -1,4 +1,3 @@
-#include <pantocat/constrained_fast/fast_constrained_operator.h>
 #include <pantocat/time/impact_projection.h>
 
 namespace pantocat
@@ -6,14 +5,6 @@ namespace pantocat
 ImpactProjection::ImpactProjection(const SemiDiscreteSystem& system,
                                    ConstrainedOperator& mass)
     : system(system), mass(mass)
-{
-}
-
-ImpactProjection::ImpactProjection(const SemiDiscreteSystem& system,
-                                   const MassInverse& mass_inverse)
-    : system(system), own_mass(std::make_unique<FastConstrainedOperator>(
-                          system, mass_inverse, "mass matrix M (impacts)")),
-      mass(*own_mass)
 {
 }
 

@@ -130,4 +130,12 @@ std::unique_ptr<ConstrainedOperator>
 make_constrained_operator(const SemiDiscreteSystem& system,
                           const ConstrainedOperator::Definition& definition,
                           LinearAlgebra algebra);
+
+/**
+ * The mass matrix M (the projections of impacts and consistent starts in
+ * every method), done by @p algebra, with @p solver for a non-diagonal M.
+ */
+std::unique_ptr<ConstrainedOperator>
+make_mass_operator(const SemiDiscreteSystem& system, LinearAlgebra algebra,
+                   LinearSolverType solver = LinearSolverType::banded);
 } // namespace pantocat

@@ -4,8 +4,8 @@
 #include <pantocat/constrained_fast/fixed_constraint_schur.h>
 #include <pantocat/constrained_fast/mass_inverse.h>
 #include <pantocat/lac/local_columns.h>
-#include <pantocat/system/pattern_operators.h>
 #include <pantocat/lac/sparse_row.h>
+#include <pantocat/system/pattern_operators.h>
 
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
@@ -35,9 +35,6 @@ class FastConstrainedOperator : public ConstrainedOperator
 {
 public:
   FastConstrainedOperator(const SemiDiscreteSystem& system, const Definition& definition);
-  /// A = M given by @p mass_inverse (kept by reference; its rows' laws rigid).
-  FastConstrainedOperator(const SemiDiscreteSystem& system,
-                          const MassInverse& mass_inverse, const std::string& what);
 
   void set_rows(const std::vector<ConstraintState>& rows, double t) override;
   void apply_inverse(dealii::Vector<double>& x) const override;
@@ -68,8 +65,7 @@ private:
   }
 
   Definition definition;
-  MassInverse own_inverse;
-  const MassInverse* inverse;
+  MassInverse inverse;                         ///< A^-1
   std::unique_ptr<PatternOperators> operators; ///< made at the first solve_history()
   dealii::Vector<double> shifted;              ///< h + mu r of the damping split
 

@@ -10,8 +10,6 @@
 
 namespace pantocat
 {
-class MassInverse;
-
 /**
  * The inelastic impact (restitution 0) of Sec. 5.3 at one time point, as an
  * event-driven integrator does it at a located event: with the constraints
@@ -36,8 +34,6 @@ class ImpactProjection
 public:
   /// With the operator @p mass = M (kept by reference).
   ImpactProjection(const SemiDiscreteSystem& system, ConstrainedOperator& mass);
-  /// With the fast operator on @p mass_inverse = M^-1 (kept by reference).
-  ImpactProjection(const SemiDiscreteSystem& system, const MassInverse& mass_inverse);
 
   /// What an impact did.
   struct Result
@@ -84,7 +80,6 @@ private:
                                     Residual residual, dealii::Vector<double>& x);
 
   const SemiDiscreteSystem& system;
-  std::unique_ptr<ConstrainedOperator> own_mass; ///< the second constructor's
   ConstrainedOperator& mass;
 };
 } // namespace pantocat

@@ -1,5 +1,5 @@
-#include <pantocat/time/disjoint_fixed_constraints.h>
-#include <pantocat/time/unconstrained_prediction.h>
+#include <pantocat/constrained/unconstrained_prediction.h>
+#include <pantocat/constrained_fast/disjoint_fixed_constraints.h>
 
 #include <algorithm>
 

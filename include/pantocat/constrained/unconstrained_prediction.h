@@ -7,7 +7,7 @@ namespace pantocat
  * q*_i = q_i + dt (v_i + v*_i)/2, with @p two_dt = 2 dt and @p half_dt =
  * dt/2. Every place that predicts a row (the force sweeps, the rows predicted
  * again, the step without a fused sweep, DisjointFixedConstraints) calls
- * this (for all unknowns at once in a vectorised loop: HalfExplicitIntegrator's
+ * this (for all unknowns at once in a vectorised loop: FastHalfExplicitStepSystem's
  * predict_all()): the same operations in the same order, so q*, v* are the
  * same to the bit wherever they are made.
  */

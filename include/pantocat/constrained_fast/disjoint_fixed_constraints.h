@@ -1,7 +1,7 @@
 #pragma once
 
-#include <pantocat/lac/sparse_row.h>
 #include <pantocat/constrained_fast/mass_inverse.h>
+#include <pantocat/lac/sparse_row.h>
 
 #include <vector>
 
@@ -28,7 +28,7 @@ namespace pantocat
  * unknowns (entries stored side by side: index, G, W^-1 G^T, M^-1 G^T), instead of
  * the Schur-complement path's separate passes (right-hand sides, solves,
  * columns, predictions, gaps). The moving constraints border only the fixed
- * ones on their unknowns (HalfExplicitIntegrator solves that small system
+ * ones on their unknowns (FastHalfExplicitStepSystem solves that small system
  * first, with smoothed_inverse() and mass_inverse() below).
  */
 class DisjointFixedConstraints
