@@ -22,6 +22,16 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
                                                  const double column_budget)
     : system(system), states(system.n_constraints())
 {
+  const unsigned int m = states.size();
+  for (unsigned int i = 0; i < m; ++i)
+    system.constraints[i]->evaluate(t, states[i]);
+  // A body that only its constraints hold (a stitch wire between its clamps):
+  // K alone is singular, the saddle-point system is not.
+  if (!system.stiffness_is_definite)
+  {
+    saddle_point = true;
+    return;
+  }
   try
   {
     K_inverse.factorize(system.stiffness, "stiffness matrix");
@@ -31,9 +41,6 @@ StaticEquilibriumSolver::StaticEquilibriumSolver(const SemiDiscreteSystem& syste
     throw SimulationError("static equilibrium: the stiffness matrix is singular "
                           "(a body without tension, bending or support?)");
   }
-  const unsigned int m = states.size();
-  for (unsigned int i = 0; i < m; ++i)
-    system.constraints[i]->evaluate(t, states[i]);
   // K^-1 G^T is dense along a wire held only at its ends: m columns of n
   // cost O(n m) memory and time, quadratic in the number of spans, and the
   // inverse of S cubic. Within the budget they are formed here; beyond it

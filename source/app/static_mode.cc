@@ -167,6 +167,12 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
   write_file_atomically(dir + "/dropper_forces.csv", csv.str());
   std::vector<std::string> written{"static_profile.csv", "static_profile.vtu",
                                    "dropper_forces.csv"};
+  if (!p.catenary.stitch_wires.empty())
+  {
+    write_stitch_wire_profiles(runner.discretisation(), system, s.q,
+                               dir + "/stitch_wires.csv");
+    written.push_back("stitch_wires.csv");
+  }
   if (runner.design() && p.catenary.design == DropperDesign::designed)
   {
     write_dropper_lengths(dir + "/dropper_lengths.csv", runner.case_data().catenary);

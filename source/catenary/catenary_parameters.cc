@@ -274,6 +274,9 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Steady arm mass", "0", Double(0.),
                     "Mass [kg] of a steady arm, lumped on the contact wire.");
   prm.leave_subsection();
+  prm.enter_subsection("Stitch wire");
+  StitchWireEntries::declare_parameters(prm);
+  prm.leave_subsection();
   prm.declare_entry("Damping model", "viscous",
                     dealii::Patterns::Selection("viscous|rayleigh"),
                     "viscous: beta w_t of each wire (Damping in its subsection, Eq. "
@@ -330,12 +333,17 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
            dealii::Utilities::split_string_list(prm.get("Steady arm supports"))))
     steady_arm_supports.push_back(k);
   prm.leave_subsection();
+  prm.enter_subsection("Stitch wire");
+  StitchWireEntries stitch;
+  stitch.parse_parameters(prm);
+  prm.leave_subsection();
   damping = prm.get("Damping model") == "rayleigh" ? CatenaryDamping::rayleigh
                                                    : CatenaryDamping::viscous;
   rayleigh_alpha = prm.get_double("Rayleigh alpha");
   rayleigh_beta = prm.get_double("Rayleigh beta");
   prm.leave_subsection();
   place_droppers(positions, lengths);
+  place_stitch_wires(stitch);
   check();
 }
 
@@ -378,7 +386,11 @@ void CatenaryParameters::check() const
     if (!(dropper_lengths[j] > 0.))
       require(false, "Catenary/Droppers/Lengths", dropper_lengths[j], "must be > 0");
   }
+  require(dropper_stitch_wire.empty() || dropper_stitch_wire.size() == n_droppers(),
+          "Catenary/Stitch wire/Dropper positions", dropper_stitch_wire.size(),
+          "every dropper needs the wire it hangs from");
   check_supports();
+  check_stitch_wires();
 }
 
 void CatenaryParameters::check_supports() const

@@ -286,11 +286,17 @@ void print_scene(std::ostream& out, const CaseRunner& runner)
     out << ", contact";
   else if (contacts.size() > 1)
     out << ", " << contacts.size() << " contacts";
-  // The rest are the carrier supports held fixed (CarrierSupports).
+  // The rest are the carrier supports held fixed (CarrierSupports) and the
+  // stitch wires' clamps (StitchWires).
+  std::size_t clamps = 0;
+  for (const std::string& name : layout.constraint_names)
+    clamps += name.rfind("stitch wire ", 0) == 0;
   const std::size_t supports =
-      system.n_constraints() - layout.dropper_indices.size() - contacts.size();
+      system.n_constraints() - layout.dropper_indices.size() - contacts.size() - clamps;
   if (supports > 0)
     out << ", " << supports << " carrier supports";
+  if (clamps > 0)
+    out << ", " << clamps << " stitch-wire clamps";
   out << ")\n";
 }
 

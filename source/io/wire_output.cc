@@ -77,4 +77,27 @@ void write_wire_profiles(const CatenaryDiscretisation& d,
   }
   vtu.close();
 }
+
+void write_stitch_wire_profiles(const CatenaryDiscretisation& d,
+                                const SemiDiscreteSystem& system,
+                                const dealii::Vector<double>& q,
+                                const std::string& csv_file)
+{
+  const StitchWireSpace& stitch = d.stitch_wires();
+  const CatenaryParameters& c = d.catenary_parameters();
+  if (stitch.n_wires() == 0)
+    return;
+  OutputFile csv(csv_file);
+  csv << "stitch_wire,support,x_m,w_stitch_wire_m,w_carrier_m\n" << std::setprecision(12);
+  for (unsigned int i = 0; i < stitch.n_wires(); ++i)
+    for (unsigned int k = 0; k <= stitch.n_elements(i); ++k)
+    {
+      const double x = stitch.node_position(i, k);
+      csv << i + 1 << ',' << c.stitch_wires[i].support << ',' << x << ','
+          << c.support_height + stitch_wire_point_row(d, system, i, x).dot(q) << ','
+          << c.support_height + wire_point_row(d, system, Wire::carrier, x).dot(q)
+          << '\n';
+    }
+  csv.close();
+}
 } // namespace pantocat

@@ -17,13 +17,16 @@ void ClampAndDropperMasses::add_terms(SceneAssembly& a) const
 {
   const CatenaryParameters& p = a.catenary;
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
-    for (const Wire wire : {Wire::carrier, Wire::contact_wire})
-    {
-      const bool carrier_side = wire == Wire::carrier;
-      a.add_point_force(wire, p.dropper_positions[j], -p.clamp_load(j, carrier_side));
-      if (p.point_mass_inertia)
-        a.add_point_mass(wire, p.dropper_positions[j], p.point_mass(j, carrier_side));
-    }
+  {
+    // The upper clamp on the carrier, or on the stitch wire the dropper hangs from.
+    a.add_at_dropper_top(j, -p.clamp_load(j, true),
+                         p.point_mass_inertia ? p.point_mass(j, true) : 0.);
+    a.add_point_force(Wire::contact_wire, p.dropper_positions[j],
+                      -p.clamp_load(j, false));
+    if (p.point_mass_inertia)
+      a.add_point_mass(Wire::contact_wire, p.dropper_positions[j],
+                       p.point_mass(j, false));
+  }
 }
 
 std::string ClampAndDropperMasses::describe(const SceneAssembly& a) const
@@ -48,9 +51,9 @@ void add_dropper_weight_change(const SceneParameters& scene,
     // clamp_load(j, .) less its clamp part: half the dropper's weight per wire.
     const double weight =
         catenary.half_dropper_mass(length_changes[j]) * catenary.gravity;
-    for (const Wire wire : {Wire::carrier, Wire::contact_wire})
-      wire_point_row(space, system, wire, catenary.dropper_positions[j])
-          .add_transpose_to(load, -weight);
+    dropper_upper_row(space, system, j).add_transpose_to(load, -weight);
+    wire_point_row(space, system, Wire::contact_wire, catenary.dropper_positions[j])
+        .add_transpose_to(load, -weight);
   }
 }
 } // namespace pantocat

@@ -80,10 +80,12 @@ void Droppers::add_constraints(SceneAssembly& a) const
       a.scene.droppers == DropperModel::elastic ? p.dropper_stiffness : 0., 0.};
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
   {
-    // Delta = H_w q_w - H_c q_c + (l_j - l_c), with u_c = w_c - l_c, Eq. (31).
+    // Delta = H_w q_w - H_c q_c + (l_j - l_c), with u_c = w_c - l_c, Eq. (31);
+    // in a stitched catenary H_c is the stitch wire's row where the dropper
+    // hangs from it.
     const double x = p.dropper_positions[j];
     SparseRow row = a.wire_row(Wire::contact_wire, x);
-    const SparseRow carrier = a.wire_row(Wire::carrier, x);
+    const SparseRow carrier = a.dropper_upper_row(j);
     for (std::size_t k = 0; k < carrier.size(); ++k)
       row.add(carrier.index[k], -carrier.value[k]);
     a.dropper_indices.push_back(a.system.n_constraints());

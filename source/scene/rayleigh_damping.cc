@@ -18,8 +18,9 @@ bool RayleighDamping::enabled(const SceneParameters& scene,
 
 void RayleighDamping::add_terms(SceneAssembly& a) const
 {
-  for (const Wire wire : {Wire::carrier, Wire::contact_wire})
-    if (BlockOperator* b = a.body(block_name(wire)))
+  for (const char* name : {block_name(Wire::carrier), block_name(Wire::contact_wire),
+                           StitchWireSpace::block_name})
+    if (BlockOperator* b = a.body(name))
     {
       b->damping.add(a.catenary.rayleigh_alpha, b->mass);
       b->damping.add(a.catenary.rayleigh_beta, b->stiffness);
@@ -29,7 +30,8 @@ void RayleighDamping::add_terms(SceneAssembly& a) const
 std::string RayleighDamping::describe(const SceneAssembly& a) const
 {
   return "damping: Rayleigh C = " + number_to_string(a.catenary.rayleigh_alpha) +
-         " M + " + number_to_string(a.catenary.rayleigh_beta) +
-         " K (wires, without droppers)";
+         " M + " + number_to_string(a.catenary.rayleigh_beta) + " K (wires" +
+         std::string(a.catenary.stitch_wires.empty() ? "" : " and stitch wires") +
+         ", without droppers)";
 }
 } // namespace pantocat

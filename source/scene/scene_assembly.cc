@@ -78,19 +78,24 @@ void add_outer_product(dealii::SparseMatrix<double>& matrix, const SparseRow& h,
     for (std::size_t j = 0; j < h.size(); ++j)
       matrix.add(h.index[i], h.index[j], c * h.value[i] * h.value[j]);
 }
-} // namespace
 
-void SceneAssembly::add_point_mass(const Wire wire, const double x, const double m)
+/// m H^T H in the mass of @p b, lumped to m H_i on the diagonal of a diagonal one.
+void add_mass(BlockOperator* b, const SparseRow& h, const double m)
 {
-  BlockOperator* b = body(block_name(wire));
   if (b == nullptr || m == 0.)
     return;
-  const SparseRow h = space.point_row(wire, x);
   if (b->mass_is_diagonal)
     for (std::size_t i = 0; i < h.size(); ++i)
       b->mass.add(h.index[i], h.index[i], m * h.value[i]);
   else
     add_outer_product(b->mass, h, m);
+}
+} // namespace
+
+void SceneAssembly::add_point_mass(const Wire wire, const double x, const double m)
+{
+  if (BlockOperator* b = body(block_name(wire)))
+    add_mass(b, space.point_row(wire, x), m);
 }
 
 void SceneAssembly::add_point_spring(const Wire wire, const double x, const double k)
@@ -103,5 +108,29 @@ void SceneAssembly::add_point_force(const Wire wire, const double x, const doubl
 {
   if (BlockOperator* b = body(block_name(wire)))
     space.point_row(wire, x).add_transpose_to(b->load, force);
+}
+
+SparseRow SceneAssembly::dropper_upper_row(const unsigned int j) const
+{
+  return pantocat::dropper_upper_row(space, system, j);
+}
+
+void SceneAssembly::add_at_dropper_top(const unsigned int j, const double force,
+                                       const double m)
+{
+  const unsigned int s = catenary.stitch_wire_of(j);
+  const double x = catenary.dropper_positions[j];
+  if (s == no_stitch_wire)
+  {
+    add_point_force(Wire::carrier, x, force);
+    add_point_mass(Wire::carrier, x, m);
+    return;
+  }
+  BlockOperator* b = body(StitchWireSpace::block_name);
+  if (b == nullptr)
+    return;
+  const SparseRow h = space.stitch_wires().point_row(s, x);
+  h.add_transpose_to(b->load, force);
+  add_mass(b, h, m);
 }
 } // namespace pantocat

@@ -10,6 +10,7 @@
 #include <pantocat/scene/rayleigh_damping.h>
 #include <pantocat/scene/scene_builder.h>
 #include <pantocat/scene/steady_arms.h>
+#include <pantocat/scene/stitch_wires.h>
 #include <pantocat/scene/viscous_damping.h>
 #include <pantocat/scene/wire_bending.h>
 #include <pantocat/scene/wire_tension.h>
@@ -23,6 +24,8 @@ std::vector<std::unique_ptr<SceneEffect>> registered_scene_effects()
   std::vector<std::unique_ptr<SceneEffect>> e;
   e.push_back(std::make_unique<CarrierBody>());
   e.push_back(std::make_unique<ContactWireBody>());
+  // Before the pantographs: the catenary's unknowns come first.
+  e.push_back(std::make_unique<StitchWires>());
   e.push_back(std::make_unique<PantographBody>());
   e.push_back(std::make_unique<WireTension>());
   e.push_back(std::make_unique<WireBending>());

@@ -135,8 +135,7 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     r.dropper_forces = multipliers_of(s, h.heights);
     dealii::Vector<double> pull = weights;
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
-      wire_point_row(space, h.system, Wire::carrier, c.dropper_positions[j])
-          .add_transpose_to(pull, -r.dropper_forces[j]);
+      dropper_upper_row(space, h.system, j).add_transpose_to(pull, -r.dropper_forces[j]);
     s = solver.solve(pull);
     steady_arm_preloads = multipliers_of(s, h.steady_arms);
     carrier_support_preloads = multipliers_of(s, h.carrier_springs);
@@ -145,8 +144,9 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
     {
       const double x = c.dropper_positions[j];
+      // The height of the dropper's upper clamp: the carrier, or its stitch wire.
       const double carrier =
-          c.support_height + wire_point_row(space, h.system, Wire::carrier, x).dot(s.q);
+          c.support_height + dropper_upper_row(space, h.system, j).dot(s.q);
       // An elastic dropper stretches by F_j / k_d under its tension F_j: its
       // unstretched length is the distance less the stretch.
       const double stretch = scene.droppers == DropperModel::elastic

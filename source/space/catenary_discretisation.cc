@@ -13,7 +13,8 @@ CatenaryDiscretisation::CatenaryDiscretisation(
     const CatenaryParameters& catenary, const DiscretisationParameters& discretisation)
     : catenary(catenary), discretisation(discretisation),
       delta(discretisation.load_half_width),
-      dx(catenary.length() / discretisation.n_intervals)
+      dx(catenary.length() / discretisation.n_intervals),
+      stitch(catenary, dx, discretisation.method == SpaceMethod::fdm)
 {
 }
 
@@ -67,5 +68,26 @@ SparseRow wire_point_row(const CatenaryDiscretisation& d,
   SparseRow row = d.point_row(wire, x);
   row.shift(system.block(block_name(wire)).first);
   return row;
+}
+
+SparseRow stitch_wire_point_row(const CatenaryDiscretisation& d,
+                                const SemiDiscreteSystem& system, const unsigned int i,
+                                const double x)
+{
+  if (!system.has_block(StitchWireSpace::block_name))
+    return {};
+  SparseRow row = d.stitch_wires().point_row(i, x);
+  row.shift(system.block(StitchWireSpace::block_name).first);
+  return row;
+}
+
+SparseRow dropper_upper_row(const CatenaryDiscretisation& d,
+                            const SemiDiscreteSystem& system, const unsigned int j)
+{
+  const CatenaryParameters& c = d.catenary_parameters();
+  const double x = c.dropper_positions[j];
+  const unsigned int s = c.stitch_wire_of(j);
+  return s == no_stitch_wire ? wire_point_row(d, system, Wire::carrier, x)
+                             : stitch_wire_point_row(d, system, s, x);
 }
 } // namespace pantocat

@@ -10,11 +10,13 @@ void SemiDiscreteSystem::set_blocks(const std::vector<const BlockOperator*>& bod
   blocks.clear();
   unsigned int n = 0;
   mass_is_diagonal = true;
+  stiffness_is_definite = true;
   for (const BlockOperator* b : bodies)
   {
     blocks.push_back({b->name, n, b->size()});
     n += b->size();
     mass_is_diagonal = mass_is_diagonal && b->mass_is_diagonal;
+    stiffness_is_definite = stiffness_is_definite && b->stiffness_is_definite;
   }
   dealii::DynamicSparsityPattern dsp(n, n);
   // Row by row: a deal.II iterator's row() is a binary search.

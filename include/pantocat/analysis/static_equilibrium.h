@@ -59,6 +59,9 @@ struct StaticEquilibrium
  *    this banded-plus-point-rows matrix O(n + m): time and memory near-linear in
  *    the length of the section. The factor of the last active set is kept for
  *    the next solve with the same set.
+ *    This is also the way when K alone is singular
+ *    (SemiDiscreteSystem::stiffness_is_definite = false: stitch wires, held
+ *    by their clamps to the carrier), whatever the number of constraints.
  *
  * Keeps a reference to @p system, which must outlive it. Not for solve()
  * calls from several threads at once (the kept inverse or factor).

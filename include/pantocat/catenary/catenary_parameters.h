@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/catenary/stitch_wire.h>
+
 #include <deal.II/base/parameter_handler.h>
 
 #include <vector>
@@ -48,6 +50,10 @@ enum class CatenaryDamping
  *
  * One span (the default) is the paper's reduced model of Sec. 2.2 / Fig. 4;
  * the defaults are its benchmark data (catenary Re 250).
+ *
+ * A stitched catenary adds stitch wires at supports (StitchWire): the
+ * droppers near such a support hang from its stitch wire, which is clamped to
+ * the carrier.
  *
  * Heights: the carrier at l_c (the encumbrance, Catenary/Support height) and
  * the contact wire at 0 at every support; a dropper j of length l_j joins the
@@ -102,11 +108,23 @@ struct CatenaryParameters
    */
   std::vector<double> carrier_support_preloads, steady_arm_preloads;
 
+  /// The stitch wires (Catenary/Stitch wire), by increasing support; none with
+  /// a length of 0. Empty: a simple catenary.
+  std::vector<StitchWire> stitch_wires;
+  /// For every dropper, the index of the stitch wire it hangs from, or
+  /// no_stitch_wire (it hangs from the carrier); empty: every one from the carrier.
+  std::vector<unsigned int> dropper_stitch_wire;
+
   CatenaryDamping damping = CatenaryDamping::viscous;
   double rayleigh_alpha = 0.; ///< [1/s]
   double rayleigh_beta = 0.;  ///< [s]
 
   unsigned int n_droppers() const { return dropper_positions.size(); }
+  /// The stitch wire dropper @p j hangs from, or no_stitch_wire (the carrier).
+  unsigned int stitch_wire_of(const unsigned int j) const
+  {
+    return j < dropper_stitch_wire.size() ? dropper_stitch_wire[j] : no_stitch_wire;
+  }
   /// The spans' lengths, first to last.
   std::vector<double> spans() const;
   unsigned int number_of_spans() const { return spans().size(); }
@@ -129,7 +147,8 @@ struct CatenaryParameters
   std::vector<double> dropper_presag_heights() const;
 
   /// Gravity load of a clamp and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2)
-  /// g, Eq. (4), on the carrier (@p carrier_side) or the contact wire.
+  /// g, Eq. (4), on the wire it hangs from (@p carrier_side: the carrier or its
+  /// stitch wire) or the contact wire.
   double clamp_load(unsigned int j, bool carrier_side = true) const;
   /// Mass of a clamp and half a dropper at dropper j on the carrier or the contact wire.
   double point_mass(unsigned int j, bool carrier_side) const;
@@ -144,6 +163,18 @@ struct CatenaryParameters
   void parse_parameters(dealii::ParameterHandler& prm);
   /// Cross-checks; throws InputError naming the parameter.
   void check() const;
+
+  /**
+   * The stitch wires from the entries @p given (after the droppers are
+   * placed); refuses a support that is not between spans, a stitch wire
+   * clamped outside the section, longer than its spans allow or reaching
+   * into its neighbour's, and dropper positions outside it or where the
+   * section has no dropper (InputError naming the Catenary/Stitch wire entry).
+   */
+  void place_stitch_wires(const StitchWireEntries& given);
+  /// Stitch wires inside their spans with their data and droppers
+  /// (check() for a catenary not read from a file).
+  void check_stitch_wires() const;
 
 private:
   /// Spring supports with a stiffness; steady arms only between spans, in

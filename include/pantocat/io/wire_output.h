@@ -19,6 +19,17 @@ void write_wire_profiles(const CatenaryDiscretisation& discretisation,
                          const std::string& vtu_file, unsigned int subdivisions,
                          double time = 0.);
 
+/**
+ * Writes the heights of the stitch wires for the unknowns @p q of @p system
+ * at their nodes (stitch wire number from 1, its support, x, w_s = l_c +
+ * u_s) and the carrier's at the same points: a CSV file. Nothing without
+ * stitch wires.
+ */
+void write_stitch_wire_profiles(const CatenaryDiscretisation& discretisation,
+                                const SemiDiscreteSystem& system,
+                                const dealii::Vector<double>& q,
+                                const std::string& csv_file);
+
 /// The unknowns of one block of @p q.
 dealii::Vector<double> block_values(const SemiDiscreteSystem& system,
                                     const dealii::Vector<double>& q,

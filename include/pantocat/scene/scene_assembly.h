@@ -98,5 +98,17 @@ struct SceneAssembly
   void add_point_spring(Wire wire, double x, double k);
   /// Phase 2: a vertical point force @p force (upward > 0) on @p wire at @p x: F H^T.
   void add_point_force(Wire wire, double x, double force);
+
+  /**
+   * Global row of the upper end of dropper @p j (dropper_upper_row()): the
+   * carrier's at x_j, or its stitch wire's in a stitched catenary.
+   */
+  SparseRow dropper_upper_row(unsigned int j) const;
+  /**
+   * Phase 2: a point mass @p m and a vertical force @p force (upward > 0) at
+   * the upper end of dropper @p j, on the body it hangs from (the carrier or
+   * its stitch wire): as add_point_mass() and add_point_force().
+   */
+  void add_at_dropper_top(unsigned int j, double force, double m);
 };
 } // namespace pantocat

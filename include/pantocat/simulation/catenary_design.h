@@ -28,9 +28,11 @@ struct CatenaryDesignResult
  *    arms, and the carrier through l_c at the supports. Step 1 solves the
  *    contact wire with these heights as bilateral constraints: their forces
  *    are the dropper tensions F_j. Step 2 loads the carrier with -F_j at the
- *    droppers. Then l_j = w_c(x_j) - z_j (less F_j / k_d for an elastic
- *    dropper). The dropper weights depend on l_j: repeated until l_j changes
- *    by less than 1e-10 m (or stops shrinking below 1e-8 m, at the static
+ *    droppers (a dropper that hangs from a stitch wire loads the stitch wire,
+ *    whose clamps pass the load on to the carrier: its shape follows). Then
+ *    l_j = w_c(x_j) - z_j, w_c the height of the wire the dropper hangs from
+ *    (less F_j / k_d for an elastic dropper). The dropper weights depend on l_j: repeated
+ * until l_j changes by less than 1e-10 m (or stops shrinking below 1e-8 m, at the static
  *    solves' round-off). The held catenary is assembled and K factorised
  *    once; each iteration changes only the load by the dropper weights
  *    (add_dropper_weight_change()).

@@ -3,6 +3,7 @@
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/space/smoothed_delta.h>
+#include <pantocat/space/stitch_wire_space.h>
 #include <pantocat/system/block_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
 #include <pantocat/lac/sparse_row.h>
@@ -134,6 +135,8 @@ public:
     return discretisation;
   }
   const SmoothedDelta& smoothed_delta() const { return delta; }
+  /// The stitch wires of the section on their own grids (none for a simple catenary).
+  const StitchWireSpace& stitch_wires() const { return stitch; }
 
 protected:
   const WireParameters& wire_parameters(Wire wire) const;
@@ -142,6 +145,7 @@ protected:
   DiscretisationParameters discretisation;
   SmoothedDelta delta;
   double dx; ///< L / N
+  StitchWireSpace stitch;
 };
 
 /**
@@ -151,6 +155,23 @@ protected:
  */
 SparseRow wire_point_row(const CatenaryDiscretisation& discretisation,
                          const SemiDiscreteSystem& system, Wire wire, double x);
+
+/**
+ * Row r with r.q = u_s(x) of stitch wire @p i in the numbering of @p system
+ * (from l_c, as the carrier's); empty if the system has no stitch wires.
+ */
+SparseRow stitch_wire_point_row(const CatenaryDiscretisation& discretisation,
+                                const SemiDiscreteSystem& system, unsigned int i,
+                                double x);
+
+/**
+ * The row H of the upper end of dropper @p j in the numbering of @p system:
+ * the wire it hangs from at its position, its stitch wire's (stitched
+ * catenary) or else the carrier's (H_c of (31)); with l_c, H q + l_c is the
+ * height of the dropper's upper clamp.
+ */
+SparseRow dropper_upper_row(const CatenaryDiscretisation& discretisation,
+                            const SemiDiscreteSystem& system, unsigned int j);
 
 /// FEM or FDM, as the parameters say.
 std::unique_ptr<CatenaryDiscretisation>

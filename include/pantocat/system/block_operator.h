@@ -26,6 +26,9 @@ struct BlockOperator
   dealii::SparseMatrix<double> stiffness;
   dealii::Vector<double> load;
   bool mass_is_diagonal = false;
+  /// False if K of this body alone is singular and only its constraints hold
+  /// it (a stitch wire, clamped to the carrier at its ends).
+  bool stiffness_is_definite = true;
 
   unsigned int size() const { return load.size(); }
 

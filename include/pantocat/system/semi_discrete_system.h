@@ -81,6 +81,13 @@ public:
   dealii::SparseMatrix<double> mass, damping, stiffness;
   dealii::Vector<double> load;
   bool mass_is_diagonal = true;
+  /**
+   * False if K is singular without the constraints (a body that only its
+   * bilateral constraints hold, BlockOperator::stiffness_is_definite): the
+   * static problem is then solved as the saddle-point system
+   * (StaticEquilibriumSolver), never by K^-1.
+   */
+  bool stiffness_is_definite = true;
   std::vector<std::unique_ptr<Constraint>> constraints;
   std::vector<std::unique_ptr<TimeDependentLoad>> time_dependent_loads;
 };
