@@ -75,14 +75,14 @@ TEST(Scene, DefaultSceneIsThePapersBenchmarkWithNothingLeftOut)
   const BuiltScene s = build_scene(p.scene, p.catenary, *space);
   // Sec. 6, N+1 = 500 FDM: 499 + 499 wire unknowns, 2 pantograph bodies; 2 droppers
   // and the contact. Left out: what one span with viscous damping does not have
-  // (steady arms and carrier supports sit between spans; Rayleigh damping is
-  // the alternative to the paper's beta) and the moving force (an
-  // alternative pantograph).
+  // (stitch wires, steady arms and carrier supports sit at supports between
+  // spans; Rayleigh damping is the alternative to the paper's beta) and the
+  // moving force (an alternative pantograph).
   EXPECT_EQ(s.system.n_dofs(), 1000u);
   EXPECT_EQ(s.system.n_constraints(), 3u);
   EXPECT_EQ(s.active_effects.size(), 10u);
   EXPECT_EQ(s.inactive_effects,
-            (std::vector<std::string>{"steady arms", "carrier supports",
+            (std::vector<std::string>{"stitch wires", "steady arms", "carrier supports",
                                       "Rayleigh damping", "moving force"}));
 }
 

@@ -45,6 +45,7 @@ std::unique_ptr<SemiDiscreteSystem> homogeneous_view(const SemiDiscreteSystem& s
   auto view = std::make_unique<SemiDiscreteSystem>();
   view->blocks = system.blocks;
   view->mass_is_diagonal = system.mass_is_diagonal;
+  view->stiffness_is_definite = system.stiffness_is_definite;
   view->sparsity = std::make_unique<dealii::SparsityPattern>();
   view->sparsity->copy_from(*system.sparsity);
   for (auto [to, from] :
