@@ -12,7 +12,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <iostream>
 #include <string>
+#include <utility>
 
 using namespace pantocat;
 
@@ -153,4 +156,48 @@ TEST(StepLimit, PreflightAcceptsThePaperStepAndRefusesTheUnstableOne)
   EXPECT_THROW(runner.check(), InputError);
   EXPECT_NE(runner.step_size_problem().find("with the moving contact"),
             std::string::npos);
+}
+
+namespace
+{
+/// 2/omega_max of S55 stretched to @p spans spans at its grid (h = 0.5 m),
+/// with the compliant constraints' bound; and that bound.
+std::pair<double, double> s55_limit(const unsigned int spans)
+{
+  std::filesystem::current_path(PANTOCAT_SOURCE_DIR); // prm includes
+  const Case c =
+      read_case(source_file("prm/catenary/section-s55.prm"),
+                {"Catenary/Number of spans=" + std::to_string(spans),
+                 "Discretisation/Number of intervals=" + std::to_string(110 * spans),
+                 "Pantograph/Final position=" + std::to_string(55 * spans),
+                 "Statistics/Window spans="})
+          .make_case();
+  const CaseRunner runner(c);
+  const std::vector<double> GMG =
+      compliant_mass_factors(runner.system(), runner.initial_state().t);
+  double weyl = 0.; // sum_i k_i G_i M^-1 G_i^T
+  for (unsigned int i = 0; i < GMG.size(); ++i)
+    weyl += runner.system().constraints[i]->compliance().stiffness * GMG[i];
+  std::cout << "S55, " << spans << " spans: sum of k G M^-1 G^T over the springs " << weyl
+            << " 1/s^2\n";
+  return {2. / largest_circular_frequency(runner.system()),
+          compliant_frequency_bound(runner.system(), runner.initial_state().t)};
+}
+} // namespace
+
+// The step limit with compliant constraints (S55's 90 elastic droppers per
+// 10 spans and its penalty contact) is a local bound (Gershgorin's, over the
+// constraints whose rows meet each column M^-1 G_i^T): the same for 10 and
+// 40 spans of the same design and grid (1e-6 relative: the wires' own
+// omega_max^2 grows towards its supremum with the number of nodes, by less
+// than that), and far below the sum k_i G_i M^-1 G_i^T over all springs
+// (Weyl's bound taken term by term), which grows with the section.
+TEST(StepLimit, CompliantBoundDoesNotGrowWithTheSection)
+{
+  const auto [limit10, bound10] = s55_limit(10);
+  const auto [limit40, bound40] = s55_limit(40);
+  std::cout << "S55, 10 and 40 spans: 2/omega_max = " << limit10 << ", " << limit40
+            << " s; springs' bound " << bound10 << ", " << bound40 << " 1/s^2\n";
+  EXPECT_NEAR(limit40 / limit10, 1., 1e-6);
+  EXPECT_NEAR(bound40 / bound10, 1., 1e-12);
 }

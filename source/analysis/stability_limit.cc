@@ -81,13 +81,112 @@ std::vector<double> compliant_mass_factors(const SemiDiscreteSystem& system,
   return factor;
 }
 
+namespace
+{
+/// The compliant constraints' rows at a time, and which of them meet each unknown.
+struct CompliantRows
+{
+  std::vector<unsigned int> constraint; ///< the system's index of each
+  std::vector<ConstraintState> rows;
+  CompressedRows flat;
+  RowsByColumn on_unknown;
+
+  CompliantRows(const SemiDiscreteSystem& system, const double t)
+  {
+    for (unsigned int i = 0; i < system.n_constraints(); ++i)
+      if (system.constraints[i]->is_compliant())
+        constraint.push_back(i);
+    rows.resize(constraint.size());
+    for (std::size_t k = 0; k < constraint.size(); ++k)
+    {
+      system.constraints[constraint[k]]->evaluate(t, rows[k], 0);
+      flat.push_back(rows[k].G);
+    }
+    on_unknown.build(flat, system.n_dofs());
+  }
+  double stiffness(const SemiDiscreteSystem& system, const unsigned int k) const
+  {
+    return system.constraints[constraint[k]]->compliance().stiffness;
+  }
+};
+
+/**
+ * sum_l sqrt(k_c k_l) |G_l x| over the compliant constraints l whose rows
+ * meet the unknowns @p reach of the column x = M^-1 G_c^T (@p dot(l) =
+ * G_l x): row c of Gershgorin's bound.
+ */
+template <typename Dot>
+double coupling_row_sum(const SemiDiscreteSystem& system, const CompliantRows& c,
+                        const unsigned int k, const RowRanges& reach, const Dot& dot,
+                        std::vector<char>& seen)
+{
+  std::vector<unsigned int> met;
+  for (const RowRange& r : reach)
+    for (int u = r.first; u < r.last; ++u)
+      for (unsigned int e = c.on_unknown.start[u]; e < c.on_unknown.start[u + 1]; ++e)
+        if (!seen[c.on_unknown.row[e]])
+        {
+          seen[c.on_unknown.row[e]] = 1;
+          met.push_back(c.on_unknown.row[e]);
+        }
+  double sum = 0.;
+  for (const unsigned int l : met)
+  {
+    sum += std::sqrt(c.stiffness(system, k) * c.stiffness(system, l)) * std::abs(dot(l));
+    seen[l] = 0;
+  }
+  return sum;
+}
+} // namespace
+
 double compliant_frequency_bound(const SemiDiscreteSystem& system, const double t)
 {
-  const std::vector<double> GMG = compliant_mass_factors(system, t);
+  // The springs add M^-1 sum_i k_i G_i^T G_i to M^-1 K; its non-zero
+  // eigenvalues are those of A = Kc^1/2 G M^-1 G^T Kc^1/2 (Kc = diag k_i),
+  // bounded by Gershgorin: max_i sum_j sqrt(k_i k_j) |G_i M^-1 G_j^T|. Only
+  // the constraints whose rows meet the column M^-1 G_i^T count, so the
+  // bound is that of the densest neighbourhood, not of the whole line.
+  const CompliantRows c(system, t);
+  std::vector<char> seen(c.constraint.size(), 0);
   double bound = 0.;
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    if (system.constraints[i]->is_compliant())
-      bound += system.constraints[i]->compliance().stiffness * GMG[i]; // k G M^-1 G^T
+  if (system.mass_is_diagonal)
+  {
+    dealii::Vector<double> x(system.n_dofs()); // the column M^-1 G_k^T
+    for (std::size_t k = 0; k < c.constraint.size(); ++k)
+    {
+      const SparseRow& G = c.rows[k].G;
+      RowRanges reach;
+      for (std::size_t e = 0; e < G.size(); ++e)
+      {
+        x[G.index[e]] += G.value[e] / system.mass.diag_element(G.index[e]);
+        reach.push_back({static_cast<int>(G.index[e]), static_cast<int>(G.index[e]) + 1});
+      }
+      const auto dot = [&](const unsigned int l) { return c.rows[l].G.dot(x); };
+      bound = std::max(bound, coupling_row_sum(system, c, k, reach, dot, seen));
+      for (const unsigned int u : G.index)
+        x[u] = 0.;
+    }
+    return bound;
+  }
+  SparseDirectSolver mass_inverse; // banded Cholesky (or UMFPACK)
+  mass_inverse.factorize(system.mass, "mass matrix M");
+  LocalColumns columns;
+  columns.reinit(system.n_dofs());
+  constexpr unsigned int width = LocalColumns::width;
+  for (std::size_t first = 0; first < c.constraint.size(); first += width)
+  {
+    const std::size_t count = std::min<std::size_t>(width, c.constraint.size() - first);
+    columns.clear();
+    for (std::size_t j = 0; j < count; ++j)
+      columns.add_row(j, c.rows[first + j].G, 1.);
+    columns.solve(mass_inverse);
+    for (std::size_t j = 0; j < count; ++j)
+    {
+      const auto dot = [&](const unsigned int l) { return columns.dot(c.rows[l].G, j); };
+      bound = std::max(
+          bound, coupling_row_sum(system, c, first + j, columns.reach(), dot, seen));
+    }
+  }
   return bound;
 }
 
