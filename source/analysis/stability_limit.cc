@@ -40,47 +40,6 @@ double largest_circular_frequency(const SemiDiscreteSystem& system)
   return std::sqrt(omega2 + compliant_frequency_bound(system));
 }
 
-std::vector<double> compliant_mass_factors(const SemiDiscreteSystem& system,
-                                           const double t)
-{
-  std::vector<double> factor(system.n_constraints(), 0.);
-  std::vector<unsigned int> compliant;
-  for (unsigned int i = 0; i < system.n_constraints(); ++i)
-    if (system.constraints[i]->is_compliant())
-      compliant.push_back(i);
-  if (compliant.empty())
-    return factor;
-  std::vector<ConstraintState> rows(compliant.size());
-  for (std::size_t k = 0; k < compliant.size(); ++k)
-    system.constraints[compliant[k]]->evaluate(t, rows[k], 0);
-  if (system.mass_is_diagonal)
-  {
-    for (std::size_t k = 0; k < compliant.size(); ++k)
-      for (std::size_t e = 0; e < rows[k].G.size(); ++e)
-        factor[compliant[k]] += rows[k].G.value[e] * rows[k].G.value[e] /
-                                system.mass.diag_element(rows[k].G.index[e]);
-    return factor;
-  }
-  // M^-1 G_i^T decays away from the row's entries: local solves, four
-  // columns at a time, cost O(reach) each instead of O(n).
-  SparseDirectSolver mass_inverse; // banded Cholesky (or UMFPACK)
-  mass_inverse.factorize(system.mass, "mass matrix M");
-  LocalColumns columns;
-  columns.reinit(system.n_dofs());
-  constexpr unsigned int width = LocalColumns::width;
-  for (std::size_t first = 0; first < compliant.size(); first += width)
-  {
-    const std::size_t count = std::min<std::size_t>(width, compliant.size() - first);
-    columns.clear();
-    for (std::size_t c = 0; c < count; ++c)
-      columns.add_row(c, rows[first + c].G, 1.);
-    columns.solve(mass_inverse);
-    for (std::size_t c = 0; c < count; ++c)
-      factor[compliant[first + c]] = columns.dot(rows[first + c].G, c);
-  }
-  return factor;
-}
-
 namespace
 {
 /// The compliant constraints' rows at a time, and which of them meet each unknown.
@@ -109,6 +68,54 @@ struct CompliantRows
     return system.constraints[constraint[k]]->compliance().stiffness;
   }
 };
+
+/**
+ * visit(k, reach, dot) for each compliant row k of @p c with the column
+ * x = M^-1 G_k^T: the rows it reaches, and dot(l) = G_l x for any compliant
+ * row l. For a diagonal M the column lives on the row's own unknowns; for a
+ * banded one it is solved locally, four columns at a time
+ * (SparseDirectSolver::solve_local(): it decays away from the row), so all of
+ * them cost O(m) and not O(n m).
+ */
+template <typename Visit>
+void for_each_mass_column(const SemiDiscreteSystem& system, const CompliantRows& c,
+                          const Visit& visit)
+{
+  if (system.mass_is_diagonal)
+  {
+    dealii::Vector<double> x(system.n_dofs());
+    for (std::size_t k = 0; k < c.constraint.size(); ++k)
+    {
+      const SparseRow& G = c.rows[k].G;
+      RowRanges reach;
+      for (std::size_t e = 0; e < G.size(); ++e)
+      {
+        x[G.index[e]] += G.value[e] / system.mass.diag_element(G.index[e]);
+        reach.push_back({static_cast<int>(G.index[e]), static_cast<int>(G.index[e]) + 1});
+      }
+      visit(k, reach, [&](const unsigned int l) { return c.rows[l].G.dot(x); });
+      for (const unsigned int u : G.index)
+        x[u] = 0.;
+    }
+    return;
+  }
+  SparseDirectSolver mass_inverse; // banded Cholesky (or UMFPACK)
+  mass_inverse.factorize(system.mass, "mass matrix M");
+  LocalColumns columns;
+  columns.reinit(system.n_dofs());
+  constexpr unsigned int width = LocalColumns::width;
+  for (std::size_t first = 0; first < c.constraint.size(); first += width)
+  {
+    const std::size_t count = std::min<std::size_t>(width, c.constraint.size() - first);
+    columns.clear();
+    for (std::size_t j = 0; j < count; ++j)
+      columns.add_row(j, c.rows[first + j].G, 1.);
+    columns.solve(mass_inverse);
+    for (std::size_t j = 0; j < count; ++j)
+      visit(first + j, columns.reach(),
+            [&](const unsigned int l) { return columns.dot(c.rows[l].G, j); });
+  }
+}
 
 /**
  * sum_l sqrt(k_c k_l) |G_l x| over the compliant constraints l whose rows
@@ -149,45 +156,22 @@ double compliant_frequency_bound(const SemiDiscreteSystem& system, const double 
   const CompliantRows c(system, t);
   std::vector<char> seen(c.constraint.size(), 0);
   double bound = 0.;
-  if (system.mass_is_diagonal)
-  {
-    dealii::Vector<double> x(system.n_dofs()); // the column M^-1 G_k^T
-    for (std::size_t k = 0; k < c.constraint.size(); ++k)
-    {
-      const SparseRow& G = c.rows[k].G;
-      RowRanges reach;
-      for (std::size_t e = 0; e < G.size(); ++e)
-      {
-        x[G.index[e]] += G.value[e] / system.mass.diag_element(G.index[e]);
-        reach.push_back({static_cast<int>(G.index[e]), static_cast<int>(G.index[e]) + 1});
-      }
-      const auto dot = [&](const unsigned int l) { return c.rows[l].G.dot(x); };
-      bound = std::max(bound, coupling_row_sum(system, c, k, reach, dot, seen));
-      for (const unsigned int u : G.index)
-        x[u] = 0.;
-    }
-    return bound;
-  }
-  SparseDirectSolver mass_inverse; // banded Cholesky (or UMFPACK)
-  mass_inverse.factorize(system.mass, "mass matrix M");
-  LocalColumns columns;
-  columns.reinit(system.n_dofs());
-  constexpr unsigned int width = LocalColumns::width;
-  for (std::size_t first = 0; first < c.constraint.size(); first += width)
-  {
-    const std::size_t count = std::min<std::size_t>(width, c.constraint.size() - first);
-    columns.clear();
-    for (std::size_t j = 0; j < count; ++j)
-      columns.add_row(j, c.rows[first + j].G, 1.);
-    columns.solve(mass_inverse);
-    for (std::size_t j = 0; j < count; ++j)
-    {
-      const auto dot = [&](const unsigned int l) { return columns.dot(c.rows[l].G, j); };
-      bound = std::max(
-          bound, coupling_row_sum(system, c, first + j, columns.reach(), dot, seen));
-    }
-  }
+  for_each_mass_column(
+      system, c,
+      [&](const unsigned int k, const RowRanges& reach, const auto& dot)
+      { bound = std::max(bound, coupling_row_sum(system, c, k, reach, dot, seen)); });
   return bound;
+}
+
+std::vector<double> compliant_mass_factors(const SemiDiscreteSystem& system,
+                                           const double t)
+{
+  std::vector<double> factor(system.n_constraints(), 0.);
+  const CompliantRows c(system, t);
+  for_each_mass_column(system, c,
+                       [&](const unsigned int k, const RowRanges&, const auto& dot)
+                       { factor[c.constraint[k]] = dot(k); });
+  return factor;
 }
 
 ExplicitDampingLimit explicit_damping_limit(const SemiDiscreteSystem& system,
