@@ -133,9 +133,10 @@ private:
    * update, and the drift of g and dg/dt stays bounded (the period is odd, so
    * that the corrections alternate between the chains); it is its own round-off
    * that is corrected then, so S's reach is not followed from it. Returns
-   * false (every held constraint corrected) in the first two steps after a
-   * start or a new v_{n-1}, and after an impact (v_{n-1} then carries the
-   * jump).
+   * false (every held constraint corrected) when the step gives no active
+   * sets of t_{n-1} and t_n (Step::active_before: the method gives none in
+   * the first two steps after a start or a new v_{n-1}, and after an impact,
+   * whose jump v_{n-1} then carries).
    */
   bool find_corrected_fixed();
   /**
