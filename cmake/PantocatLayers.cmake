@@ -30,6 +30,17 @@ function(pantocat_setup_dealii target)
   target_link_libraries(${target} PUBLIC ${DEAL_II_TARGET_${build}})
 endfunction()
 
+# A build from scratch compiles the sources of a target in batches of up to
+# eight (one translation unit each, CMake's unity build): the precompiled
+# deal.II header is loaded once per batch instead of once per file, which is
+# about 3 s of each file's 10 s. -DPANTOCAT_UNITY_BUILD=OFF compiles file by
+# file (quicker rebuilds while editing one file).
+option(PANTOCAT_UNITY_BUILD "Compile each target's sources in batches" ON)
+function(pantocat_batch_sources target)
+  set_target_properties(${target} PROPERTIES UNITY_BUILD ${PANTOCAT_UNITY_BUILD}
+                        UNITY_BUILD_BATCH_SIZE 8)
+endfunction()
+
 # pantocat_layer(NAME FOLDERS f... [PUBLIC dep...] [PRIVATE dep...] [PCH fe|algebra|none])
 function(pantocat_layer name)
   cmake_parse_arguments(L "" "PCH" "FOLDERS;PUBLIC;PRIVATE" ${ARGN})
@@ -51,6 +62,7 @@ function(pantocat_layer name)
     return()
   endif()
   add_library(${name} STATIC ${sources})
+  pantocat_batch_sources(${name})
   target_include_directories(${name} PUBLIC ${include_dir})
   target_link_libraries(${name} PUBLIC ${L_PUBLIC} PRIVATE ${L_PRIVATE})
   if(L_PCH STREQUAL "none")

@@ -99,6 +99,7 @@ ProgramParameters case_48(const SpaceMethod method, const std::string& integrato
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.pantograph().speed = 48.;
   p.pantograph().initial_offset = 0.002;
   p.discretisation.method = method;

@@ -52,6 +52,7 @@ ProgramParameters benchmark(double speed, SpaceMethod method, std::string integr
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.pantograph().speed = speed;
   p.pantograph().initial_offset = speed > 40. ? 0.002 : 0.;
   p.discretisation.method = method;

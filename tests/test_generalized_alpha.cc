@@ -21,6 +21,7 @@ ProgramParameters benchmark(std::string integrator, SpaceMethod method = SpaceMe
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.pantograph().speed = 32.;
   p.discretisation.method = method;
   p.time_integration.integrator = integrator;

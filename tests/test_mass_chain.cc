@@ -212,13 +212,15 @@ TEST(MassChain, SteadyContactForceOnARigidWireIsStaticPlusAerodynamicForce)
 
 TEST(MassChain, S55PantographInItsReferenceStateRestsAtZeroWithF0)
 {
-  // prm/pantographs/s55-three-mass.prm on a rigid wire at z = 0 with
-  // lambda_p(0) = F_0 = 169 N: q = 0 is the static equilibrium, the load is
-  // F_0 on the head, and nothing moves. To round-off: 1e-12 N and 1e-15 m.
+  // prm/pantographs/s55-three-mass.prm on a rigid wire at z = 0, started in
+  // static equilibrium: q = 0 with lambda_p(0) = F_0 = 169 N, the load is
+  // F_0 on the head, and nothing moves. To round-off: 1e-11 N (the static
+  // saddle-point solve of the whole system) and 1e-15 m.
   const std::string file = including("mass_chain_s55.prm",
                                      {source_file("prm/scenes/pantograph-rigid-wire.prm"),
                                       source_file("prm/pantographs/s55-three-mass.prm")});
-  const ProgramParameters p = read_case(file, {"Pantograph/Final position=6"});
+  const ProgramParameters p =
+      read_case(file, {"Pantograph/Final position=6", "Run/Start=static equilibrium"});
   const MassChainPantographParameters& s55 = p.scene.pantographs[0].parameters.mass_chain;
   ASSERT_EQ(s55.n_bodies(), 3u);
   EXPECT_EQ(s55.uplift_body(), 3u);
@@ -234,7 +236,7 @@ TEST(MassChain, S55PantographInItsReferenceStateRestsAtZeroWithF0)
   ASSERT_GT(points.size(), 100u);
   for (const TimePoint& point : points)
   {
-    ASSERT_NEAR(point.lambda.back(), 169., 1e-12) << "t = " << point.t;
+    ASSERT_NEAR(point.lambda.back(), 169., 1e-11) << "t = " << point.t;
     ASSERT_EQ(point.pantograph.size(), 3u);
     for (const double q : point.pantograph)
       ASSERT_LE(std::abs(q), 1e-15) << "t = " << point.t;

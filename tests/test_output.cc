@@ -292,6 +292,7 @@ void check_vtu_time_series(const SpaceMethod method, const std::string& integrat
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.discretisation.method = method;
   p.time_integration.integrator = integrator;
   p.pantograph().final_position = 2.32;
@@ -416,6 +417,7 @@ TEST(ContactStatistics, UpliftAtDroppersIsTheLargestRiseAboveTheStart)
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.discretisation.method = SpaceMethod::fdm;
   p.pantograph().final_position = 6.;
   CaseRunner simulation(p.make_case(), {p.output.probe_positions, p.output.energy});

@@ -48,6 +48,7 @@ ProgramParameters paper_case(const Combination& c)
 {
   ProgramParameters p;
   p.mode = RunMode::dynamics;
+  p.scene.start = Start::paper; // the paper's case and start (13)
   p.pantograph().speed = c.speed;
   p.pantograph().initial_offset = c.speed > 40. ? 0.002 : 0.; // Sec. 6
   p.discretisation.method = c.method;

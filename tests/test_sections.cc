@@ -82,10 +82,12 @@ TEST(Sections, S55IsDesignedOntoItsPreSagAndIsSymmetric)
 
 TEST(Sections, S55StartsAtRestWithThePenaltyContactPressedIn)
 {
-  // The data sheet's start: static equilibrium with the pantograph pressed on
-  // the wire at x_p = 0 (the anchor) by F0 = 169 N through the penalty contact
-  // k_c = 50 kN/m: the gap is -F0 / k_c = -3.38 mm (round-off, 1e-12 m), the
-  // force after the first step is still ~F0. Then 5 m at 320 km/h (FDM, N+1 = 1100):
+  // The data sheet's start (Run/Start = static equilibrium): the whole system
+  // at rest with the pantograph pressed on the wire at x_p = 0 (the anchor,
+  // z = 0) through the penalty contact k_c = 50 kN/m. The head sits -g =
+  // lambda_p / k_c above its reference, the frame about as high: its ground
+  // spring k_1 = 160 N/m takes k_1 z_1 of F0 = 169 N, lambda_p(0) = F0 - k_1
+  // z_1 = 168.48 N (round-off: 1e-9 N, 1e-12 m). Then 5 m at 320 km/h (FDM, N+1 = 1100):
   // no negative unilateral force (elastic droppers, penalty contact) reaches
   // a time point, and the contact holds (the quasi-static force is ~F0).
   const ProgramParameters p =
@@ -96,21 +98,22 @@ TEST(Sections, S55StartsAtRestWithThePenaltyContactPressedIn)
   const SimulationLayout& layout = runner.layout();
   const unsigned int contact = layout.pantographs[0].contact;
   const TimePoint first = runner.time_point(runner.initial_state());
-  EXPECT_NEAR(first.lambda[contact], 169., 1e-9);
-  EXPECT_NEAR(first.gap[contact], -169. / 5e4, 1e-12);
+  const double frame = first.pantograph[2]; // z_1: bodies head first
+  EXPECT_NEAR(first.lambda[contact], 169. - 160. * frame, 1e-9);
+  EXPECT_NEAR(first.gap[contact], -first.lambda[contact] / 5e4, 1e-12);
+  EXPECT_NEAR(first.pantograph[0], first.lambda[contact] / 5e4,
+              1e-12); // the head, z = -g
 
   Recorder record;
   RunStatistics stats;
   runner.run({&record, &stats});
-  // The head starts in the wire by F0 / k_c: the first steps carry ~F0 (a
-  // start at g = 0 would drop to 0 N); measured 169 N after one
-  // step (8 digits: the half-explicit step takes the force law at the step's
-  // start), asserted within 1 N.
+  // The head starts in the wire by lambda_p / k_c: the first steps carry
+  // ~F0 (a start at g = 0 would drop to 0 N); measured 168.48 N after one
+  // step, asserted within 1 N of lambda_p(0).
   ASSERT_GT(record.points.size(), 2u);
-  EXPECT_NEAR(record.points[1].lambda[contact], 169., 1.);
-  std::cout << std::setprecision(8)
-            << "  lambda_p after one step: " << record.points[1].lambda[contact]
-            << " N\n";
+  EXPECT_NEAR(record.points[1].lambda[contact], first.lambda[contact], 1.);
+  std::cout << std::setprecision(8) << "  lambda_p(0) = " << first.lambda[contact]
+            << " N, after one step: " << record.points[1].lambda[contact] << " N\n";
   EXPECT_GE(smallest_unilateral_force(runner, record.points), 0.);
   EXPECT_TRUE(stats.contact_loss_intervals().empty());
 }
@@ -233,13 +236,15 @@ TEST(Sections, ContactPointMotionWithASpeedRamp)
   EXPECT_NEAR(p.position(p.end_time()), 240., 1e-9);
 }
 
-TEST(Sections, ASpeedRampStartsTheLeaderWithoutAShock)
+TEST(Sections, ALeaderStartedAwayFromAnAnchorHasNoShock)
 {
   // Two S55 pantographs, the leader starting at x = 200 m, away from an anchor
   // (FEM h = 0.5 m, first 100 m of the leader). Started at 320 km/h from the
-  // static state, the leader's contact force peaks far above F0 = 169 N
-  // (measured with FEM 1134-1449 N, contact lost); started from rest with a
-  // 2 s ramp it stays within 1.5 F0 (quasi-static while slow). Both runs here.
+  // static equilibrium of the whole system, the leader's contact force stays
+  // below 2 F0 = 338 N (measured 306 N: the section's own dynamics; a start
+  // that gives the head the wire's convective acceleration at full speed
+  // peaked at 1134-1449 N and lost contact); started from rest with a 2 s
+  // ramp it stays within 1.5 F0 (measured 242 N: quasi-static while slow).
   const auto leader_max = [](const std::string& ramp)
   {
     CaseRunner runner(
@@ -260,7 +265,7 @@ TEST(Sections, ASpeedRampStartsTheLeaderWithoutAShock)
   const double shock = leader_max("0"), smooth = leader_max("2");
   std::cout << "  leader's max contact force in its first 100 m: " << shock
             << " N at speed from t = 0, " << smooth << " N with a 2 s ramp\n";
-  EXPECT_GT(shock, 3. * 169.);
+  EXPECT_LT(shock, 2. * 169.);
   EXPECT_LT(smooth, 1.5 * 169.);
 }
 

@@ -1,5 +1,6 @@
 #include <pantocat/app/application.h>
 #include <pantocat/app/command_line.h>
+#include <pantocat/app/input_warnings.h>
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/app/run_modes.h>
@@ -317,6 +318,12 @@ int run(const CommandLine& cl, int argc, char** argv)
 
   ProgramParameters parameters;
   parameters.parse_parameters(prm);
+  {
+    dealii::ParameterHandler defaults;
+    ProgramParameters::declare_parameters(defaults, parameters.scene.pantographs.size(),
+                                          parameters.scene.pantographs[0]);
+    warn_about_unused_entries(entries_set(prm, defaults), parameters, std::cerr);
+  }
   // A serial run uses no MPI or Trilinos object: skip MPI's start-up (about
   // 0.35 s) unless an MPI launcher started us or Trilinos solves (its
   // matrices need MPI).

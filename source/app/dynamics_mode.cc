@@ -74,6 +74,20 @@ std::vector<ContactForceColumns> contact_force_columns(const RunRecord& record)
 }
 
 /// The plots of the contact force over x_p, one per pantograph in contact.
+/// Each pantograph's window assessed by subsection Assessment (none for the whole run).
+std::vector<Assessment> assess_windows(const ProgramParameters& p,
+                                       const RunRecord& record)
+{
+  std::vector<Assessment> assessments(record.contacts.size());
+  if (!p.assessment.enabled)
+    return assessments;
+  for (unsigned int k = 0; k < record.contacts.size(); ++k)
+    if (record.contacts[k] != nullptr && !record.contacts[k]->result().window.whole_run())
+      assessments[k] = assess(record.contacts[k]->result(),
+                              p.scene.pantographs[k].parameters.speed, p.assessment);
+  return assessments;
+}
+
 std::vector<ForceOverXPlot> force_over_x_plots(const RunRecord& record)
 {
   const SimulationLayout& layout = record.runner.layout();
@@ -157,13 +171,17 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   if (runner.time_step() != p.time_integration.time_step)
     out << " (" << p.time_integration.time_step << " s asked, shortened so that "
         << runner.number_of_steps() << " steps end at the final position)";
-  out << ", v_p = " << p.pantograph().speed << " m/s, x_p from "
-      << p.pantograph().initial_position << " to " << p.pantograph().final_position
-      << " m\n";
-  print_scene(out, runner);
+  out << ", v_p = " << 3.6 * p.pantograph().speed << " km/h (" << p.pantograph().speed
+      << " m/s), x_p from " << p.pantograph().initial_position << " to "
+      << p.pantograph().final_position << " m\n";
+  const bool detailed = p.output.verbosity == Verbosity::detailed;
+  if (detailed)
+    print_scene(out, runner);
+  else
+    print_case_summary(out, runner);
   if (p.scene.contact_wire == WireModel::elastic && !p.scene.pantographs[0].is_absent())
-    print_wave_speeds(out,
-                      wave_speeds(runner.case_data().catenary, p.pantograph().speed));
+    print_wave_speeds(out, wave_speeds(runner.case_data().catenary, p.pantograph().speed),
+                      !detailed);
   if (resume_from)
     out << "  resuming from " << checkpoint_file << " after step " << resume_from->step()
         << '\n';
@@ -227,6 +245,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
                    p.statistics.episode_resolution};
   for (const auto& c : contacts)
     record.contacts.push_back(c.get());
+  record.assessments = assess_windows(p, record);
   const ContactStatistics* first_contact = record.first_contact();
   if (first_contact)
     write_contact_force(dir + "/contact_force.csv", contact_force_columns(record));
@@ -252,7 +271,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
       << " to " << dir << '\n';
   if (p.output.verbosity == Verbosity::detailed)
     list_files(out, dir);
-  if (p.output.verbosity != Verbosity::quiet)
+  if (p.output.verbosity == Verbosity::detailed)
     timer.print_summary();
 }
 } // namespace pantocat

@@ -37,6 +37,15 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
       "over MPI ranks under mpirun; speed sweep, parameter sweep, monte carlo: the "
       "contact-force statistics of the evaluation window for many dynamic runs "
       "(subsection Sweep), spread over MPI ranks by a work queue.");
+  prm.declare_entry(
+      "Start", "static equilibrium",
+      dealii::Patterns::Selection("static equilibrium|paper"),
+      "How a dynamic run with pantographs on the wire starts. static equilibrium: "
+      "catenary and pantographs at rest in the static equilibrium of the whole system, "
+      "each contact pressed with the force its pantograph exerts (its static plus "
+      "aerodynamic force), each pantograph moving as one body with the wire under its "
+      "contact point, as benchmark codes start; paper: the paper's start (13) with "
+      "Pantograph/Initial contact force and Initial offset (the paper's 20 m cases).");
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   prm.declare_entry("Discretisations", "fem, fdm",
@@ -54,6 +63,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
   CheckpointParameters::declare_parameters(prm);
   GuardParameters::declare_parameters(prm);
   ElasticityParameters::declare_parameters(prm);
+  AssessmentCriteria::declare_parameters(prm);
 }
 
 void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
@@ -68,6 +78,8 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
          : m == "parameter sweep"   ? RunMode::parameter_sweep
          : m == "monte carlo"       ? RunMode::monte_carlo
                                     : RunMode::dynamics;
+  const Start start =
+      prm.get("Start") == "paper" ? Start::paper : Start::static_equilibrium;
   prm.leave_subsection();
   prm.enter_subsection("Eigenfrequencies");
   eigenfrequency_discretisations.clear();
@@ -76,6 +88,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
     eigenfrequency_discretisations.push_back(space_method_from_string(name));
   prm.leave_subsection();
   scene.parse_parameters(prm);
+  scene.start = start;
   catenary.parse_parameters(prm);
   discretisation.parse_parameters(prm);
   time_integration.parse_parameters(prm);
@@ -86,6 +99,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   checkpoint.parse_parameters(prm);
   guards.parse_parameters(prm);
   elasticity.parse_parameters(prm);
+  assessment.parse_parameters(prm);
   fingerprint = critical_parameters(prm);
 
   make_case().check();

@@ -143,10 +143,11 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
   out << "Static equilibrium (" << to_string(p.discretisation.method)
       << ", N+1 = " << p.discretisation.n_intervals << ", " << s.q.size() << " unknowns, "
       << droppers.size() << " dropper constraints)\n";
-  for (const PantographCase& pantograph : p.scene.pantographs)
+  for (unsigned int k = 0; k < p.scene.pantographs.size(); ++k)
   {
+    const PantographCase& pantograph = p.scene.pantographs[k];
     const double force = pantograph.has_body()
-                             ? pantograph.parameters.initial_contact_force
+                             ? runner.layout().pantographs[k].initial_contact_force
                          : pantograph.is_moving_force() ? pantograph.moving_force
                                                         : 0.;
     const double x = pantograph.parameters.initial_position;

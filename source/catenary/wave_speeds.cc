@@ -29,14 +29,23 @@ CatenaryWaveSpeeds wave_speeds(const CatenaryParameters& catenary, const double 
           v};
 }
 
-void print_wave_speeds(std::ostream& out, const CatenaryWaveSpeeds& w)
+void print_wave_speeds(std::ostream& out, const CatenaryWaveSpeeds& w, const bool brief)
 {
   const auto flags = out.flags();
   const auto precision = out.precision();
-  out << std::setprecision(4) << "  wave speeds sqrt(T / rho A) at v = " << w.speed
-      << " m/s (" << 3.6 * w.speed << " km/h):\n";
-  print_wire(out, "contact wire", w.contact_wire);
-  print_wire(out, "carrier", w.carrier);
+  if (brief)
+    out << std::setprecision(4)
+        << "  wave speeds: contact wire c = " << w.contact_wire.wave_speed
+        << " m/s (v/c = " << w.contact_wire.speed_ratio
+        << "), messenger c = " << w.carrier.wave_speed
+        << " m/s (v/c = " << w.carrier.speed_ratio << ")\n";
+  else
+  {
+    out << std::setprecision(4) << "  wave speeds sqrt(T / rho A) at v = " << w.speed
+        << " m/s (" << 3.6 * w.speed << " km/h):\n";
+    print_wire(out, "contact wire", w.contact_wire);
+    print_wire(out, "carrier", w.carrier);
+  }
   if (w.exceeds_design_limit())
     out << "  warning: v = " << w.contact_wire.speed_ratio
         << " c of the contact wire exceeds the design limit 0.7 c of EN 50119 ("

@@ -13,7 +13,7 @@ namespace
 {
 using Levels = std::array<double, 3>;
 constexpr unsigned int lambda_kind = 0, eta_kind = 1, mu_kind = 2;
-constexpr unsigned int force_law = 3; ///< the equation of an engaged spring
+constexpr unsigned int force_law_kind = 3; ///< the equation of an engaged spring
 
 ConstrainedOperator::Definition operator_of(const double mass, const double damping,
                                             const double stiffness, const char* what)
@@ -33,10 +33,10 @@ Levels levels(const ConstraintState& r, const ReferenceImplicitStepSystem::Respo
            r.G_tt.dot(x.q) + 2. * r.G_t.dot(x.v) + r.G.dot(x.a)}};
 }
 
-/// Equation @p kind (a level, or force_law) of constraint @p c on @p L.
+/// Equation @p kind (a level, or force_law_kind) of constraint @p c on @p L.
 double equation(const Constraint& c, const unsigned int kind, const Levels& L)
 {
-  if (kind != force_law)
+  if (kind != force_law_kind)
     return L[kind];
   return L[0] + c.compliance().damping / c.compliance().stiffness * L[1];
 }
@@ -132,7 +132,7 @@ ReferenceImplicitStepSystem::multipliers(const std::vector<Slot>& unknowns,
     for (unsigned int u = 0; u < p; ++u)
       E(e, u) = equation(constraint, equations[e].kind,
                          levels(r, response(unknowns[u].constraint, unknowns[u].kind)));
-    if (equations[e].kind == force_law)
+    if (equations[e].kind == force_law_kind)
       E(e, e) += 1. / constraint.compliance().stiffness;
     Levels L = levels(r, base);
     L[0] += r.z;
@@ -173,7 +173,7 @@ void ReferenceImplicitStepSystem::solve(const std::vector<Role>& roles,
       unknowns.insert(unknowns.end(), {{i, eta_kind}, {i, mu_kind}}),
           equations.insert(equations.end(), {{i, 0}, {i, 1}});
     else if (roles[i] == Role::engaged)
-      unknowns.push_back({i, lambda_kind}), equations.push_back({i, force_law});
+      unknowns.push_back({i, lambda_kind}), equations.push_back({i, force_law_kind});
   const dealii::Vector<double> y = multipliers(unknowns, equations);
   q = base.q;
   v = base.v;

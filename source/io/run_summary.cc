@@ -3,10 +3,12 @@
 #include <pantocat/io/json_writer.h>
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>
+#include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/run_events.h>
 #include <pantocat/simulation/switch_episodes.h>
 #include <pantocat/time/integrator_registry.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -105,6 +107,7 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
       if (r.contacts[k] != nullptr)
         write_statistics(json, r.contacts[k]->result(),
                          slack_in_window(r.statistics, r.contacts[k]->result()));
+      write_assessment(json, k < r.assessments.size() ? r.assessments[k] : Assessment{});
       json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
       write_episodes(json, "contact_loss_episodes",
                      r.statistics.contact_loss_intervals(k), r.episode_resolution);
@@ -262,6 +265,43 @@ std::string format_intervals(const std::vector<Interval>& list, const double gap
 }
 } // namespace
 
+void print_case_summary(std::ostream& out, const CaseRunner& runner)
+{
+  const Case& c = runner.case_data();
+  const SimulationLayout& layout = runner.layout();
+  const std::size_t arms = SteadyArms::positions(c.scene, c.catenary).size();
+  out << std::setprecision(6) << "  case: " << c.catenary.number_of_spans()
+      << (c.catenary.number_of_spans() == 1 ? " span" : " spans") << " ("
+      << c.catenary.length() << " m), ";
+  if (layout.dropper_indices.empty())
+    out << "no droppers";
+  else
+    out << layout.dropper_indices.size() << ' ' << to_string(c.scene.droppers)
+        << " droppers";
+  if (arms > 0)
+    out << ", " << arms << " steady arms";
+  if (!c.catenary.stitch_wires.empty())
+    out << ", " << c.catenary.stitch_wires.size() << " stitch wires";
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+  {
+    const PantographCase& p = c.scene.pantographs[k];
+    out << (k == 0 ? "; " : ", ") << layout.pantographs[k].name << ": " << p.model;
+    if (p.has_body())
+      out << " (" << layout.pantographs[k].coordinates.size() << " bodies, "
+          << p.contact_law() << " contact)";
+    out << " at " << std::setprecision(4) << 3.6 * p.parameters.speed << " km/h";
+  }
+  const SemiDiscreteSystem& system = runner.system();
+  out << "; " << system.n_dofs() << " unknowns, " << system.n_constraints()
+      << " constraints\n";
+  for (const PantographLayout* p : layout.contacts())
+    out << std::setprecision(5) << "  start: "
+        << (c.scene.start == Start::paper ? "the paper's (13)" : "static equilibrium")
+        << (layout.contacts().size() > 1 ? ", " + p->name : std::string())
+        << ": lambda_p(0) = " << p->initial_contact_force << " N (static force "
+        << p->static_force << " N)\n";
+}
+
 void print_scene(std::ostream& out, const CaseRunner& runner)
 {
   const SemiDiscreteSystem& system = runner.system();
@@ -300,28 +340,83 @@ void print_scene(std::ostream& out, const CaseRunner& runner)
   out << ")\n";
 }
 
+namespace
+{
+/// Up to this many episodes of lost contact, the screen lists them.
+constexpr std::size_t max_episodes_listed = 3;
+
+/// x_p(t) of pantograph @p k [m].
+double position_at(const RunRecord& r, const unsigned int k, const double t)
+{
+  return r.runner.case_data().scene.pantographs[k].parameters.position(t);
+}
+
+/// "[5.915, 5.926] s (x_p 525.8-526.7 m)" for the first few episodes of @p list.
+std::string located_episodes(const RunRecord& r, const unsigned int k,
+                             const std::vector<Interval>& list)
+{
+  if (list.empty())
+    return "none";
+  const std::vector<SwitchEpisode> episodes = switch_episodes(list, r.episode_resolution);
+  std::ostringstream s;
+  s << std::setprecision(4);
+  for (std::size_t i = 0; i < std::min(episodes.size(), max_episodes_listed); ++i)
+  {
+    const auto& [t0, t1] = episodes[i].span;
+    s << (i ? ", " : "") << '[' << t0 << ", " << t1 << "] s (x_p "
+      << position_at(r, k, t0) << "-" << position_at(r, k, t1) << " m)";
+  }
+  if (episodes.size() > max_episodes_listed)
+    s << " and " << episodes.size() - max_episodes_listed << " more episodes";
+  return s.str();
+}
+
+/// The whole run's contact force of pantograph @p k, its extremes with their positions.
+void print_whole_run_force(std::ostream& out, const RunRecord& r, const unsigned int k,
+                           const std::string& name)
+{
+  const auto& f = r.statistics.contact_force(k);
+  out << std::setprecision(5) << "  " << name << "whole run: contact force max " << f.max
+      << " N at x_p = " << std::setprecision(4) << f.max_position << " m, min "
+      << std::setprecision(5) << f.min << " N at x_p = " << std::setprecision(4)
+      << f.min_position << " m, mean " << std::setprecision(5) << f.mean << " N, std "
+      << f.std() << " N\n";
+}
+
+/// Slack per dropper: every interval (detailed), or the events in one line.
+void print_dropper_slack(std::ostream& out, const RunRecord& r, const bool detailed)
+{
+  const auto slack = r.statistics.dropper_slack_intervals();
+  if (detailed)
+    for (unsigned int j = 0; j < slack.size(); ++j)
+      if (!slack[j].empty())
+        out << "  dropper " << j + 1
+            << " slack: " << format_intervals(slack[j], r.episode_resolution) << '\n';
+  if (!slack.empty())
+    out << "  dropper slack events in the whole run: "
+        << describe_slack_events(r.statistics.dropper_slack_events()) << '\n';
+}
+} // namespace
+
 void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed)
 {
   const SimulationLayout& layout = r.runner.layout();
   const RunStatistics& stats = r.statistics;
   const bool several = layout.contacts().size() > 1;
-  for (const PantographLayout* p : layout.contacts())
-    out << std::setprecision(6) << "  " << (several ? p->name + ": " : "")
-        << "first time point t = " << r.first_point.t
-        << " s: lambda_p = " << r.first_point.lambda[p->contact]
-        << " N (lambda_p(0) = " << p->initial_contact_force << " N)\n";
+  const auto name = [&](const unsigned int k)
+  { return several ? layout.pantographs[k].name + ": " : std::string(); };
+  if (detailed)
+    for (const PantographLayout* p : layout.contacts())
+      out << std::setprecision(6) << "  " << (several ? p->name + ": " : "")
+          << "first time point t = " << r.first_point.t
+          << " s: lambda_p = " << r.first_point.lambda[p->contact]
+          << " N (lambda_p(0) = " << p->initial_contact_force << " N)\n";
   out << "  " << r.result.integrator.steps << " steps in " << std::setprecision(3)
       << r.result.time_loop_seconds
       << " s; active-set changes: " << r.result.integrator.active_set_changes << '\n';
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
-    {
-      const auto& f = stats.contact_force(k);
-      out << std::setprecision(5) << "  "
-          << (several ? layout.pantographs[k].name + ": " : "") << "contact force: max "
-          << f.max << " N, min " << f.min << " N, mean " << f.mean << " N, std "
-          << f.std() << " N\n";
-    }
+      print_whole_run_force(out, r, k, name(k));
   if (r.series != nullptr)
     for (const auto& probe : r.series->probes())
       out << std::setprecision(4) << "  series solution at x = " << probe.x
@@ -333,20 +428,13 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
         << " J, final " << r.energy->final
         << " J, max |E - E(0)| / |E(0)| = " << std::setprecision(3)
         << r.energy->relative_variation() << '\n';
-  const auto slack = stats.dropper_slack_intervals();
-  // Only the droppers that went slack: a section has dozens of droppers.
-  for (unsigned int j = 0; j < slack.size(); ++j)
-    if (!slack[j].empty())
-      out << "  dropper " << j + 1
-          << " slack: " << format_intervals(slack[j], r.episode_resolution) << '\n';
-  if (!slack.empty())
-    out << "  dropper slack events in the run: "
-        << describe_slack_events(stats.dropper_slack_events()) << '\n';
+  print_dropper_slack(out, r, detailed);
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
-      out << "  " << (several ? layout.pantographs[k].name + ": " : "")
-          << "contact lost: "
-          << format_intervals(stats.contact_loss_intervals(k), r.episode_resolution)
+      out << "  " << name(k) << "contact lost in the whole run: "
+          << (detailed ? format_intervals(stats.contact_loss_intervals(k),
+                                          r.episode_resolution)
+                       : located_episodes(r, k, stats.contact_loss_intervals(k)))
           << '\n';
   out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
@@ -361,6 +449,8 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
         out << "  " << layout.pantographs[k].name << ":\n";
       print_statistics(out, r.contacts[k]->result(),
                        slack_in_window(stats, r.contacts[k]->result()));
+      if (k < r.assessments.size())
+        print_assessment(out, r.assessments[k]);
     }
 }
 } // namespace pantocat

@@ -131,11 +131,30 @@ void write_contact_force(const std::string& file,
   write_file_atomically(file, csv);
 }
 
+namespace
+{
+/// Up to this many droppers with events, a description names each.
+constexpr std::size_t max_droppers_named = 5;
+} // namespace
+
 std::string describe_slack_events(const DropperSlackEvents& events)
 {
   if (events.total == 0)
     return "none";
   std::ostringstream s;
+  std::size_t droppers = 0, most = 0;
+  for (std::size_t j = 0; j < events.per_dropper.size(); ++j)
+  {
+    droppers += events.per_dropper[j] > 0;
+    if (events.per_dropper[j] > events.per_dropper[most])
+      most = j;
+  }
+  if (droppers > max_droppers_named)
+  {
+    s << "total " << events.total << " on " << droppers << " droppers (most: dropper "
+      << most + 1 << ": " << events.per_dropper[most] << ')';
+    return s.str();
+  }
   s << "total " << events.total << " (";
   bool first = true;
   for (std::size_t j = 0; j < events.per_dropper.size(); ++j)
@@ -236,6 +255,56 @@ void print_statistics(std::ostream& out, const ContactForceStatistics& s,
   if (!slack_in_window.per_dropper.empty())
     out << "    dropper slack events with the pantograph in the window: "
         << describe_slack_events(slack_in_window) << '\n';
+  out.flags(flags);
+  out.precision(precision);
+}
+void write_assessment(JsonWriter& json, const Assessment& a)
+{
+  if (a.criteria.empty())
+  {
+    json.null("assessment");
+    return;
+  }
+  json.begin_object("assessment")
+      .value("speed_kmh", a.speed_kmh)
+      .value("basis", a.basis)
+      .value("passed", a.passed());
+  json.begin_array("criteria");
+  for (const CriterionResult& c : a.criteria)
+    json.begin_object()
+        .value("name", c.name)
+        .value("value", c.value)
+        .value("limit", c.limit)
+        .value("relation", c.at_most ? "<=" : ">")
+        .value("unit", c.unit)
+        .value("rule", c.rule)
+        .value("passed", c.passed)
+        .end_object();
+  json.end_array();
+  json.end_object();
+}
+
+void print_assessment(std::ostream& out, const Assessment& a)
+{
+  if (a.criteria.empty())
+    return;
+  const auto flags = out.flags();
+  const auto precision = out.precision();
+  out << "  assessment (" << a.basis
+      << " force; criteria of subsection Assessment, EN 50367 / TSI as commonly "
+         "quoted): "
+      << (a.passed() ? "passed" : "FAILED") << '\n';
+  for (const CriterionResult& c : a.criteria)
+  {
+    std::ostringstream value, limit;
+    value << std::setprecision(4) << c.value << ' ' << c.unit;
+    limit << (c.at_most ? "<= " : "> ") << std::setprecision(4) << c.limit << ' '
+          << c.unit;
+    out << "    " << std::left << std::setw(28) << c.quantity << std::right
+        << std::setw(12) << value.str() << "  " << std::left << std::setw(14)
+        << limit.str() << std::right << (c.passed ? "  pass" : "  FAIL") << "  ("
+        << c.rule << ")\n";
+  }
   out.flags(flags);
   out.precision(precision);
 }

@@ -44,7 +44,7 @@ ForceDiagonals::ForceDiagonals(const dealii::SparseMatrix<double>& K,
 namespace
 {
 /// Rows of one block: they stay in the first-level cache while the offsets pass.
-constexpr int block = 512;
+constexpr int rows_per_block = 512;
 
 /// The operands of one block of rows [begin, end) and its band's reach.
 struct Block
@@ -153,9 +153,9 @@ __attribute__((target_clones("avx2", "default"))) void sweep_run(
   }
   // Blocks of an even number of rows: the parity of a row is its distance
   // from begin.
-  for (int first = begin; first < end; first += block)
+  for (int first = begin; first < end; first += rows_per_block)
   {
-    const int last = std::min(end, first + block);
+    const int last = std::min(end, first + rows_per_block);
     // u[j - first + reach] = v_{n-1} + v_n of row j.
     if (nd > 0)
       for (int j = first - reach; j < last + reach; ++j)
@@ -206,7 +206,7 @@ void DiagonalForceSweep::initialize(const int n_rows, const int bandwidth,
   k = &stiffness;
   d_offsets = &damping_offsets;
   d = &half_damping;
-  velocity_sum.assign(block + 2 * b, 0.);
+  velocity_sum.assign(rows_per_block + 2 * b, 0.);
   find_runs();
   group_exceptions();
 }
@@ -338,9 +338,9 @@ void DiagonalForceSweep::apply(const double* f, const double* q, const double* v
   double* __restrict u = velocity_sum.data();
   const auto sweep = [&](const int first, const int last)
   {
-    for (int begin = first; begin < last; begin += block)
+    for (int begin = first; begin < last; begin += rows_per_block)
     {
-      Block x{n, b, begin, std::min(last, begin + block), f, q, out, u, 0};
+      Block x{n, b, begin, std::min(last, begin + rows_per_block), f, q, out, u, 0};
       if (!d_offsets->empty())
       {
         // v_{n-1} + v_n once per row of the block and its band's reach.

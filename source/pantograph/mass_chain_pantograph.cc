@@ -3,6 +3,8 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
 MassChainPantograph::MassChainPantograph(const MassChainPantographParameters& parameters,
@@ -50,6 +52,9 @@ void MassChainPantograph::assemble(BlockOperator& op) const
   op.sparsity->copy_from(dsp);
   op.reinit_matrices(n);
   op.mass_is_diagonal = true;
+  // Without every spring only the contact holds the bodies.
+  op.stiffness_is_definite = std::all_of(p.stiffnesses.begin(), p.stiffnesses.end(),
+                                         [](double k) { return k > 0.; });
   for (unsigned int i = 0; i < n; ++i)
     op.mass.set(i, i, p.masses[i]);
   // Link i joins bodies i and i + 1 (0-based, i < n - 1); link n - 1 the frame

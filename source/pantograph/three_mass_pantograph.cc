@@ -3,6 +3,8 @@
 
 #include <deal.II/lac/dynamic_sparsity_pattern.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
 ThreeMassPantograph::ThreeMassPantograph(const ThreeMassPantographParameters& parameters)
@@ -20,6 +22,9 @@ void ThreeMassPantograph::assemble(BlockOperator& op) const
   op.sparsity->copy_from(dsp);
   op.reinit_matrices(3);
   op.mass_is_diagonal = true;
+  // Without every spring only the contact holds the bodies.
+  op.stiffness_is_definite = std::all_of(p.stiffnesses.begin(), p.stiffnesses.end(),
+                                         [](double k) { return k > 0.; });
   const double m[3] = {p.masses[0], p.masses[1], p.masses[2]};
   for (unsigned int i = 0; i < 3; ++i)
     op.mass.set(i, i, m[i]);

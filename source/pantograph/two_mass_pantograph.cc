@@ -20,6 +20,9 @@ void TwoMassPantograph::assemble(BlockOperator& op) const
   op.sparsity->copy_from(dsp);
   op.reinit_matrices(2);
   op.mass_is_diagonal = true;
+  // Without a frame spring only the contact holds the bodies (a static
+  // equilibrium then needs the contact: the saddle-point way).
+  op.stiffness_is_definite = p.head_stiffness > 0. && p.frame_stiffness > 0.;
   op.mass.set(0, 0, p.head_mass);
   op.mass.set(1, 1, p.frame_mass);
   op.mass.set(0, 1, 0.);

@@ -70,6 +70,38 @@ std::vector<InitialContact> initial_contacts(const BuiltScene& built)
 }
 
 /**
+ * Run/Start = paper: (13) sets the frame's velocity from the head equation, so
+ * a contact force that the head's spring does not carry at t = 0 becomes a
+ * velocity of the frame relative to the head (lambda_p(0) / d_1 in the
+ * two-mass model). The paper's data give 0.29 m/s; above 1 m/s a warning
+ * names the start shock and the start without it.
+ */
+void warn_about_a_paper_start_shock(const BuiltScene& built, const DynamicState& s)
+{
+  constexpr double noticeable = 1.; // [m/s]
+  for (const ScenePantograph& p : built.pantographs)
+  {
+    if (!p.has_contact())
+      continue;
+    const DofBlock& block = built.system.block(p.block);
+    const SparseRow head = p.model->head_row();
+    double head_speed = 0.;
+    for (std::size_t k = 0; k < head.size(); ++k)
+      head_speed += head.value[k] * s.v(block.first + head.index[k]);
+    double relative = 0.;
+    for (unsigned int i = 0; i < block.size; ++i)
+      relative = std::max(relative, std::abs(s.v(block.first + i) - head_speed));
+    if (relative > noticeable)
+      std::cerr << "pantocat-fem: warning: Run/Start = paper starts " << p.block
+                << "'s bodies at up to " << std::setprecision(3) << relative
+                << " m/s relative to its head ((13) with "
+                << p.data->parameters.subsection
+                << "/Initial contact force = " << p.data->parameters.initial_contact_force
+                << " N): a start shock; Run/Start = static equilibrium starts at rest\n";
+  }
+}
+
+/**
  * Stops a run that goes unstable: non-finite values, or a displacement (or
  * Hermite slope) beyond @p bound, the length of the domain: no physical state
  * of a wire comes near that, while an unstable mode grows through it within a
@@ -146,10 +178,19 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
                 ") m, the wires' domain");
     probe_rows.push_back(wire_point_row(*space, built.system, Wire::contact_wire, x));
   }
-  initial = data.scene.initial_shape == InitialShape::static_equilibrium
-                ? consistent_initial_state(built.catenary_only, built.system,
-                                           initial_contacts(built))
-                : shaped_initial_state(built.system, *space, data.scene);
+  if (data.scene.initial_shape != InitialShape::static_equilibrium)
+    initial = shaped_initial_state(built.system, *space, data.scene);
+  else if (data.scene.start == Start::paper)
+  {
+    initial = consistent_initial_state(built.catenary_only, built.system,
+                                       initial_contacts(built));
+    warn_about_a_paper_start_shock(built, initial);
+  }
+  else
+    initial = static_initial_state(built.system, initial_contacts(built));
+  for (PantographLayout& p : layout_.pantographs)
+    if (p.contact != dealii::numbers::invalid_unsigned_int)
+      p.initial_contact_force = initial.lambda[p.contact];
   check_initial_bounded(initial, data.catenary.length());
 }
 
@@ -177,8 +218,13 @@ const std::vector<std::string>& CaseRunner::inactive_effects() const
 
 StaticEquilibrium CaseRunner::static_catenary() const
 {
+  // Loaded as the run starts: with lambda_p(0) of the paper's start, or with
+  // the force of each pantograph in the static equilibrium of the whole system.
+  std::vector<InitialContact> contacts = initial_contacts(scene->built);
+  for (InitialContact& c : contacts)
+    c.force = initial.lambda[c.constraint];
   return pantocat::static_catenary(scene->built.catenary_only, scene->built.system,
-                                   initial_contacts(scene->built));
+                                   contacts);
 }
 
 StaticElasticity

@@ -1,7 +1,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/base/input_error.h>
-#include <pantocat/simulation/initial_state.h>
 #include <pantocat/constrained_fast/mass_inverse.h>
+#include <pantocat/simulation/initial_state.h>
 
 #include <deal.II/base/numbers.h>
 
@@ -115,6 +115,42 @@ DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
   }
 
   // 4. Accelerations of the whole system.
+  complete_accelerations(coupled, s);
+  return s;
+}
+
+DynamicState static_initial_state(const SemiDiscreteSystem& coupled,
+                                  const std::vector<InitialContact>& contacts)
+{
+  // 1. Everything at rest under its loads at t = 0: K q = f(0) + G^T lambda
+  //    with every constraint, the contacts included.
+  dealii::Vector<double> f0(coupled.n_dofs());
+  coupled.load_at(0., f0);
+  f0 -= coupled.load;
+  const StaticEquilibrium rest = solve_static_equilibrium(coupled, f0);
+  DynamicState s = zero_state(coupled);
+  s.q = rest.q;
+  for (unsigned int i = 0; i < coupled.n_constraints(); ++i)
+  {
+    s.lambda[i] = rest.multipliers[i];
+    s.active[i] = rest.active[i];
+  }
+  // 2. Each pantograph moves as one body with its head, which follows the
+  //    wire under the moving contact point: B v_MBS = G_t q + z_t.
+  ConstraintState rows;
+  for (const InitialContact& c : contacts)
+  {
+    coupled.constraints[c.constraint]->evaluate(0., rows);
+    const DofBlock& block = coupled.block(c.block);
+    const SparseRow head = c.model->head_row();
+    double head_weight = 0.; // B 1: the head's rise per unit rise of the whole body
+    for (std::size_t k = 0; k < head.size(); ++k)
+      head_weight += head.value[k];
+    const double speed = (rows.G_t.dot(s.q) + rows.z_t) / head_weight;
+    for (unsigned int i = 0; i < block.size; ++i)
+      s.v(block.first + i) = speed;
+  }
+  // 3. Accelerations of the whole system.
   complete_accelerations(coupled, s);
   return s;
 }

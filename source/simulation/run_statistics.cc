@@ -6,10 +6,12 @@
 
 namespace pantocat
 {
-void RunStatistics::ForceStatistics::add(const double f)
+void RunStatistics::ForceStatistics::add(const double f, const double t, const double x)
 {
-  max = std::max(max, f);
-  min = std::min(min, f);
+  if (f > max)
+    max = f, max_time = t, max_position = x;
+  if (f < min)
+    min = f, min_time = t, min_position = x;
   // Welford's update: no cancellation in the variance.
   ++count;
   const double delta = f - mean;
@@ -56,7 +58,8 @@ void RunStatistics::observe(const TimePoint& p)
 {
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
-      forces[k].add(p.lambda[layout.pantographs[k].contact]);
+      forces[k].add(p.lambda[layout.pantographs[k].contact], p.t,
+                    k < p.x_p.size() ? p.x_p[k] : 0.);
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
   unsigned int slack = 0;
@@ -137,7 +140,8 @@ std::vector<Interval> RunStatistics::contact_loss_intervals(const unsigned int k
 void RunStatistics::save(CheckpointOut& archive) const
 {
   for (const ForceStatistics& f : forces)
-    archive << f.max << f.min << f.mean << f.m2 << f.count;
+    archive << f.max << f.min << f.mean << f.m2 << f.count << f.max_time << f.max_position
+            << f.min_time << f.min_position;
   archive << max_pos << max_vel << last_t << intervals << open_since << max_slack;
   for (const ImpulseStatistics& s : impacts)
     archive << s.count << s.total << s.max;
@@ -148,7 +152,8 @@ void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
   layout = l;
   forces.assign(l.pantographs.size(), {});
   for (ForceStatistics& f : forces)
-    archive >> f.max >> f.min >> f.mean >> f.m2 >> f.count;
+    archive >> f.max >> f.min >> f.mean >> f.m2 >> f.count >> f.max_time >>
+        f.max_position >> f.min_time >> f.min_position;
   archive >> max_pos >> max_vel >> last_t >> intervals >> open_since >> max_slack;
   impacts.assign(l.constraint_names.size(), {});
   for (ImpulseStatistics& s : impacts)

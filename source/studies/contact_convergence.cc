@@ -11,7 +11,7 @@ namespace pantocat
 {
 namespace
 {
-constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double no_value = std::numeric_limits<double>::quiet_NaN();
 /// Event times that differ by less than this [s] are the same time point.
 constexpr double rounding = 1e-12;
 
@@ -32,12 +32,12 @@ double max_time_difference(const std::vector<StudyEvent>& a,
                            const std::vector<StudyEvent>& b)
 {
   if (a.size() != b.size())
-    return nan;
+    return no_value;
   double d = 0.;
   for (std::size_t i = 0; i < a.size(); ++i)
   {
     if (a[i].closes != b[i].closes)
-      return nan;
+      return no_value;
     // Below 1e-12 s a difference is the rounding of t = n dt: none.
     const double t = std::abs(a[i].t - b[i].t);
     d = std::max(d, t < rounding ? 0. : t);
@@ -94,7 +94,7 @@ EventTimeDifference compare_event_times(const std::vector<StudyEvent>& a,
       if (std::isnan(t))
       {
         d.match = false;
-        d.max_difference = nan;
+        d.max_difference = no_value;
         return d;
       }
       d.max_difference = std::max(d.max_difference, t);
@@ -107,7 +107,7 @@ std::vector<double> successive_differences(const std::vector<double>& x)
   std::vector<double> d;
   for (std::size_t k = 0; k + 1 < x.size(); ++k)
     d.push_back(std::isfinite(x[k]) && std::isfinite(x[k + 1]) ? std::abs(x[k] - x[k + 1])
-                                                               : nan);
+                                                               : no_value);
   return d;
 }
 
@@ -133,14 +133,14 @@ void ContactConvergence::compare_runs()
     const double values[4] = {f.loss_percent, f.filtered_max, f.filtered_min,
                               f.filtered_std};
     for (unsigned int q = 0; q < 4; ++q)
-      quantities_[q].values.push_back(ok ? values[q] : nan);
+      quantities_[q].values.push_back(ok ? values[q] : no_value);
   }
   // Pairs (k-1, k) carry the refinement parameter of their coarser run.
   std::vector<double> pair_parameters(parameters.begin(),
                                       parameters.end() - (parameters.empty() ? 0 : 1));
   const auto by_finer_run = [](std::vector<double> pairs)
   {
-    pairs.insert(pairs.begin(), nan);
+    pairs.insert(pairs.begin(), no_value);
     return pairs;
   };
   for (Quantity& q : quantities_)
@@ -157,7 +157,7 @@ void ContactConvergence::compare_runs()
     const Run& a = runs_[k - 1];
     const Run& b = runs_[k];
     if (!completed(a) || !completed(b))
-      contact_events[k] = all_events[k] = {false, 0, 0, nan};
+      contact_events[k] = all_events[k] = {false, 0, 0, no_value};
     else
     {
       contact_events[k] =
@@ -269,19 +269,19 @@ void ContactConvergence::write_csv(std::ostream& out) const
         << ',' << to_string(r.status);
     for (const Quantity& q : quantities_)
       out << ',' << csv_field(q.values[k]);
-    out << ',' << csv_field(ok ? f.min_unilateral_force : nan) << ','
+    out << ',' << csv_field(ok ? f.min_unilateral_force : no_value) << ','
         << (ok ? f.min_unilateral_constraint : "") << ','
-        << csv_field(ok ? f.min_unilateral_time : nan) << ','
+        << csv_field(ok ? f.min_unilateral_time : no_value) << ','
         << (ok ? std::to_string(f.events.size()) : "") << ','
         << (ok ? std::to_string(f.contact_events()) : "") << ','
         << (ok ? std::to_string(f.short_episodes) : "") << ','
-        << csv_field(ok ? f.short_episode_time : nan);
+        << csv_field(ok ? f.short_episode_time : no_value);
     for (const Quantity& q : quantities_)
       out << ',' << csv_field(q.differences[k]) << ',' << csv_field(q.orders[k]);
     out << ',' << match(k, contact_events[k]) << ','
-        << csv_field(k == 0 ? nan : contact_events[k].max_difference) << ','
+        << csv_field(k == 0 ? no_value : contact_events[k].max_difference) << ','
         << csv_field(contact_orders[k]) << ',' << match(k, all_events[k]) << ','
-        << csv_field(k == 0 ? nan : all_events[k].max_difference) << ','
+        << csv_field(k == 0 ? no_value : all_events[k].max_difference) << ','
         << csv_field(all_orders[k]) << '\n';
   }
 }

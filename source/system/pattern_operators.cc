@@ -447,7 +447,7 @@ void PatternOperators::set_time(const double t) const
 namespace
 {
 /// Rows at once in the passes: their partial sums stay in the first-level cache.
-constexpr unsigned int block = 256;
+constexpr unsigned int rows_per_pass = 256;
 
 /**
  * s[r] += m[r] h[r S] + d[r] x[r S] over @p rows rows of stride S: one entry
@@ -640,11 +640,11 @@ void PatternOperators::history(const dealii::Vector<double>& h,
                                const dealii::Vector<double>& r,
                                dealii::Vector<double>& out) const
 {
-  double s[block];
+  double s[rows_per_pass];
   for (const Run& run : history_runs)
-    for (unsigned int first = 0; first < run.rows; first += block)
+    for (unsigned int first = 0; first < run.rows; first += rows_per_pass)
     {
-      const unsigned int rows = std::min(block, run.rows - first),
+      const unsigned int rows = std::min(rows_per_pass, run.rows - first),
                          i0 = run.first + first * run.stride;
       for (unsigned int j = 0; j < rows; ++j)
         s[j] = load[i0 + j * run.stride];
@@ -702,11 +702,11 @@ void PatternOperators::motion(const double* q, const double* v, const double* qp
 {
   if (split)
     throw std::logic_error("PatternOperators::motion() with the damping split");
-  double fq[block], fv[block];
+  double fq[rows_per_pass], fv[rows_per_pass];
   for (const Run& run : runs)
-    for (unsigned int first = 0; first < run.rows; first += block)
+    for (unsigned int first = 0; first < run.rows; first += rows_per_pass)
     {
-      const unsigned int rows = std::min(block, run.rows - first),
+      const unsigned int rows = std::min(rows_per_pass, run.rows - first),
                          i0 = run.first + first * run.stride;
       for (unsigned int j = 0; j < rows; ++j)
       {

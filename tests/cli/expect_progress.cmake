@@ -3,11 +3,12 @@
 # took 1.0 s once the steps got faster) with stderr to a file leaves
 # nothing there but optional warnings; the same run on a pseudo-terminal
 # (util-linux `script`, when installed) shows the line, so the first check
-# is not vacuous. Verbosity = quiet prints nothing on stdout.
+# is not vacuous. Verbosity = detailed adds the timer table to the statistics;
+# Verbosity = quiet prints nothing on stdout.
 #   -DEXE=... -DPRM=... -DOUTDIR=dir
 set(case ${PRM} --set "Discretisation/Method=fem" --set "Time integration/Integrator=bdf2"
          --set "Time integration/Time step=4e-6" --set "Output/Plots=false"
-         --set "Output/Time series interval=20")
+         --set "Output/Time series interval=20" --set "Output/Verbosity=detailed")
 file(REMOVE_RECURSE ${OUTDIR})
 execute_process(COMMAND ${EXE} ${case} -o ${OUTDIR}/file
                 RESULT_VARIABLE status OUTPUT_VARIABLE out ERROR_FILE ${OUTDIR}.stderr)

@@ -4,6 +4,7 @@
 #include <pantocat/catenary/catenary_parameters.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
+#include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/case.h>
 #include <pantocat/simulation/checkpoint_parameters.h>
 #include <pantocat/simulation/guard_parameters.h>
@@ -55,6 +56,7 @@ struct ProgramParameters
   CheckpointParameters checkpoint;
   GuardParameters guards;
   ElasticityParameters elasticity; ///< the static check (Mode = static)
+  AssessmentCriteria assessment;   ///< the criteria of the window's assessment
   /// The parameters a checkpoint of this run must agree with (critical_parameters()).
   ParameterFingerprint fingerprint;
 

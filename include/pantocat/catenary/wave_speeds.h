@@ -33,6 +33,8 @@ struct CatenaryWaveSpeeds
 
 CatenaryWaveSpeeds wave_speeds(const CatenaryParameters& catenary, double v);
 
-/// Two lines: c, v/c and alpha of each wire; a third, a warning, when v > 0.7 c.
-void print_wave_speeds(std::ostream& out, const CatenaryWaveSpeeds& w);
+/// A line per wire (@p brief: both in one line): c, v/c and alpha; a warning
+/// when v > 0.7 c.
+void print_wave_speeds(std::ostream& out, const CatenaryWaveSpeeds& w,
+                       bool brief = false);
 } // namespace pantocat

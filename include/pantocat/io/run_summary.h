@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/energy_range.h>
@@ -27,6 +28,9 @@ struct RunRecord
   const MovingLoadComparison* series = nullptr; ///< if a classical moving load
   /// Statistics/Episode resolution [s]: open intervals merged into episodes.
   double episode_resolution = 0.;
+  /// Per pantograph (in layout order): its window's assessment; no criteria
+  /// without a contact, without a window or with Assessment/Enabled = false.
+  std::vector<Assessment> assessments = {};
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
 };
@@ -50,6 +54,14 @@ void write_failed_summary(const std::string& file, const std::string& phase,
 
 /// The effects the scene assembles, those it leaves out, and the problem size.
 void print_scene(std::ostream& out, const CaseRunner& runner);
+
+/**
+ * The case in a few lines (the screen at normal verbosity): spans and length,
+ * droppers, steady arms and stitch wires, each pantograph with its model,
+ * contact and speed in km/h, the size of the system; then the start and
+ * lambda_p(0) of each contact against its pantograph's static force.
+ */
+void print_case_summary(std::ostream& out, const CaseRunner& runner);
 
 /// The run's figures on screen: contact forces per pantograph, slack and loss intervals.
 void print_run_report(std::ostream& out, const RunRecord& record, bool detailed);

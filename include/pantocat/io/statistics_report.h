@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/io/json_writer.h>
+#include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/run_statistics.h>
 
@@ -55,6 +56,17 @@ void write_contact_force(const std::string& file,
 void print_statistics(std::ostream& out, const ContactForceStatistics& statistics,
                       const DropperSlackEvents& slack_in_window);
 
-/// "total 3 (dropper 41: 1, dropper 42: 2)", or "none".
+/**
+ * The "assessment" object of a pantograph in summary.json: speed_kmh, basis
+ * ("20 Hz" or "raw"), passed, and "criteria": [{name, value, limit,
+ * relation ("<=" or ">"), unit, rule, passed}]; null without criteria.
+ */
+void write_assessment(JsonWriter& json, const Assessment& assessment);
+
+/// The assessment as a few lines of text: one per criterion, value, limit, pass or fail.
+void print_assessment(std::ostream& out, const Assessment& assessment);
+
+/// "total 3 (dropper 41: 1, dropper 42: 2)", "total 69 on 23 droppers (most:
+/// dropper 37: 8)" when more than five droppers have events, or "none".
 std::string describe_slack_events(const DropperSlackEvents& events);
 } // namespace pantocat

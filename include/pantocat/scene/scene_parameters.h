@@ -67,6 +67,17 @@ enum class InitialShape
   sine_mode           ///< contact wire w = A sin(k pi x / L), at rest (no constraints)
 };
 
+/// How a scene with pantographs on the wire starts (Run/Start, doc/dynamics.md).
+enum class Start
+{
+  /// Catenary and pantographs at rest in the static equilibrium of the whole
+  /// system, each contact pressed by its pantograph (static_initial_state()).
+  static_equilibrium,
+  /// The paper's start (13) with Pantograph/Initial contact force and Initial
+  /// offset (consistent_initial_state()), for the paper's cases.
+  paper
+};
+
 /**
  * A scene: which bodies exist and which effects act. The defaults
  * are the paper's benchmark (Sec. 6). Every effect the scene leaves out is
@@ -93,6 +104,8 @@ struct SceneParameters
    */
   double pantograph_spacing = 0.;
   InitialShape initial_shape = InitialShape::static_equilibrium;
+  Start start =
+      Start::static_equilibrium;   ///< Run/Start, for InitialShape::static_equilibrium
   unsigned int initial_mode = 1;   ///< k of the sine mode
   double initial_amplitude = 0.01; ///< A of the sine mode [m]
 

@@ -33,7 +33,8 @@ StaticEquilibrium static_catenary(const SemiDiscreteSystem& catenary_only,
                                   const std::vector<InitialContact>& contacts);
 
 /**
- * The consistent initial state of Sec. 2.2 for the system of a scene:
+ * The paper's start (Run/Start = paper), the consistent initial state of
+ * Sec. 2.2 for the system of a scene:
  *  1. static_catenary();
  *  2. each head's position, velocity and acceleration follow from its contact
  *     constraint and the hidden constraints (Sec. 4.1) with v_w = a_w = 0:
@@ -51,6 +52,23 @@ StaticEquilibrium static_catenary(const SemiDiscreteSystem& catenary_only,
 DynamicState consistent_initial_state(const SemiDiscreteSystem& catenary_only,
                                       const SemiDiscreteSystem& coupled,
                                       const std::vector<InitialContact>& contacts);
+
+/**
+ * The start Run/Start = static equilibrium, as benchmark codes start: the
+ * catenary and every pantograph at rest in the static equilibrium of the
+ * whole system under its loads at t = 0 (gravity, clamps, each pantograph's
+ * static and aerodynamic force), the contacts and droppers included, so each
+ * contact starts with the force its pantograph exerts at that height (its
+ * static force when its springs to the ground carry nothing). Each pantograph
+ * then moves as one rigid body with the vertical velocity of the wire under
+ * its moving contact point (B v_MBS = G_t q + z_t, the contact's velocity
+ * level); no spring or damper inside it is loaded by the start.
+ * Accelerations follow from the equations of motion. @p contacts name the
+ * pantographs in contact (their model, block and contact; force and offset
+ * are not used).
+ */
+DynamicState static_initial_state(const SemiDiscreteSystem& coupled,
+                                  const std::vector<InitialContact>& contacts);
 
 /**
  * A state that ignores constraints (the scene must have none): at rest,

@@ -41,8 +41,11 @@ public:
     double min = std::numeric_limits<double>::infinity();
     double mean = 0., m2 = 0.;
     unsigned long count = 0;
+    /// Where the extremes were first reached: t [s] and x_p [m].
+    double max_time = 0., max_position = 0., min_time = 0., min_position = 0.;
 
-    void add(double force);
+    /// Adds @p force at time @p t with the pantograph at @p x.
+    void add(double force, double t = 0., double x = 0.);
     /// Population standard deviation.
     double std() const;
   };
