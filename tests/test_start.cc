@@ -1,5 +1,6 @@
 // How a dynamic run starts (Run/Start; doc/dynamics.md, "How a run starts"):
 // the static equilibrium of the whole system, or the paper's start (13).
+#include <pantocat/pantograph/pantograph_parameters.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/contact_statistics.h>
 
@@ -148,4 +149,17 @@ TEST(Start, StaticEquilibriumIsAtRestUnderThePantographsForce)
   std::cout << "  lambda_p(0) = " << lambda << " N, w_p2(0) = " << w2
             << " m, largest catenary acceleration " << largest << " m/s^2\n";
   EXPECT_LT(largest, 1e-6); // 9.81 m/s^2 of gravity balanced to round-off
+}
+
+TEST(Start, SpeedsInKilometresPerHour)
+{
+  // Pantograph/Speed with its unit: 320 km/h is 320 / 3.6 m/s (the same
+  // double as the division), "88.9 m/s" and a plain number are m/s; any
+  // other unit is no speed.
+  EXPECT_EQ(*speed_from_text("320 km/h"), 320. / 3.6);
+  EXPECT_EQ(*speed_from_text(" 88.9 m/s "), 88.9);
+  EXPECT_EQ(*speed_from_text("32"), 32.);
+  EXPECT_FALSE(speed_from_text("320 kmh"));
+  EXPECT_FALSE(speed_from_text("km/h"));
+  EXPECT_EQ(s60({"Pantograph/Speed=250 km/h"}).pantograph().speed, 250. / 3.6);
 }

@@ -15,13 +15,16 @@
 #include <deal.II/base/multithread_info.h>
 #include <deal.II/base/parameter_handler.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
+#include <regex>
 #include <sstream>
 #include <streambuf>
+#include <vector>
 
 namespace pantocat
 {
@@ -162,11 +165,13 @@ void make_output_directory(std::optional<OutputDirectory>& output,
 }
 
 /**
- * Holds back the lines that start with "pantocat-fem: warning:" written to a
- * stream (std::cerr) and passes everything else through as it comes (the
- * progress line included). A run refused for bad input prints exactly one
- * line, its error, so the warnings of a refused run are dropped; otherwise
- * release() prints them, at the end.
+ * Holds back the warnings written to a stream (std::cerr): lines that start
+ * with "pantocat-fem: warning:" and deal.II's notes on a deprecated entry
+ * name ("Warning in line <n> ..."), and passes everything else through as it
+ * comes (the progress line included). A run refused for bad input prints
+ * exactly one line, its error, so the warnings of a refused run are dropped;
+ * otherwise release() prints them, at the end, each once, deal.II's in our
+ * words.
  */
 class WarningHold : public std::streambuf
 {
@@ -189,11 +194,19 @@ public:
     line.clear();
     stream.rdbuf(target);
   }
-  /// Prints the held warnings to the stream.
+  /// Prints the held warnings to the stream, each once.
   void release()
   {
     restore();
-    stream << held << std::flush;
+    std::istringstream lines(held);
+    std::vector<std::string> printed;
+    for (std::string line; std::getline(lines, line);)
+    {
+      line = in_our_words(line);
+      if (std::find(printed.begin(), printed.end(), line) == printed.end())
+        stream << line << '\n', printed.push_back(line);
+    }
+    stream << std::flush;
     held.clear();
   }
 
@@ -229,16 +242,33 @@ private:
     else
     {
       line += c;
-      if (line == marker)
+      const auto starts = [&](const std::string& m)
+      { return m.compare(0, line.size(), line) == 0; };
+      if (line == markers[0] || line == markers[1])
         mode = Mode::holding, held += line, line.clear();
-      else if (marker.compare(0, line.size(), line) != 0)
+      else if (!starts(markers[0]) && !starts(markers[1]))
         mode = Mode::passing, target->sputn(line.data(), line.size()), line.clear();
     }
     if ((c == '\n' || c == '\r') && mode != Mode::deciding)
       mode = Mode::deciding;
   }
 
-  const std::string marker = "pantocat-fem: warning:";
+  /// deal.II's note on a deprecated name (declare_alias()) as our warning.
+  static std::string in_our_words(const std::string& line)
+  {
+    static const std::regex deprecated(
+        "Warning in line <([0-9]+)> of file <([^>]*)>: You are using the deprecated "
+        "spelling <([^>]*)> of the parameter <([^>]*)>\\.?");
+    std::smatch m;
+    if (!std::regex_match(line, m, deprecated))
+      return line;
+    const bool command_line = m[2].str().empty() || m[2].str() == "input string";
+    return "pantocat-fem: warning: " + (command_line ? "--set" : m[2].str()) +
+           (command_line ? "" : ", line " + m[1].str()) + ": '" + m[3].str() +
+           "' is the old name of '" + m[4].str() + "' (accepted; use the new name)";
+  }
+
+  const std::string markers[2] = {"pantocat-fem: warning:", "Warning in line <"};
   std::ostream& stream;
   std::streambuf* target;
   Mode mode = Mode::deciding;

@@ -1,13 +1,14 @@
 #include <pantocat/app/input_warnings.h>
 
+#include <deal.II/base/utilities.h>
+
+#include <algorithm>
+#include <cctype>
 #include <sstream>
 #include <vector>
 
 namespace pantocat
 {
-namespace
-{
-/// The entries of @p prm as "Subsection/.../Name" -> value.
 std::map<std::string, std::string> entries_of(const dealii::ParameterHandler& prm)
 {
   std::ostringstream text;
@@ -38,6 +39,33 @@ std::map<std::string, std::string> entries_of(const dealii::ParameterHandler& pr
     }
   }
   return entries;
+}
+
+namespace
+{
+/// Edits (insert, delete, replace, swap two neighbours) from @p a to @p b, case ignored.
+std::size_t edit_distance(const std::string& a, const std::string& b)
+{
+  const auto same = [](const char x, const char y)
+  {
+    return std::tolower(static_cast<unsigned char>(x)) ==
+           std::tolower(static_cast<unsigned char>(y));
+  };
+  std::vector<std::vector<std::size_t>> d(a.size() + 1,
+                                          std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i)
+    d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j)
+    d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j)
+    {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1,
+                          d[i - 1][j - 1] + (same(a[i - 1], b[j - 1]) ? 0 : 1)});
+      if (i > 1 && j > 1 && same(a[i - 1], b[j - 2]) && same(a[i - 2], b[j - 1]))
+        d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
 }
 
 void warn(std::ostream& err, const std::string& text)
@@ -71,6 +99,39 @@ void warn_about_other_models(const std::map<std::string, std::string>& set,
   }
 }
 } // namespace
+
+std::string did_you_mean(const dealii::ParameterHandler& prm, const std::string& name,
+                         const bool subsection)
+{
+  const std::size_t allowed = std::max<std::size_t>(2, name.size() / 4);
+  std::map<std::size_t, std::vector<std::string>> candidates; // by distance
+  for (const auto& entry : entries_of(prm))
+  {
+    // The path's components: subsections, then the entry's own name.
+    const std::vector<std::string> parts =
+        dealii::Utilities::split_string_list(entry.first, '/');
+    for (std::size_t k = 0; k < parts.size(); ++k)
+    {
+      if ((k + 1 < parts.size()) != subsection)
+        continue;
+      const std::size_t d = edit_distance(name, parts[k]);
+      std::string path;
+      for (std::size_t i = 0; i <= k; ++i)
+        path += (i ? "/" : "") + parts[i];
+      auto& list = candidates[d];
+      if (d <= allowed && std::find(list.begin(), list.end(), path) == list.end())
+        list.push_back(path);
+    }
+  }
+  if (candidates.empty() || candidates.begin()->first > allowed)
+    return "";
+  const std::vector<std::string>& best = candidates.begin()->second;
+  std::string text = "did you mean ";
+  for (std::size_t i = 0; i < std::min<std::size_t>(best.size(), 3); ++i)
+    text += (i ? (i + 1 == std::min<std::size_t>(best.size(), 3) ? " or " : ", ") : "") +
+            best[i];
+  return text + "?";
+}
 
 std::map<std::string, std::string> entries_set(const dealii::ParameterHandler& prm,
                                                const dealii::ParameterHandler& defaults)

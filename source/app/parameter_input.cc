@@ -1,3 +1,4 @@
+#include <pantocat/app/input_warnings.h>
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/safe_files.h>
@@ -202,6 +203,33 @@ void check_values_with_braces(const dealii::ParameterHandler& prm)
 }
 } // namespace
 
+namespace
+{
+/// @p message with a suggestion for a misspelled entry or subsection, if any.
+std::string with_suggestion(const dealii::ParameterHandler& prm,
+                            const std::string& message)
+{
+  const std::vector<std::pair<std::string, bool>> unknowns = {
+      {"No entry with name <", false},
+      {"There is no such subsection to be entered: ", true}};
+  for (const auto& [marker, subsection] : unknowns)
+  {
+    const std::size_t at = message.find(marker);
+    if (at == std::string::npos)
+      continue;
+    const std::size_t first = at + marker.size();
+    const std::size_t last = subsection ? message.size() : message.find('>', first);
+    const std::string hint = did_you_mean(
+        prm, dealii::Utilities::trim(message.substr(first, last - first)), subsection);
+    if (hint.empty())
+      return message;
+    const bool stop = !message.empty() && message.back() == '.';
+    return message.substr(0, message.size() - (stop ? 1 : 0)) + "; " + hint;
+  }
+  return message;
+}
+} // namespace
+
 std::string one_line_message(const std::exception& e)
 {
   if (const auto* d = dynamic_cast<const dealii::ExceptionBase*>(&e))
@@ -265,7 +293,7 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
     const auto colon = message.find(">: ");
     if (message.rfind("Line <", 0) == 0 && colon != std::string::npos)
       message = message.substr(colon + 3);
-    throw InputError("--set " + setting + ": " + message);
+    throw InputError("--set " + setting + ": " + with_suggestion(prm, message));
   }
 }
 
@@ -297,7 +325,7 @@ void read_parameter_file(dealii::ParameterHandler& prm, const std::string& file,
   }
   catch (const std::exception& e)
   {
-    throw InputError(one_line_message(e));
+    throw InputError(with_suggestion(prm, one_line_message(e)));
   }
   for (const auto& setting : overrides)
     apply_parameter_override(prm, setting, skip_undefined);

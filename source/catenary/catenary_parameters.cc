@@ -215,9 +215,10 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Span lengths", "", List(Double(0.), 0),
                     "Span lengths [m] first to last; replaces Span and Number of spans "
                     "when given.");
-  prm.declare_entry("Support height", "1", Double(),
-                    "Encumbrance l_c: height of the carrier above the contact wire at "
-                    "every support [m], boundary condition (3).");
+  prm.declare_entry("Encumbrance", "1", Double(),
+                    "Encumbrance (system height) l_c: height of the messenger above the "
+                    "contact wire at every support [m], boundary condition (3).");
+  prm.declare_alias("Encumbrance", "Support height", true);
   prm.declare_entry("Gravity", "9.81", Double(0.),
                     "Gravitational acceleration g [m/s^2].");
   prm.enter_subsection("Carrier");
@@ -296,7 +297,7 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   n_spans = prm.get_integer("Number of spans");
   span_lengths = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Span lengths")));
-  support_height = prm.get_double("Support height");
+  support_height = prm.get_double("Encumbrance");
   gravity = prm.get_double("Gravity");
   prm.enter_subsection("Carrier");
   parse_wire(prm, carrier);
@@ -351,7 +352,7 @@ void CatenaryParameters::check() const
 {
   require(span > 0., "Catenary/Span", span, "must be > 0");
   // Before the lengths: Design = designed starts every length at l_c.
-  require(support_height > 0., "Catenary/Support height", support_height,
+  require(support_height > 0., "Catenary/Encumbrance", support_height,
           "the encumbrance l_c (carrier above the contact wire at the supports) must "
           "be > 0");
   for (const double l : span_lengths)

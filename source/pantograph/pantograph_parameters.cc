@@ -4,9 +4,50 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <cmath>
+#include <cstdlib>
+#include <memory>
+
 namespace pantocat
 {
 using dealii::Patterns::Double;
+
+std::optional<double> speed_from_text(const std::string& text)
+{
+  const std::string trimmed = dealii::Utilities::trim(text);
+  char* end = nullptr;
+  const double value = std::strtod(trimmed.c_str(), &end);
+  if (end == trimmed.c_str() || !std::isfinite(value))
+    return std::nullopt;
+  const std::string unit = dealii::Utilities::trim(std::string(end));
+  if (unit.empty() || unit == "m/s")
+    return value;
+  if (unit == "km/h")
+    return value / 3.6;
+  return std::nullopt;
+}
+
+namespace
+{
+/// A speed as railway engineers give it: a number in m/s, or with its unit
+/// ("88.9 m/s", "320 km/h").
+class SpeedPattern : public dealii::Patterns::PatternBase
+{
+public:
+  bool match(const std::string& text) const override
+  {
+    return speed_from_text(text).has_value();
+  }
+  std::string description(const OutputStyle = Machine) const override
+  {
+    return "[Speed: a number in m/s, or with its unit: 88.9 m/s, 320 km/h]";
+  }
+  std::unique_ptr<dealii::Patterns::PatternBase> clone() const override
+  {
+    return std::make_unique<SpeedPattern>();
+  }
+};
+} // namespace
 
 namespace
 {
@@ -46,8 +87,8 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.declare_entry("Final position", number_to_string(defaults.final_position), Double(),
                     "The run stops when x_p reaches this position [m] (with several "
                     "pantographs: when the first of them reaches its final position).");
-  prm.declare_entry("Speed", number_to_string(defaults.speed), Double(),
-                    "Pantograph speed v_p [m/s], > 0.");
+  prm.declare_entry("Speed", number_to_string(defaults.speed), SpeedPattern(),
+                    "Pantograph speed v_p, > 0: in m/s, or with its unit (320 km/h).");
   prm.declare_entry("Speed ramp", number_to_string(defaults.speed_ramp), Double(0.),
                     "T_r [s]: the pantograph starts from rest and reaches v_p at the "
                     "constant acceleration v_p / T_r, over v_p T_r / 2 metres (a smooth "
@@ -73,8 +114,9 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "d_1 [N s/m].");
   prm.declare_entry("Frame damping", number_to_string(d.frame_damping), Double(0.),
                     "d_2 [N s/m].");
-  prm.declare_entry("Uplift force", number_to_string(d.uplift_force), Double(),
-                    "Static uplift force F_0 on body 2 [N].");
+  prm.declare_entry("Static force", number_to_string(d.uplift_force), Double(),
+                    "Static contact force F_0 [N], on body 2 (the frame).");
+  prm.declare_alias("Static force", "Uplift force", true);
   prm.leave_subsection();
   prm.enter_subsection("Three-mass model");
   const ThreeMassPantographParameters& t = defaults.three_mass;
@@ -90,8 +132,9 @@ void PantographParameters::declare_parameters(dealii::ParameterHandler& prm,
                     "c_1, c_2, c_3 [N/m]: head-upper, upper-lower, lower-ground.");
   prm.declare_entry("Dampings", list(t.dampings), three,
                     "d_1, d_2, d_3 [N s/m]: head-upper, upper-lower, lower-ground.");
-  prm.declare_entry("Uplift force", number_to_string(t.uplift_force), Double(),
-                    "Static uplift force F_0 on body 3 [N].");
+  prm.declare_entry("Static force", number_to_string(t.uplift_force), Double(),
+                    "Static contact force F_0 [N], on body 3 (the lower frame).");
+  prm.declare_alias("Static force", "Uplift force", true);
   prm.leave_subsection();
   prm.enter_subsection("Mass-chain model");
   const MassChainPantographParameters& c = defaults.mass_chain;
@@ -154,7 +197,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
   initial_position = prm.get_double("Initial position");
   final_position = prm.get_double("Final position");
   speed_ramp = prm.get_double("Speed ramp");
-  speed = prm.get_double("Speed");
+  speed = *speed_from_text(prm.get("Speed")); // the pattern has checked it
   initial_contact_force = prm.get_double("Initial contact force");
   initial_offset = prm.get_double("Initial offset");
   prm.enter_subsection("Two-mass model");
@@ -164,7 +207,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
   two_mass.frame_stiffness = prm.get_double("Frame stiffness");
   two_mass.head_damping = prm.get_double("Head damping");
   two_mass.frame_damping = prm.get_double("Frame damping");
-  two_mass.uplift_force = prm.get_double("Uplift force");
+  two_mass.uplift_force = prm.get_double("Static force");
   prm.leave_subsection();
   prm.enter_subsection("Three-mass model");
   const auto read = [&](const std::string& name, std::array<double, 3>& a)
@@ -176,7 +219,7 @@ void PantographParameters::parse_parameters(dealii::ParameterHandler& prm,
   read("Masses", three_mass.masses);
   read("Stiffnesses", three_mass.stiffnesses);
   read("Dampings", three_mass.dampings);
-  three_mass.uplift_force = prm.get_double("Uplift force");
+  three_mass.uplift_force = prm.get_double("Static force");
   prm.leave_subsection();
   prm.enter_subsection("Mass-chain model");
   mass_chain.masses = read_list(prm, "Masses");

@@ -158,7 +158,7 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
                 "the design gives dropper " + std::to_string(j + 1) + " at x = " +
                     number_to_string(x) + " m the length " + number_to_string(length) +
                     " m; allowed: a pre-sag the droppers can produce (smaller, or a "
-                    "larger Support height)");
+                    "larger Encumbrance)");
       if (!(r.dropper_forces[j] > 0.))
         require(false, "Catenary/Droppers/Pre-sag", c.presag,
                 "the design needs dropper " + std::to_string(j + 1) +

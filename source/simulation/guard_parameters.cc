@@ -12,7 +12,7 @@ void GuardParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "IDA near its tolerance, about 1e-9 m).");
   prm.declare_entry("Multiplier bound", "100", dealii::Patterns::Double(0.),
                     "Stop when a constraint force |lambda_i| exceeds this multiple of "
-                    "F_ref = max(uplift force F_0, initial constraint forces).");
+                    "F_ref = max(static force F_0, initial constraint forces).");
   prm.declare_entry("Energy bound", "0.01", dealii::Patterns::Double(0.),
                     "Stop when the energy E(t) - E(0) of the semi-discrete system "
                     "exceeds this multiple of (T_c + T_w) L / 2, the strain energy of "

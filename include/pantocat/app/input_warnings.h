@@ -10,6 +10,17 @@
 
 namespace pantocat
 {
+/// The entries of @p prm as "Subsection/.../Name" -> value.
+std::map<std::string, std::string> entries_of(const dealii::ParameterHandler& prm);
+
+/**
+ * "did you mean Catenary/Span?": the declared names of @p prm (entries, or
+ * with @p subsection the subsections) nearest to the unknown @p name, up to
+ * three paths, when one is within a few edits (case ignored); "" otherwise.
+ */
+std::string did_you_mean(const dealii::ParameterHandler& prm, const std::string& name,
+                         bool subsection);
+
 /**
  * The entries of @p prm whose values differ from the declared defaults, as
  * "Subsection/.../Name" -> value: what the case file (and the command line)

@@ -55,7 +55,7 @@ enum class CatenaryDamping
  * droppers near such a support hang from its stitch wire, which is clamped to
  * the carrier.
  *
- * Heights: the carrier at l_c (the encumbrance, Catenary/Support height) and
+ * Heights: the carrier at l_c (the encumbrance, Catenary/Encumbrance) and
  * the contact wire at 0 at every support; a dropper j of length l_j joins the
  * carrier at height w_c to the contact wire at w_w = w_c - l_j when taut.
  */

@@ -1,7 +1,7 @@
 #pragma once
 
-#include <pantocat/system/block_operator.h>
 #include <pantocat/lac/sparse_row.h>
+#include <pantocat/system/block_operator.h>
 
 #include <deal.II/lac/vector.h>
 

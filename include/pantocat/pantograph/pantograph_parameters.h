@@ -5,6 +5,7 @@
 #include <deal.II/base/parameter_handler.h>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,7 +26,7 @@ struct TwoMassPantographParameters
 /**
  * Data of the three-mass pantograph (ThreeMassPantograph): head, upper and
  * lower frame. The defaults are illustrative (the two-mass model's head
- * suspension and uplift force, the frame mass split into two bodies joined by
+ * suspension and static force, the frame mass split into two bodies joined by
  * a stiff link), not the data of a particular pantograph.
  */
 struct ThreeMassPantographParameters
@@ -91,6 +92,9 @@ struct MassChainPantographParameters
   /// Throws InputError naming @p subsection/<entry> for data no chain can have.
   void check(const std::string& subsection) const;
 };
+
+/// A speed in m/s from "88.9", "88.9 m/s" or "320 km/h"; none for other text.
+std::optional<double> speed_from_text(const std::string& text);
 
 /**
  * How the pantograph moves along the span and how it starts (Secs. 2.2 and 6):

@@ -8,7 +8,7 @@ namespace pantocat
 /**
  * A three-mass pantograph: head (body 1), upper frame (body 2) and lower
  * frame (body 3) in a chain, each linked to the next by a spring c_i and a
- * damper d_i, the lower frame to the ground by c_3, d_3, and the uplift force
+ * damper d_i, the lower frame to the ground by c_3, d_3, and the static force
  * F_0 on the lower frame:
  *
  *   m_1 w_1'' = -c_1 (w_1 - w_2) - d_1 (w_1' - w_2') - lambda_p,

@@ -8,7 +8,7 @@ namespace pantocat
 /**
  * The two-mass pantograph of Eq. (12): head (body 1) and frame (body 2),
  * springs c_1 (head-frame) and c_2 (frame-ground), dampers d_1 and d_2, and
- * the uplift force F_0 on the frame; q_MBS = (w_p1, w_p2), b = w_p1.
+ * the static force F_0 on the frame; q_MBS = (w_p1, w_p2), b = w_p1.
  */
 class TwoMassPantograph : public PantographModel
 {

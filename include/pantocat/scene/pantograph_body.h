@@ -5,7 +5,7 @@
 namespace pantocat
 {
 /**
- * The lumped-mass pantograph (10) as a body: its M, D, K and uplift force.
+ * The lumped-mass pantograph (10) as a body: its M, D, K and static force.
  */
 class PantographBody : public SceneEffect
 {

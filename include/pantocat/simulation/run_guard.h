@@ -25,7 +25,7 @@ struct GuardExtremes
  *  - constraint drift: |g_i(t, q)| of an active constraint (position level of
  *    (38)) above the tolerance;
  *  - multipliers: |lambda_i| above bound x F_ref, F_ref = max(F_0, |lambda_i(0)|)
- *    (the pantograph's uplift force and the static dropper forces);
+ *    (the pantograph's static force and the static dropper forces);
  *  - energy: E(t) - E(0) above bound x E_ref, with E = v^T M v/2 + q^T K q/2 - f^T q
  *    (SemiDiscreteSystem::energy) and E_ref = (T_c + T_w) L / 2, the strain energy of
  *    both wires at a root-mean-square slope of 1, where the linear model (2) has long
