@@ -21,15 +21,6 @@ using namespace pantocat;
 
 namespace
 {
-/// A shipped case; prm includes are relative to the working directory, the
-/// repository root, as for a user.
-ProgramParameters shipped(const std::string& name,
-                          const std::vector<std::string>& overrides = {})
-{
-  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
-  return read_case(source_file("prm/catenary/" + name), overrides);
-}
-
 struct Recorder : SimulationObserver
 {
   void observe(const TimePoint& p) override { points.push_back(p); }
@@ -58,7 +49,7 @@ TEST(Sections, S55IsDesignedOntoItsPreSagAndIsSymmetric)
   // round-off: 1e-9 m; the issue asks 0.1 mm). The section and the grid are
   // symmetric about x = 275 m, so dropper j of span 5 and its mirror in span
   // 6 have the same length (round-off: 1e-9 m).
-  const CaseRunner runner(shipped("section-s55.prm").make_case());
+  const CaseRunner runner(shipped_catenary("section-s55.prm").make_case());
   const CatenaryParameters& c = runner.case_data().catenary;
   ASSERT_EQ(c.number_of_spans(), 10u);
   ASSERT_EQ(c.n_droppers(), 90u);
@@ -90,10 +81,10 @@ TEST(Sections, S55StartsAtRestWithThePenaltyContactPressedIn)
   // z_1 = 168.48 N (round-off: 1e-9 N, 1e-12 m). Then 5 m at 320 km/h (FDM, N+1 = 1100):
   // no negative unilateral force (elastic droppers, penalty contact) reaches
   // a time point, and the contact holds (the quasi-static force is ~F0).
-  const ProgramParameters p =
-      shipped("section-s55.prm",
-              {"Discretisation/Method=fdm", "Discretisation/Number of intervals=1100",
-               "Pantograph/Final position=5", "Statistics/Window spans="});
+  const ProgramParameters p = shipped_catenary(
+      "section-s55.prm",
+      {"Discretisation/Method=fdm", "Discretisation/Number of intervals=1100",
+       "Pantograph/Final position=5", "Statistics/Window spans="});
   CaseRunner runner(p.make_case());
   const SimulationLayout& layout = runner.layout();
   const unsigned int contact = layout.pantographs[0].contact;
@@ -127,7 +118,7 @@ TEST(Sections, PaperFig3KeepsContactAt32MetresPerSecond)
   for (const std::string droppers : {"unilateral", "elastic"})
   {
     CaseRunner runner(
-        shipped("paper-fig3.prm", {"Scene/Droppers=" + droppers}).make_case());
+        shipped_catenary("paper-fig3.prm", {"Scene/Droppers=" + droppers}).make_case());
     Recorder record;
     RunStatistics stats;
     runner.run({&record, &stats});
@@ -148,10 +139,11 @@ TEST(Sections, ElasticDroppersAgreeAcrossIntegrators)
   std::vector<double> mean, std;
   for (const std::string integrator : {"half-explicit", "bdf2", "generalized-alpha"})
   {
-    CaseRunner runner(shipped("paper-fig3.prm",
-                              {"Scene/Droppers=elastic", "Pantograph/Final position=33",
-                               "Time integration/Integrator=" + integrator})
-                          .make_case());
+    CaseRunner runner(
+        shipped_catenary("paper-fig3.prm",
+                         {"Scene/Droppers=elastic", "Pantograph/Final position=33",
+                          "Time integration/Integrator=" + integrator})
+            .make_case());
     RunStatistics stats;
     runner.run({&stats});
     EXPECT_TRUE(stats.contact_loss_intervals().empty()) << integrator;
@@ -171,7 +163,7 @@ TEST(Sections, WaveSpeedsAndTheDesignRule)
   // carrier sqrt(16000 / 1.08) = 121.72 m/s. At 320 km/h v/c = 0.6963 for the
   // contact wire (below EN 50119's 0.7, no warning), Doppler factor
   // (c - v)/(c + v) = 0.17903; at 330 km/h v/c = 0.7181 > 0.7: the warning.
-  const CatenaryParameters c = shipped("section-s55.prm").catenary;
+  const CatenaryParameters c = shipped_catenary("section-s55.prm").catenary;
   const CatenaryWaveSpeeds w = wave_speeds(c, 320. / 3.6);
   EXPECT_NEAR(w.contact_wire.wave_speed, std::sqrt(22000. / 1.35), 1e-12);
   EXPECT_NEAR(w.carrier.wave_speed, std::sqrt(16000. / 1.08), 1e-12);
@@ -194,7 +186,8 @@ TEST(Sections, APantographSpacingOutsideTheSectionIsRefused)
   // the second would start at -50 m, outside the 13-span section [0, 715] m.
   try
   {
-    shipped("section-s55-two-pantographs.prm", {"Pantograph/Initial position=150"})
+    shipped_catenary("section-s55-two-pantographs.prm",
+                     {"Pantograph/Initial position=150"})
         .make_case();
     FAIL();
   }
@@ -248,10 +241,11 @@ TEST(Sections, ALeaderStartedAwayFromAnAnchorHasNoShock)
   const auto leader_max = [](const std::string& ramp)
   {
     CaseRunner runner(
-        shipped("section-s55-two-pantographs.prm",
-                {"Discretisation/Number of intervals=1430",
-                 "Time integration/Time step=2e-4", "Pantograph/Final position=300",
-                 "Statistics/Window spans=", "Pantograph/Speed ramp=" + ramp})
+        shipped_catenary("section-s55-two-pantographs.prm",
+                         {"Discretisation/Number of intervals=1430",
+                          "Time integration/Time step=2e-4",
+                          "Pantograph/Final position=300",
+                          "Statistics/Window spans=", "Pantograph/Speed ramp=" + ramp})
             .make_case());
     Recorder record;
     runner.run({&record});

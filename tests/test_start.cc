@@ -20,9 +20,8 @@ namespace
 /// (the window, spans 5 and 6, ends at 360 m).
 ProgramParameters s60(std::vector<std::string> overrides = {})
 {
-  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
   overrides.push_back("Pantograph/Final position=370");
-  return read_case(source_file("prm/catenary/simple-60m.prm"), overrides);
+  return shipped_catenary("simple-60m.prm", overrides);
 }
 
 /// The same pantograph as S60's two-mass model, as a mass chain.

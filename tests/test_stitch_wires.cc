@@ -19,14 +19,6 @@ using namespace pantocat;
 
 namespace
 {
-/// A shipped case; prm includes are relative to the repository root.
-ProgramParameters shipped(const std::string& name,
-                          const std::vector<std::string>& overrides = {})
-{
-  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
-  return read_case(source_file("prm/catenary/" + name), overrides);
-}
-
 struct ContactForces : SimulationObserver
 {
   explicit ContactForces(const unsigned int contact) : contact(contact) {}
@@ -78,9 +70,9 @@ TEST(StitchWires, ZeroLengthReproducesS55)
   // so the stitched case with Length = 0 is S55's system, and its design and
   // run are S55's to the bit (tolerance 0).
   const std::vector<std::string> zero = {"Catenary/Stitch wire/Length=0"};
-  const ProgramParameters plain = shipped("section-s55.prm", first_spans);
+  const ProgramParameters plain = shipped_catenary("section-s55.prm", first_spans);
   const ProgramParameters stitched =
-      shipped("section-s55-stitched.prm", with(first_spans, zero));
+      shipped_catenary("section-s55-stitched.prm", with(first_spans, zero));
   EXPECT_TRUE(stitched.catenary.stitch_wires.empty());
   EXPECT_EQ(dropper_lengths(plain), dropper_lengths(stitched));
   EXPECT_EQ(largest_difference(contact_forces(plain), contact_forces(stitched)), 0.);
@@ -96,7 +88,7 @@ TEST(StitchWires, VanishingTensionAndMassReproduceS55)
   // static solves' round-off, 1e-12 m, lies far below). Measured at eps =
   // 1e-4: 3.0e-7 m in the dropper lengths and 0.019 N in lambda_p (0.011 % of
   // F0 = 169 N); asserted below twice that.
-  const ProgramParameters plain = shipped("section-s55.prm", first_spans);
+  const ProgramParameters plain = shipped_catenary("section-s55.prm", first_spans);
   const std::vector<double> l0 = dropper_lengths(plain);
   const std::vector<double> f0 = contact_forces(plain);
   double length_difference[2], force_difference[2];
@@ -109,7 +101,7 @@ TEST(StitchWires, VanishingTensionAndMassReproduceS55)
         "Catenary/Stitch wire/Mass per length=" + std::to_string(0.31 * eps[k]),
         "Catenary/Stitch wire/Clamp mass=0", "Catenary/Stitch wire/Dropper positions="};
     const ProgramParameters p =
-        shipped("section-s55-stitched.prm", with(first_spans, small));
+        shipped_catenary("section-s55-stitched.prm", with(first_spans, small));
     ASSERT_EQ(p.catenary.stitch_wires.size(), 9u);
     EXPECT_TRUE(p.catenary.stitch_wires[4].droppers.empty());
     length_difference[k] = largest_difference(l0, dropper_lengths(p));
@@ -133,7 +125,7 @@ TEST(StitchWires, S55YMeetsTheContactWireTargets)
   // below 1e-9 m). The stitch wire hangs below the carrier between its
   // clamps (its droppers pull it down), and the section stays symmetric
   // about x = 275 m (round-off, 1e-9 m).
-  const CaseRunner runner(shipped("section-s55-stitched.prm").make_case());
+  const CaseRunner runner(shipped_catenary("section-s55-stitched.prm").make_case());
   const CatenaryParameters& c = runner.case_data().catenary;
   ASSERT_EQ(c.stitch_wires.size(), 9u);
   const StaticEquilibrium s = runner.static_catenary();
@@ -185,8 +177,8 @@ namespace
 StaticElasticity span_5_elasticity(const std::string& name)
 {
   const ProgramParameters p =
-      shipped(name, {"Discretisation/Number of intervals=2200", "Elasticity/Span=5",
-                     "Elasticity/Forces=100"});
+      shipped_catenary(name, {"Discretisation/Number of intervals=2200",
+                              "Elasticity/Span=5", "Elasticity/Forces=100"});
   return CaseRunner(p.make_case()).static_elasticity(p.elasticity);
 }
 } // namespace
@@ -227,9 +219,9 @@ TEST(StitchWires, FdmCarriesTheStitchWiresToo)
   // issue's figure), and the run over the first three spans (three stitched
   // supports) keeps every unilateral force >= 0 (the laws: tolerance 0).
   const ProgramParameters p =
-      shipped("section-s55-stitched.prm",
-              with(first_spans, {"Discretisation/Method=fdm",
-                                 "Discretisation/Number of intervals=2200"}));
+      shipped_catenary("section-s55-stitched.prm",
+                       with(first_spans, {"Discretisation/Method=fdm",
+                                          "Discretisation/Number of intervals=2200"}));
   CaseRunner runner(p.make_case());
   EXPECT_TRUE(runner.system().mass_is_diagonal);
   const CatenaryParameters& c = runner.case_data().catenary;

@@ -352,7 +352,8 @@ int run(const CommandLine& cl, int argc, char** argv)
     dealii::ParameterHandler defaults;
     ProgramParameters::declare_parameters(defaults, parameters.scene.pantographs.size(),
                                           parameters.scene.pantographs[0]);
-    warn_about_unused_entries(entries_set(prm, defaults), parameters, std::cerr);
+    parameters.inputs = entries_set(prm, defaults);
+    warn_about_unused_entries(parameters.inputs, parameters, std::cerr);
   }
   // A serial run uses no MPI or Trilinos object: skip MPI's start-up (about
   // 0.35 s) unless an MPI launcher started us or Trilinos solves (its

@@ -246,6 +246,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   for (const auto& c : contacts)
     record.contacts.push_back(c.get());
   record.assessments = assess_windows(p, record);
+  record.inputs = p.inputs;
   const ContactStatistics* first_contact = record.first_contact();
   if (first_contact)
     write_contact_force(dir + "/contact_force.csv", contact_force_columns(record));

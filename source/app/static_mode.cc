@@ -14,6 +14,29 @@ namespace pantocat
 {
 namespace
 {
+/// Up to this many droppers, the screen lists the static force of each.
+constexpr std::size_t max_droppers_listed = 10;
+
+/// "90 droppers: static forces 70.19 N (dropper 1, x = 5 m) to 86.14 N (...), 0 slack".
+void print_dropper_force_range(std::ostream& out, const std::vector<double>& positions,
+                               const std::vector<unsigned int>& droppers,
+                               const StaticEquilibrium& s)
+{
+  std::size_t low = 0, high = 0, slack = 0;
+  for (std::size_t j = 0; j < droppers.size(); ++j)
+  {
+    const double f = s.multipliers[droppers[j]];
+    low = f < s.multipliers[droppers[low]] ? j : low;
+    high = f > s.multipliers[droppers[high]] ? j : high;
+    slack += !s.active[droppers[j]];
+  }
+  out << std::setprecision(5) << "  " << droppers.size() << " droppers: static forces "
+      << s.multipliers[droppers[low]] << " N (dropper " << low + 1
+      << ", x = " << positions[low] << " m) to " << s.multipliers[droppers[high]]
+      << " N (dropper " << high + 1 << ", x = " << positions[high] << " m), " << slack
+      << " slack (each in dropper_forces.csv)\n";
+}
+
 /**
  * summary.json of the static mode: the problem, w_w under each pantograph, the
  * droppers, and the static check if there is one.
@@ -155,16 +178,22 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
         << " m; contact wire there: " << std::setprecision(6)
         << runner.contact_wire_displacement(s.q, x) << " m\n";
   }
+  // A section's droppers in one line (all of them in dropper_forces.csv).
+  const bool list_droppers =
+      droppers.size() <= max_droppers_listed || p.output.verbosity == Verbosity::detailed;
   for (unsigned int j = 0; j < droppers.size(); ++j)
   {
     const unsigned int i = droppers[j];
     csv << j + 1 << ',' << p.catenary.dropper_positions[j] << ',' << s.multipliers[i]
         << ',' << s.gaps[i] << ',' << (s.active[i] ? 1 : 0) << '\n';
-    out << "  " << runner.layout().constraint_names[i]
-        << " at x = " << p.catenary.dropper_positions[j] << " m: force "
-        << std::setprecision(6) << s.multipliers[i] << " N"
-        << (s.active[i] ? "" : " (slack)") << '\n';
+    if (list_droppers)
+      out << "  " << runner.layout().constraint_names[i]
+          << " at x = " << p.catenary.dropper_positions[j] << " m: force "
+          << std::setprecision(6) << s.multipliers[i] << " N"
+          << (s.active[i] ? "" : " (slack)") << '\n';
   }
+  if (!list_droppers)
+    print_dropper_force_range(out, p.catenary.dropper_positions, droppers, s);
   write_file_atomically(dir + "/dropper_forces.csv", csv.str());
   std::vector<std::string> written{"static_profile.csv", "static_profile.vtu",
                                    "dropper_forces.csv"};

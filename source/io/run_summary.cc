@@ -100,7 +100,8 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
         .value("name", p.name)
         .value("model", p.model)
         .value("initial_position", data.initial_position)
-        .value("speed", data.speed);
+        .value("speed", data.speed)
+        .value("speed_kmh", 3.6 * data.speed);
     if (p.has_contact())
     {
       write_force(json, r.statistics.contact_force(k));
@@ -130,6 +131,8 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   JsonWriter json(out);
   json.begin_object()
       .value("status", "completed")
+      .value("program", std::string("pantocat-fem ") + PANTOCAT_VERSION)
+      .value("start", c.scene.start == Start::paper ? "paper" : "static equilibrium")
       .value("discretisation", to_string(c.discretisation.method))
       .value("number_of_intervals",
              static_cast<unsigned long>(c.discretisation.n_intervals))
@@ -143,6 +146,10 @@ void write_run_summary(const std::string& file, const RunRecord& r)
   for (const std::string& effect : r.runner.active_effects())
     json.value("", effect);
   json.end_array();
+  json.begin_object("inputs"); // what the case set; every other entry has its default
+  for (const auto& [name, value] : r.inputs)
+    json.value(name, value);
+  json.end_object();
   write_pantographs(json, r, events);
   if (const ContactStatistics* first = r.first_contact())
   {

@@ -35,3 +35,14 @@ if(DEFINED ASSESSED)
     endif()
   endforeach()
 endif()
+# summary.json names the program, the start, the speed in km/h and the
+# entries the case set (inputs: every other entry has its default).
+string(JSON program GET "${summary}" program)
+string(JSON start GET "${summary}" start)
+string(JSON kmh GET "${summary}" pantographs 0 speed_kmh)
+string(JSON span GET "${summary}" inputs "Catenary/Span")
+message(STATUS "${program}; start ${start}; ${kmh} km/h; inputs Catenary/Span = ${span}")
+if(NOT program MATCHES "^pantocat-fem [0-9]+[.][0-9]+" OR NOT start STREQUAL "static equilibrium"
+   OR kmh LESS 200 OR span LESS 50)
+  message(FATAL_ERROR "summary.json: program '${program}', start '${start}', speed_kmh ${kmh}, inputs Catenary/Span '${span}'")
+endif()

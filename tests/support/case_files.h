@@ -3,6 +3,7 @@
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/app/program_parameters.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,15 @@ inline ProgramParameters read_case(const std::string& file,
 inline std::string source_file(const std::string& relative)
 {
   return std::string(PANTOCAT_SOURCE_DIR) + "/" + relative;
+}
+
+/// The shipped case prm/catenary/@p name with the --set @p overrides, read from
+/// the repository root (the working directory its includes are relative to).
+inline ProgramParameters shipped_catenary(const std::string& name,
+                                          const std::vector<std::string>& overrides = {})
+{
+  std::filesystem::current_path(PANTOCAT_SOURCE_DIR);
+  return read_case(source_file("prm/catenary/" + name), overrides);
 }
 #endif
 } // namespace pantocat

@@ -17,6 +17,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <map>
 #include <vector>
 
 namespace pantocat
@@ -57,6 +58,9 @@ struct ProgramParameters
   GuardParameters guards;
   ElasticityParameters elasticity; ///< the static check (Mode = static)
   AssessmentCriteria assessment;   ///< the criteria of the window's assessment
+  /// The entries the case file and --set gave, "Subsection/Name" -> value
+  /// (entries_set(); the others keep their defaults): summary.json's inputs.
+  std::map<std::string, std::string> inputs;
   /// The parameters a checkpoint of this run must agree with (critical_parameters()).
   ParameterFingerprint fingerprint;
 

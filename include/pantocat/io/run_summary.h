@@ -8,6 +8,7 @@
 #include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/simulation/run_statistics.h>
 
+#include <map>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -31,6 +32,8 @@ struct RunRecord
   /// Per pantograph (in layout order): its window's assessment; no criteria
   /// without a contact, without a window or with Assessment/Enabled = false.
   std::vector<Assessment> assessments = {};
+  /// The entries the case file and the command line set ("Subsection/Name" -> value).
+  std::map<std::string, std::string> inputs = {};
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
 };
