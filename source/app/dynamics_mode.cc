@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -118,7 +119,8 @@ Plots draw_plots(const std::string& dir, const ProgramParameters& p,
   const CaseRunner& runner = record.runner;
   std::ostringstream title;
   title << to_string(p.discretisation.method) << " + " << p.time_integration.integrator
-        << ", v_p = " << p.pantograph().speed << " m/s";
+        << ", v_p = " << std::setprecision(4) << 3.6 * p.pantograph().speed << " km/h ("
+        << p.pantograph().speed << " m/s)";
   const PlottedColumns c = plotted_columns(runner.layout());
   // Three scripts, one gnuplot.
   std::vector<PlotScript> scripts{

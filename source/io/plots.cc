@@ -237,6 +237,16 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
                        s.window.describe())
      << '\n'
      << "set xrange [" << p.x_begin << ':' << p.x_end << "]\n";
+  // The force axis is the window's: a spike outside it (the arrival at an
+  // anchor) is clipped instead of squeezing the window's trace.
+  if (!s.window.whole_run() && s.raw.max > s.raw.min)
+  {
+    const double low = std::min(0., s.raw.min), range = s.raw.max - low;
+    gp << "set yrange [" << low - 0.05 * range << ':' << s.raw.max + 0.15 * range
+       << "]\n";
+  }
+  else
+    gp << "set yrange [*:*]\n";
   mark_supports(gp, supports, p.x_begin, p.x_end);
   shade_window(gp, s.window, p.x_begin, p.x_end);
   const auto column = [&](const std::string& name)
@@ -282,13 +292,16 @@ PlotScript contact_force_over_x_script(const std::string& dir,
     OutputFile gp(dir + "/" + script);
     begin_gnuplot_script(
         gp, script,
-        "# Shaded: the evaluation window; dashed: the supports. The curves of\n"
+        "# Shaded: the evaluation window; dashed: the supports; the force axis spans\n"
+        "# the window's raw force (a spike outside the window is clipped). The curves "
+        "of\n"
         "# contact_force.csv, kept as they are drawn: per half pixel the lowest and\n"
         "# the highest point.\n");
     gp << "set terminal pngcairo size 1200,500 noenhanced\n"
        << "set grid ytics\nset key below horizontal\nset offsets 0, 0, graph 0.08, graph "
           "0.05\n"
-       << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n";
+       << "set xlabel 'pantograph position x_p [m]'\nset ylabel 'contact force lambda_p "
+          "[N]'\n";
     for (const ForceOverXPlot& p : plots)
       plot_over_x(gp, p, dir + "/contact_force.csv", columns, supports, title);
     gp.close();
