@@ -189,7 +189,7 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
   else
     initial = static_initial_state(built.system, initial_contacts(built));
   for (PantographLayout& p : layout_.pantographs)
-    if (p.contact != dealii::numbers::invalid_unsigned_int)
+    if (p.has_contact())
       p.initial_contact_force = initial.lambda[p.contact];
   check_initial_bounded(initial, data.catenary.length());
 }
