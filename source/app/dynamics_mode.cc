@@ -1,8 +1,11 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/safe_files.h>
 #include <pantocat/catenary/wave_speeds.h>
+#include <pantocat/io/line_response_plots.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/io/progress_meter.h>
+#include <pantocat/io/run_report.h>
 #include <pantocat/io/run_summary.h>
 #include <pantocat/io/statistics_report.h>
 #include <pantocat/io/time_series_writer.h>
@@ -74,7 +77,6 @@ std::vector<ContactForceColumns> contact_force_columns(const RunRecord& record)
   return columns;
 }
 
-/// The plots of the contact force over x_p, one per pantograph in contact.
 /// Each pantograph's window assessed by subsection Assessment (none for the whole run).
 std::vector<Assessment> assess_windows(const ProgramParameters& p,
                                        const RunRecord& record)
@@ -89,6 +91,40 @@ std::vector<Assessment> assess_windows(const ProgramParameters& p,
   return assessments;
 }
 
+/**
+ * The windows the pantographs in contact had passed when the run failed
+ * (ContactStatistics::passed_window()), assessed, and printed marked as such.
+ */
+std::vector<PassedWindow>
+passed_windows(std::ostream& out, const ProgramParameters& p,
+               const SimulationLayout& layout,
+               const std::vector<std::unique_ptr<ContactStatistics>>& contacts,
+               const RunStatistics& stats)
+{
+  std::vector<PassedWindow> passed;
+  for (unsigned int k = 0; k < contacts.size(); ++k)
+    if (contacts[k])
+      if (std::optional<ContactForceStatistics> s = contacts[k]->passed_window())
+      {
+        PassedWindow w{layout.pantographs[k].name,
+                       *s,
+                       stats.dropper_slack_events(s->first_time, s->last_time),
+                       {}};
+        if (p.assessment.enabled)
+          w.assessment =
+              assess(*s, p.scene.pantographs[k].parameters.speed, p.assessment);
+        out << "  the run failed after the evaluation window of " << w.pantograph
+            << " was passed; its figures up to "
+            << ContactStatistics::passed_window_margin
+            << " s after the window (summary.json: passed_windows):\n";
+        print_statistics(out, w.statistics, w.slack_in_window);
+        print_assessment(out, w.assessment);
+        passed.push_back(std::move(w));
+      }
+  return passed;
+}
+
+/// The plots of the contact force over x_p, one per pantograph in contact.
 std::vector<ForceOverXPlot> force_over_x_plots(const RunRecord& record)
 {
   const SimulationLayout& layout = record.runner.layout();
@@ -99,20 +135,65 @@ std::vector<ForceOverXPlot> force_over_x_plots(const RunRecord& record)
     {
       const std::string& name = layout.pantographs[k].name;
       const std::vector<double>& x = c->series().x_p;
+      const Assessment* assessment =
+          k < record.assessments.size() && !record.assessments[k].criteria.empty()
+              ? &record.assessments[k]
+              : nullptr;
       plots.push_back({contact_force_over_x_file(name, several), name,
                        layout.pantographs[k].column_suffix, x.front(), x.back(),
-                       &c->result()});
+                       &c->result(), assessment});
     }
   return plots;
 }
 
-/// The PNG files a run draws (asked) and those gnuplot wrote (drawn).
+/// The PNG files a run draws (asked), the files gnuplot wrote (drawn: PNG
+/// and SVG) and the pictures of report.html.
 struct Plots
 {
   std::vector<std::string> asked, drawn;
+  std::vector<ReportFigure> figures;
+  /// True if a PNG file asked for was not drawn.
+  bool missing() const
+  {
+    return std::any_of(asked.begin(), asked.end(),
+                       [&](const std::string& png) {
+                         return std::find(drawn.begin(), drawn.end(), png) == drawn.end();
+                       });
+  }
 };
 
-/// The PNG plots of a run.
+/// The plots along the line (uplift, dropper slack) of the first contact's window.
+std::vector<PlotScript> line_response_scripts(const std::string& dir,
+                                              const RunRecord& record,
+                                              const std::string& title,
+                                              std::vector<ReportFigure>& figures)
+{
+  const Case& c = record.runner.case_data();
+  const LineResponseFrame frame{c.catenary.support_positions(), title};
+  const ContactStatistics& first = *record.first_contact();
+  const std::size_t k =
+      std::find(record.contacts.begin(), record.contacts.end(), &first) -
+      record.contacts.begin();
+  const Assessment* assessment =
+      k < record.assessments.size() ? &record.assessments[k] : nullptr;
+  std::vector<PlotScript> scripts{
+      uplift_script(dir, first.result(), c.catenary.dropper_positions, assessment, frame),
+      dropper_slack_script(dir, c.catenary.dropper_positions,
+                           record.statistics.dropper_slack_intervals(),
+                           first.result().window, frame)};
+  if (!scripts[0].outputs.empty())
+    figures.push_back({"uplift.svg", "Uplift of the contact wire: the largest rise over "
+                                     "its static height at the droppers (whole run) and "
+                                     "at the steady arms in the window."});
+  if (!scripts[1].outputs.empty())
+    figures.push_back(
+        {"dropper_slack.svg",
+         "Dropper slack per dropper: the time slack and the number of slack "
+         "intervals in the whole run."});
+  return scripts;
+}
+
+/// The PNG plots of a run (and the SVG copies for report.html).
 Plots draw_plots(const std::string& dir, const ProgramParameters& p,
                  const RunRecord& record)
 {
@@ -122,24 +203,37 @@ Plots draw_plots(const std::string& dir, const ProgramParameters& p,
         << ", v_p = " << std::setprecision(4) << 3.6 * p.pantograph().speed << " km/h ("
         << p.pantograph().speed << " m/s)";
   const PlottedColumns c = plotted_columns(runner.layout());
-  // Three scripts, one gnuplot.
   std::vector<PlotScript> scripts{
       time_series_script(dir, TimeSeriesWriter::column_names(runner.layout()),
                          c.contact_forces, c.dropper_forces, c.coordinates, title.str()),
       contact_force_statistics_script(dir, record.first_contact()->result(),
                                       title.str())};
+  Plots plots{{"contact_force.png", "dropper_forces.png", "pantograph.png",
+               "contact_force_statistics.png"},
+              {},
+              {}};
   const std::vector<ForceOverXPlot> over_x = force_over_x_plots(record);
   if (!over_x.empty())
     scripts.push_back(contact_force_over_x_script(
         dir, contact_force_column_names(contact_force_columns(record)), over_x,
         runner.case_data().catenary.support_positions(), title.str()));
+  for (const ForceOverXPlot& plot : over_x)
+  {
+    plots.asked.push_back(plot.png);
+    plots.figures.push_back({svg_file_of(plot.png),
+                             "Contact force of " + plot.name +
+                                 " over its position: the evaluation window shaded, "
+                                 "its F_m and the assessment's force limits across it."});
+  }
+  for (PlotScript& s : line_response_scripts(dir, record, title.str(), plots.figures))
+    if (!s.outputs.empty())
+    {
+      plots.asked.push_back(s.outputs.front());
+      scripts.push_back(std::move(s));
+    }
   if (scripts.front().outputs.empty())
     scripts.erase(scripts.begin()); // no time-series column to draw
-  Plots plots{{"contact_force.png", "dropper_forces.png", "pantograph.png",
-               "contact_force_statistics.png"},
-              run_gnuplot(dir, scripts)};
-  for (const ForceOverXPlot& plot : over_x)
-    plots.asked.push_back(plot.png);
+  plots.drawn = run_gnuplot(dir, scripts);
   return plots;
 }
 } // namespace
@@ -232,6 +326,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   {
     if (progress)
       progress->finish();
+    phase.keep_passed_windows(passed_windows(out, p, layout, contacts, stats));
     throw; // time_series.csv is kept up to the failure; RunPhase says so
   }
   phase.begin("output");
@@ -255,19 +350,24 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   Plots plots;
   if (p.output.plots && first_contact)
     plots = draw_plots(dir, p, record);
+  if (p.output.report && first_contact)
+    write_run_report(dir, record, plots.figures);
+  else
+    remove_output(dir + "/report.html"); // no report of an earlier run
   // Last: a summary.json that says completed vouches for every file above.
   write_run_summary(dir + "/summary.json", record);
   print_run_report(out, record, p.output.verbosity == Verbosity::detailed);
-  if (p.output.plots && first_contact && plots.drawn.size() < plots.asked.size())
+  if (p.output.plots && first_contact && plots.missing())
     out << (gnuplot_available()
                 ? "  (some plots were not drawn: nothing to draw, or gnuplot failed on "
                   "a .gp script in the directory)\n"
                 : "  (gnuplot not found: wrote the .gp scripts without PNG plots)\n");
   timer.leave_subsection();
   out << "  wrote time_series.csv" << (first_contact ? ", contact_force.csv" : "")
-      << ", summary.json";
+      << ", summary.json" << (p.output.report && first_contact ? ", report.html" : "");
   for (const std::string& file : plots.drawn)
-    out << ", " << file;
+    if (file.size() > 4 && file.compare(file.size() - 4, 4, ".png") == 0)
+      out << ", " << file;
   out << (vtu ? ", solution.pvd with " + std::to_string(vtu->frames().size()) +
                     " frames in vtu/"
               : "")

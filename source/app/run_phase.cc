@@ -124,6 +124,6 @@ void RunPhase::fail(const std::string& reason)
 {
   if (phase != "study")
     clear_earlier_results();
-  write_failed_summary(directory + "/summary.json", phase, reason);
+  write_failed_summary(directory + "/summary.json", phase, reason, passed_windows);
 }
 } // namespace pantocat

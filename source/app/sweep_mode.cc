@@ -263,9 +263,10 @@ void run_sweep(const ProgramParameters& p, const dealii::ParameterHandler& prm,
   }
   estimate(plan, make_run, base);
   plan.parameters = sweep_parameters_of(prm);
-  SweepStudy study(
-      plan, make_run, s,
-      {p.output.directory, p.output.plots, p.catenary.contact_wire.wave_speed()});
+  SweepStudy study(plan, make_run, s,
+                   {p.output.directory, p.output.plots,
+                    p.catenary.contact_wire.wave_speed(), p.output.report, p.assessment,
+                    p.pantograph().speed, p.statistics.low_pass_cutoff});
   study.run(out);
 }
 } // namespace pantocat

@@ -19,6 +19,10 @@ void OutputParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Write every k-th time step to time_series.csv.");
   prm.declare_entry("Plots", "true", dealii::Patterns::Bool(),
                     "Write PNG plots of the time series (needs gnuplot).");
+  prm.declare_entry("Report", "true", dealii::Patterns::Bool(),
+                    "Write report.html: the case, the window statistics, the assessment, "
+                    "the plots (inline SVG, with Plots and gnuplot) and the events; one "
+                    "self-contained page for any browser.");
   prm.declare_entry("VTU interval", "0", dealii::Patterns::Double(0.),
                     "Simulated time [s] between the ParaView frames of a dynamic run "
                     "(solution.pvd and vtu/*.vtu: both wires, pantograph and dropper "
@@ -49,6 +53,7 @@ void OutputParameters::parse_parameters(dealii::ParameterHandler& prm)
   vtu_subdivisions = prm.get_integer("VTU subdivisions");
   time_series_interval = prm.get_integer("Time series interval");
   plots = prm.get_bool("Plots");
+  report = prm.get_bool("Report");
   vtu_interval = prm.get_double("VTU interval");
   probe_positions = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Probe positions")));

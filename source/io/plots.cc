@@ -120,13 +120,28 @@ void begin_gnuplot_script(std::ostream& gp, const std::string& script,
 {
   gp << "# Redraw with: gnuplot " << checked_file_name(script) << " (in this directory)\n"
      << comment << "if (!exists('" << gnuplot_output_directory << "')) "
-     << gnuplot_output_directory << " = ''\n";
+     << gnuplot_output_directory << " = ''\n"
+     << "reset # the settings of a script drawn before this one in the same gnuplot\n";
 }
 
 std::string gnuplot_output(const std::string& file)
 {
   return std::string("set output ") + gnuplot_output_directory + ".'" +
          checked_file_name(file) + "'";
+}
+
+std::string svg_file_of(const std::string& png)
+{
+  const std::size_t dot = png.rfind('.');
+  return (dot == std::string::npos ? png : png.substr(0, dot)) + ".svg";
+}
+
+std::string svg_copy(const std::string& png, const unsigned int width,
+                     const unsigned int height, const std::string& terminal)
+{
+  return "set terminal svg size " + std::to_string(width) + "," + std::to_string(height) +
+         " noenhanced font 'sans,12' background rgb 'white'\n" +
+         gnuplot_output(svg_file_of(png)) + "\nreplot\nunset output\n" + terminal + "\n";
 }
 
 bool plot_contact_force_statistics(const std::string& dir,
@@ -193,9 +208,6 @@ std::string contact_force_over_x_file(const std::string& name, const bool severa
   return file + ".png";
 }
 
-namespace
-{
-/// Dashed lines at the supports inside [x0, x1] and the spans' numbers between them.
 void mark_supports(std::ostream& gp, const std::vector<double>& supports, const double x0,
                    const double x1)
 {
@@ -212,7 +224,6 @@ void mark_supports(std::ostream& gp, const std::vector<double>& supports, const 
   }
 }
 
-/// The evaluation window, clipped to [x0, x1], as a shaded band behind the curves.
 void shade_window(std::ostream& gp, const EvaluationWindow& w, const double x0,
                   const double x1)
 {
@@ -222,6 +233,59 @@ void shade_window(std::ostream& gp, const EvaluationWindow& w, const double x0,
   if (a < b)
     gp << "set object rectangle from first " << a << ", graph 0 to first " << b
        << ", graph 1 behind fillcolor rgb '#e4ecf8' fillstyle solid 1.0 noborder\n";
+}
+
+namespace
+{
+constexpr const char* over_x_terminal = "set terminal pngcairo size 1200,500 noenhanced";
+
+/// A force level drawn across the window: a limit of the assessment or the window's F_m.
+struct ForceLimit
+{
+  std::string label, colour;
+  double value;
+  int dash; ///< gnuplot dashtype
+  bool below =
+      false; ///< label under the line at the window's start (else above, at its end)
+};
+
+/// The window's F_m and the force limits of @p p's assessment (none without one).
+std::vector<ForceLimit> force_limits(const ForceOverXPlot& p)
+{
+  std::vector<ForceLimit> limits;
+  const ContactForceStatistics& s = *p.statistics;
+  const ForceFigures& f = s.filtered ? *s.filtered : s.raw;
+  if (s.window.whole_run() || f.n_points == 0)
+    return limits;
+  limits.push_back(
+      {"F_m " + number_to_string(f.mean, 4) + " N", "#000000", f.mean, 1, true});
+  if (p.assessment == nullptr)
+    return limits;
+  for (const CriterionResult& c : p.assessment->criteria)
+  {
+    const std::string value = number_to_string(c.limit, 4) + " N";
+    if (c.name == "mean_force")
+      limits.push_back({"target F_m " + value, "#008000", c.limit, 2});
+    else if (c.name == "max_force")
+      limits.push_back({"limit F_max " + value, "#c00000", c.limit, 2});
+    else if (c.name == "statistical_minimum")
+      limits.push_back({"F_m - 3 sigma > " + value, "#c00000", c.limit, 3});
+  }
+  return limits;
+}
+
+/// @p limits as labelled horizontal lines over the window of @p s.
+void draw_limits(std::ostream& gp, const std::vector<ForceLimit>& limits,
+                 const ContactForceStatistics& s)
+{
+  for (const ForceLimit& l : limits)
+    gp << "set arrow from first " << s.first_position << ", first " << l.value
+       << " to first " << s.last_position << ", first " << l.value
+       << " nohead front lw 1.5 dashtype " << l.dash << " lc rgb '" << l.colour << "'\n"
+       << "set label " << gnuplot_string(l.label) << " at first "
+       << (l.below ? s.first_position : s.last_position) << ", first " << l.value
+       << (l.below ? " left offset 0.5,-0.6" : " right offset -0.5,0.6")
+       << " front tc rgb '" << l.colour << "'\n";
 }
 
 /// One pantograph's page of contact_force_over_x.gp.
@@ -237,18 +301,22 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
                        s.window.describe())
      << '\n'
      << "set xrange [" << p.x_begin << ':' << p.x_end << "]\n";
-  // The force axis is the window's: a spike outside it (the arrival at an
-  // anchor) is clipped instead of squeezing the window's trace.
+  // The force axis is the window's (and its limits'): a spike outside it
+  // (the arrival at an anchor) is clipped instead of squeezing the window's trace.
+  const std::vector<ForceLimit> limits = force_limits(p);
   if (!s.window.whole_run() && s.raw.max > s.raw.min)
   {
-    const double low = std::min(0., s.raw.min), range = s.raw.max - low;
-    gp << "set yrange [" << low - 0.05 * range << ':' << s.raw.max + 0.15 * range
-       << "]\n";
+    double low = std::min(0., s.raw.min), high = s.raw.max;
+    for (const ForceLimit& l : limits)
+      low = std::min(low, l.value), high = std::max(high, l.value);
+    const double range = high - low;
+    gp << "set yrange [" << low - 0.05 * range << ':' << high + 0.15 * range << "]\n";
   }
   else
     gp << "set yrange [*:*]\n";
   mark_supports(gp, supports, p.x_begin, p.x_end);
   shade_window(gp, s.window, p.x_begin, p.x_end);
+  draw_limits(gp, limits, s);
   const auto column = [&](const std::string& name)
   { return column_of(columns, name + p.suffix); };
   std::vector<std::size_t> wanted{column("x_p"), column("lambda_p")};
@@ -263,7 +331,7 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
     gp << ", $filtered using 1:2 with lines lw 1.5 lc rgb '#0060c0' title "
        << gnuplot_string("low pass " + number_to_string(s.filter_cutoff_hz, 4) +
                          " Hz (order " + std::to_string(s.filter_order) + ")");
-  gp << '\n';
+  gp << '\n' << svg_copy(p.png, 1000, 420, over_x_terminal);
 }
 } // namespace
 
@@ -286,18 +354,21 @@ PlotScript contact_force_over_x_script(const std::string& dir,
 {
   std::vector<std::string> pngs;
   for (const ForceOverXPlot& p : plots)
+  {
     pngs.push_back(p.png);
+    pngs.push_back(svg_file_of(p.png));
+  }
   const std::string script = "contact_force_over_x.gp";
   {
     OutputFile gp(dir + "/" + script);
     begin_gnuplot_script(
         gp, script,
-        "# Shaded: the evaluation window; dashed: the supports; the force axis spans\n"
-        "# the window's raw force (a spike outside the window is clipped). The curves "
-        "of\n"
+        "# Shaded: the evaluation window; dashed: the supports; across the window: its\n"
+        "# F_m and the assessment's force limits. The force axis spans the window's raw\n"
+        "# force and the limits (a spike outside the window is clipped). The curves of\n"
         "# contact_force.csv, kept as they are drawn: per half pixel the lowest and\n"
         "# the highest point.\n");
-    gp << "set terminal pngcairo size 1200,500 noenhanced\n"
+    gp << over_x_terminal << '\n'
        << "set grid ytics\nset key below horizontal\nset offsets 0, 0, graph 0.08, graph "
           "0.05\n"
        << "set xlabel 'pantograph position x_p [m]'\nset ylabel 'contact force lambda_p "

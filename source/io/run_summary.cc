@@ -23,6 +23,11 @@ const ContactStatistics* RunRecord::first_contact() const
   return nullptr;
 }
 
+double RunRecord::position_at(const unsigned int k, const double t) const
+{
+  return runner.case_data().scene.pantographs[k].parameters.position(t);
+}
+
 namespace
 {
 void write_force(JsonWriter& json, const RunStatistics::ForceStatistics& f)
@@ -230,15 +235,28 @@ void write_run_summary(const std::string& file, const RunRecord& r)
 }
 
 void write_failed_summary(const std::string& file, const std::string& phase,
-                          const std::string& reason)
+                          const std::string& reason,
+                          const std::vector<PassedWindow>& passed)
 {
   std::ostringstream out;
   JsonWriter json(out);
   json.begin_object()
       .value("status", "failed")
       .value("phase", phase)
-      .value("reason", reason)
-      .end_object();
+      .value("reason", reason);
+  if (!passed.empty())
+  {
+    json.begin_array("passed_windows");
+    for (const PassedWindow& w : passed)
+    {
+      json.begin_object().value("pantograph", w.pantograph);
+      write_statistics(json, w.statistics, w.slack_in_window);
+      write_assessment(json, w.assessment);
+      json.end_object();
+    }
+    json.end_array();
+  }
+  json.end_object();
   write_file_atomically(file, out.str());
 }
 
@@ -352,12 +370,6 @@ namespace
 /// Up to this many episodes of lost contact, the screen lists them.
 constexpr std::size_t max_episodes_listed = 3;
 
-/// x_p(t) of pantograph @p k [m].
-double position_at(const RunRecord& r, const unsigned int k, const double t)
-{
-  return r.runner.case_data().scene.pantographs[k].parameters.position(t);
-}
-
 /// "[5.915, 5.926] s (x_p 525.8-526.7 m)" for the first few episodes of @p list.
 std::string located_episodes(const RunRecord& r, const unsigned int k,
                              const std::vector<Interval>& list)
@@ -370,8 +382,8 @@ std::string located_episodes(const RunRecord& r, const unsigned int k,
   for (std::size_t i = 0; i < std::min(episodes.size(), max_episodes_listed); ++i)
   {
     const auto& [t0, t1] = episodes[i].span;
-    s << (i ? ", " : "") << '[' << t0 << ", " << t1 << "] s (x_p "
-      << position_at(r, k, t0) << "-" << position_at(r, k, t1) << " m)";
+    s << (i ? ", " : "") << '[' << t0 << ", " << t1 << "] s (x_p " << r.position_at(k, t0)
+      << "-" << r.position_at(k, t1) << " m)";
   }
   if (episodes.size() > max_episodes_listed)
     s << " and " << episodes.size() - max_episodes_listed << " more episodes";

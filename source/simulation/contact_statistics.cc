@@ -138,6 +138,8 @@ void ContactStatistics::start(const SimulationLayout& layout)
     n_droppers = 0;
   }
   recorded = {};
+  passed_points = 0;
+  passed_uplift.clear();
   initial_height.clear();
   max_uplift.assign(wire_rows.size(), -std::numeric_limits<double>::infinity());
 }
@@ -156,6 +158,39 @@ void ContactStatistics::observe_state(const TimePoint& point, const DynamicState
       initial_height.push_back(w);
     max_uplift[j] = std::max(max_uplift[j], w - initial_height[j]);
   }
+  remember_passed_window();
+}
+
+void ContactStatistics::remember_passed_window()
+{
+  if (passed_points > 0 || window.whole_run() || recorded.x_p.back() <= window.end)
+    return;
+  const auto left = std::find_if(recorded.x_p.begin(), recorded.x_p.end(),
+                                 [&](const double x) { return x > window.end; });
+  if (recorded.t.back() >= recorded.t[left - recorded.x_p.begin()] + passed_window_margin)
+  {
+    passed_points = recorded.t.size();
+    passed_uplift = max_uplift;
+  }
+}
+
+std::optional<ContactForceStatistics> ContactStatistics::passed_window() const
+{
+  if (passed_points == 0)
+    return std::nullopt;
+  ContactForceSeries cut;
+  cut.t.assign(recorded.t.begin(), recorded.t.begin() + passed_points);
+  cut.x_p.assign(recorded.x_p.begin(), recorded.x_p.begin() + passed_points);
+  cut.lambda_p.assign(recorded.lambda_p.begin(),
+                      recorded.lambda_p.begin() + passed_points);
+  cut.in_contact.assign(recorded.in_contact.begin(),
+                        recorded.in_contact.begin() + passed_points);
+  ContactForceStatistics s = evaluate_contact_force(cut, parameters, window);
+  s.max_uplift_at_droppers.assign(passed_uplift.begin(),
+                                  passed_uplift.begin() + n_droppers);
+  for (std::size_t k = 0; k < steady_arms.size(); ++k)
+    s.steady_arms.push_back({steady_arms[k], passed_uplift[n_droppers + k]});
+  return s;
 }
 
 void ContactStatistics::finish()
@@ -171,14 +206,14 @@ void ContactStatistics::save(CheckpointOut& archive) const
 {
   // The whole series: the zero-phase low pass runs over all of it at the end.
   archive << recorded.t << recorded.x_p << recorded.lambda_p << recorded.in_contact
-          << initial_height << max_uplift;
+          << initial_height << max_uplift << passed_points << passed_uplift;
 }
 
 void ContactStatistics::resume(const SimulationLayout& layout, CheckpointIn& archive)
 {
   start(layout);
   archive >> recorded.t >> recorded.x_p >> recorded.lambda_p >> recorded.in_contact >>
-      initial_height >> max_uplift;
+      initial_height >> max_uplift >> passed_points >> passed_uplift;
   if (max_uplift.size() != wire_rows.size())
     throw SimulationError("the checkpoint holds the contact wire at " +
                           std::to_string(max_uplift.size()) + " points, this run at " +

@@ -1,4 +1,5 @@
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/base/safe_files.h>
 #include <pantocat/io/plots.h>
 #include <pantocat/studies/sweep_plots.h>
@@ -104,6 +105,17 @@ std::string png_name(const std::string& name, const unsigned int p, const bool s
   return several ? name + "_pantograph_" + std::to_string(p) + ".png" : name + ".png";
 }
 
+/// The terminal for @p file (SVG for a .svg file, else PNG) and its output.
+std::string terminal_for(const std::string& file, const unsigned int width,
+                         const unsigned int height)
+{
+  const bool svg = file.size() > 4 && file.compare(file.size() - 4, 4, ".svg") == 0;
+  return std::string("set terminal ") + (svg ? "svg" : "pngcairo") + " size " +
+         std::to_string(width) + "," + std::to_string(height) + " noenhanced" +
+         (svg ? " font 'sans,12' background rgb 'white'" : "") + "\n" +
+         gnuplot_output(file) + "\n";
+}
+
 /// gnuplot: column @p c of the rows of pantograph @p p (NaN for the others).
 std::string of_pantograph(const unsigned int p, const unsigned int c,
                           const unsigned int pantograph_column)
@@ -112,9 +124,30 @@ std::string of_pantograph(const unsigned int p, const unsigned int c,
          " ? column(" + std::to_string(c) + ") : NaN)";
 }
 
+/// The force limits of @p criteria against speed x [km/h], as plot items (none if null).
+std::string force_limit_curves(const AssessmentCriteria* criteria)
+{
+  if (criteria == nullptr)
+    return "";
+  std::ostringstream items;
+  items << std::setprecision(10) << criteria->mean_force_a << " * x**2 + "
+        << criteria->mean_force_b << " with lines dt 2 lw 1.5 lc rgb '#008000' title "
+        << gnuplot_string("target F_m " + number_to_string(criteria->mean_force_a) +
+                          " v^2 + " + number_to_string(criteria->mean_force_b) + " N")
+        << ", \\\n  ";
+  if (criteria->max_contact_force > 0.)
+    items << criteria->max_contact_force
+          << " with lines dt 2 lw 1.5 lc rgb '#c00000' title "
+          << gnuplot_string("limit F_max " +
+                            number_to_string(criteria->max_contact_force) + " N")
+          << ", \\\n  ";
+  return items.str();
+}
+
 /// The speed sweep's plot of pantograph @p p.
 void speed_script(std::ostream& gp, const std::string& csv, const std::string& png,
-                  const SweepTable& t, const unsigned int p, const double wave_speed)
+                  const SweepTable& t, const unsigned int p, const double wave_speed,
+                  const AssessmentCriteria* criteria)
 {
   const bool filtered = has_filtered(t, p);
   const std::string f = filtered ? "filtered_" : "";
@@ -128,8 +161,8 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
       "::" + std::to_string(std::find(all.begin(), all.end(), p) - all.begin()) +
       " using 1:";
   const std::string data = "'" + checked_file_name(csv) + rows;
-  gp << "set terminal pngcairo size 1000,800 noenhanced\n"
-     << gnuplot_output(png) << '\n'
+  gp << terminal_for(png, 1000, 800) << "reset\nset datafile separator ','\n"
+     << "set datafile missing ''\n"
      << "set multiplot layout 2,1\nset grid\nset key outside right\n"
      << "set lmargin at screen 0.08\nset rmargin at screen 0.62\n"
      << "set xlabel 'speed [km/h]'\nset ylabel 'contact force [N]'\n"
@@ -143,9 +176,10 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
      << " with filledcurves lc rgb '#c8d8f0' title 'mean +/- 3 sigma', \\\n  " << data
      << col(f + "mean") << " with linespoints lc rgb '#0060c0' pt 7 title 'mean', \\\n  "
      << data << col(f + "max")
-     << " with linespoints lc rgb '#c00000' pt 9 title 'max', \\\n  " << data
-     << col(f + "min") << " with linespoints lc rgb '#008000' pt 11 title 'min', \\\n  "
-     << data << col("contact_loss_percent")
+     << " with linespoints lc rgb '#c00000' pt 9 title 'max', \\\n  "
+     << force_limit_curves(criteria) << data << col(f + "min")
+     << " with linespoints lc rgb '#008000' pt 11 title 'min', \\\n  " << data
+     << col("contact_loss_percent")
      << " axes x1y2 with linespoints dt 2 lc rgb 'black' pt 6 title 'contact loss (raw) "
         "[%]'";
   if (filtered)
@@ -163,6 +197,10 @@ void speed_script(std::ostream& gp, const std::string& csv, const std::string& p
   if (filtered)
     gp << ", \\\n  " << data << col("filtered_std")
        << " with linespoints pt 9 title 'sigma (low pass)'";
+  if (criteria != nullptr)
+    gp << ", \\\n  " << data << "(" << criteria->max_sigma_ratio << " * "
+       << col(f + "mean") << ") with lines dt 2 lw 1.5 lc rgb '#c00000' title "
+       << gnuplot_string("limit " + number_to_string(criteria->max_sigma_ratio) + " F_m");
   gp << "\nunset multiplot\n";
 }
 
@@ -224,10 +262,9 @@ void parameter_script(std::ostream& gp, const std::string& png, const SweepTable
                                                      : what + ", " + t.key_columns[1] +
                                                            " = " + second));
     }
-  gp << "set terminal pngcairo size 900,600 noenhanced\n"
-     << gnuplot_output(png) << '\n'
-     << "set grid\nset key below\nset xlabel " << gnuplot_string(t.key_columns[0])
-     << "\nset ylabel " << gnuplot_string(s) << "\nset title "
+  gp << terminal_for(png, 900, 600) << "set grid\nset key below\nset xlabel "
+     << gnuplot_string(t.key_columns[0]) << "\nset ylabel " << gnuplot_string(s)
+     << "\nset title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
      << "\nplot ";
   for (std::size_t k = 0; k < curves.size(); ++k)
@@ -247,9 +284,7 @@ void monte_carlo_script(std::ostream& gp, const std::string& csv, const std::str
       {f + "mean", "mean [N]"},
       {"contact_loss_percent", "contact loss, raw [%]"},
       {"max_support_uplift_m", "max steady-arm uplift [m]"}};
-  gp << "set terminal pngcairo size 1200,700 noenhanced\n"
-     << gnuplot_output(png) << '\n'
-     << "set multiplot layout 2,3 title "
+  gp << terminal_for(png, 1200, 700) << "set multiplot layout 2,3 title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " +
                        std::to_string(sorted_values(t, p, 0).size()) + " samples" +
                        (f.empty() ? "" : " (forces after the low pass)"))
@@ -373,7 +408,8 @@ void print_monte_carlo_summary(std::ostream& out, const SweepTable& t)
 
 std::vector<std::string> plot_sweep(const std::string& dir, const std::string& name,
                                     const SweepKind kind, const SweepTable& t,
-                                    const double wave_speed)
+                                    const double wave_speed,
+                                    const AssessmentCriteria* criteria)
 {
   const std::string csv = name + ".csv";
   const std::vector<unsigned int> pantographs = t.pantographs();
@@ -396,15 +432,16 @@ std::vector<std::string> plot_sweep(const std::string& dir, const std::string& n
         OutputFile gp(dir + "/" + script);
         begin_gnuplot_script(gp, script);
         gp << "set datafile separator ','\nset datafile missing ''\n";
-        if (kind == SweepKind::speed)
-          speed_script(gp, csv, png, t, p, wave_speed);
-        else if (kind == SweepKind::parameter)
-          parameter_script(gp, png, t, p, statistic);
-        else
-          monte_carlo_script(gp, csv, png, t, p);
+        for (const std::string& file : {png, svg_file_of(png)}) // the same picture twice
+          if (kind == SweepKind::speed)
+            speed_script(gp, csv, file, t, p, wave_speed, criteria);
+          else if (kind == SweepKind::parameter)
+            parameter_script(gp, file, t, p, statistic);
+          else
+            monte_carlo_script(gp, csv, file, t, p);
         gp.close();
       }
-      for (const std::string& file : run_gnuplot(dir, script, {png}))
+      for (const std::string& file : run_gnuplot(dir, script, {png, svg_file_of(png)}))
         drawn.push_back(file);
     }
   }

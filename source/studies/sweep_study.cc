@@ -4,6 +4,7 @@
 #include <pantocat/studies/run_distribution.h>
 #include <pantocat/studies/sweep_partial.h>
 #include <pantocat/studies/sweep_plots.h>
+#include <pantocat/studies/sweep_report.h>
 #include <pantocat/studies/sweep_study.h>
 
 #include <deal.II/base/mpi.h>
@@ -78,22 +79,24 @@ std::string without_keys(const std::string& text, const std::size_t n)
 
 /**
  * True if @p file is what a sweep named @p name writes when it completes:
- * <name>.csv, <name>_runs.csv, <name>_distribution.csv, or a plot
- * <name>[_<statistic>][_pantograph_<k>] with extension .png or .gp.
+ * <name>.csv, <name>_runs.csv, <name>_distribution.csv, <name>_report.html,
+ * or a plot <name>[_<statistic>][_pantograph_<k>] with extension .png, .svg
+ * or .gp.
  */
 bool is_sweep_result(const std::string& file, const std::string& name)
 {
   if (file.rfind(name, 0) != 0)
     return false;
   std::string rest = file.substr(name.size());
-  if (rest == ".csv" || rest == "_runs.csv" || rest == "_distribution.csv")
+  if (rest == ".csv" || rest == "_runs.csv" || rest == "_distribution.csv" ||
+      rest == "_report.html")
     return true;
   const auto ends_with = [&](const std::string& end)
   {
     return rest.size() >= end.size() &&
            rest.compare(rest.size() - end.size(), end.size(), end) == 0;
   };
-  if (!ends_with(".png") && !ends_with(".gp"))
+  if (!ends_with(".png") && !ends_with(".svg") && !ends_with(".gp"))
     return false;
   rest.erase(rest.rfind('.'));
   const std::string pantograph = "_pantograph_";
@@ -451,14 +454,25 @@ void SweepStudy::write(std::ostream& out) const
   out << "  wrote " << name() << ".csv, " << name() << "_runs.csv";
   if (plan.kind == SweepKind::monte_carlo)
     out << ", " << name() << "_distribution.csv";
+  std::vector<std::string> pictures; // SVG copies for the report
   if (output.plots)
   {
     const std::vector<std::string> drawn =
-        plot_sweep(dir, name(), plan.kind, table, output.wave_speed);
+        plot_sweep(dir, name(), plan.kind, table, output.wave_speed,
+                   output.criteria.enabled ? &output.criteria : nullptr);
     for (const std::string& file : drawn)
-      out << ", " << file;
+      (file.size() > 4 && file.compare(file.size() - 4, 4, ".svg") == 0
+           ? pictures.push_back(file)
+           : void(out << ", " << file));
     if (drawn.empty())
       out << " (no plot: gnuplot missing or nothing to draw)";
+  }
+  if (output.report)
+  {
+    write_sweep_report(dir, table,
+                       {name(), plan.kind, &output.criteria, output.speed,
+                        output.filter_cutoff_hz, pictures});
+    out << ", " << name() << "_report.html";
   }
   out << " to " << dir << std::endl;
   for (const unsigned int e : entries_without_effect(plan, rows))

@@ -9,7 +9,7 @@ file(REMOVE_RECURSE ${OUTDIR})
 run_or_fail("run" out COMMAND ${EXE} ${PRM} -o ${OUTDIR}
             --set "Pantograph/Final position=2.32"
             --set "Output/VTU interval=0.005" --set "Output/Verbosity=detailed")
-foreach(f parameters.prm time_series.csv summary.json contact_force.png dropper_forces.png
+foreach(f parameters.prm time_series.csv summary.json report.html contact_force.png dropper_forces.png
           pantograph.png time_series.gp solution.pvd vtu/wires-00002.vtu
           contact_force.csv contact_force_statistics.png contact_force_statistics.gp
           contact_force_over_x.png contact_force_over_x.gp

@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/io/run_summary.h>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -40,8 +42,13 @@ public:
    * completes, so nothing is cleared or written here; fail() still writes one.
    */
   void begin_study() { phase = "study"; }
-  /// summary.json "failed" with the current phase and @p reason.
+  /// summary.json "failed" with the current phase and @p reason (and the windows kept).
   void fail(const std::string& reason);
+  /// Windows a run passed before it failed: fail() writes them into summary.json.
+  void keep_passed_windows(std::vector<PassedWindow> windows)
+  {
+    passed_windows = std::move(windows);
+  }
   /**
    * Undoes begin()'s summary.json for a refusal after the setup (a damaged
    * checkpoint is found when the time loop starts): a refusal leaves no
@@ -59,5 +66,6 @@ private:
   bool cleared = false;
   bool wrote_summary = false;
   std::optional<std::string> earlier_summary; ///< summary.json before begin()
+  std::vector<PassedWindow> passed_windows;
 };
 } // namespace pantocat

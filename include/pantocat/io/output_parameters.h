@@ -23,6 +23,7 @@ struct OutputParameters
   unsigned int vtu_subdivisions = 4;     ///< sample points per cell in VTU files
   unsigned int time_series_interval = 1; ///< write every k-th time point
   bool plots = true;                     ///< PNG plots with gnuplot, if installed
+  bool report = true;                    ///< report.html (run_report.h)
   double vtu_interval = 0.; ///< simulated seconds between VTU frames; 0: none
   Verbosity verbosity = Verbosity::normal;
   std::vector<double> probe_positions; ///< x of the w_w(x) columns [m]

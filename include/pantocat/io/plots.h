@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/contact_statistics.h>
 
 #include <ostream>
@@ -60,6 +61,8 @@ struct ForceOverXPlot
   std::string suffix;    ///< its column suffix in contact_force.csv
   double x_begin, x_end; ///< x_p [m] of its first and last time point
   const ContactForceStatistics* statistics;
+  /// Its window's assessment: the force limits are drawn over the window (may be null).
+  const Assessment* assessment = nullptr;
 };
 
 /// "contact_force_over_x.png", or with @p several pantographs
@@ -71,8 +74,9 @@ std::string contact_force_over_x_file(const std::string& name, bool several);
  * lambda_p over x_p from contact_force.csv, whose header is @p columns (found
  * by name with the pantograph's suffix), raw and (with a cut-off) low-passed,
  * dashed vertical lines at the supports @p supports with the spans numbered,
- * and the evaluation window shaded. Script: contact_force_over_x.gp. Returns the
- * PNG files gnuplot wrote.
+ * the evaluation window shaded, and across it the window's F_m and the force
+ * limits of the plot's assessment; each also as an SVG copy (svg_file_of()).
+ * Script: contact_force_over_x.gp. Returns the files gnuplot wrote.
  */
 std::vector<std::string>
 plot_contact_force_over_x(const std::string& directory,
@@ -135,4 +139,23 @@ void begin_gnuplot_script(std::ostream& gp, const std::string& script,
 
 /// "set output output_directory.'<file>'" for the checked file name @p file.
 std::string gnuplot_output(const std::string& file);
+
+/// Script lines: dashed lines at the @p supports inside [x0, x1], the spans numbered.
+void mark_supports(std::ostream& gp, const std::vector<double>& supports, double x0,
+                   double x1);
+
+/// Script lines: the evaluation window @p w, clipped to [x0, x1], shaded behind the
+/// curves.
+void shade_window(std::ostream& gp, const EvaluationWindow& w, double x0, double x1);
+
+/// @p png with the extension .svg: the file of its copy for report.html.
+std::string svg_file_of(const std::string& png);
+
+/**
+ * The script lines that draw the last plot again as the SVG picture
+ * svg_file_of(@p png) (width @p width pixels, for report.html) and then
+ * return to @p terminal (the script's PNG terminal line).
+ */
+std::string svg_copy(const std::string& png, unsigned int width, unsigned int height,
+                     const std::string& terminal);
 } // namespace pantocat

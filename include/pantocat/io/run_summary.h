@@ -36,6 +36,8 @@ struct RunRecord
   std::map<std::string, std::string> inputs = {};
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
+  /// x_p(t) [m] of pantograph @p k (in layout order).
+  double position_at(unsigned int k, double t) const;
 };
 
 /**
@@ -48,12 +50,28 @@ struct RunRecord
 void write_run_summary(const std::string& file, const RunRecord& record);
 
 /**
+ * The evaluation window of one pantograph that a failed run had passed
+ * (ContactStatistics::passed_window()): its figures, the dropper slack while
+ * the pantograph was in it and its assessment.
+ */
+struct PassedWindow
+{
+  std::string pantograph;
+  ContactForceStatistics statistics;
+  DropperSlackEvents slack_in_window;
+  Assessment assessment;
+};
+
+/**
  * summary.json of a run that did not complete: "failed", the @p phase it was
- * in (setup, time loop, output, ...) and the @p reason. Written atomically,
- * as write_run_summary().
+ * in (setup, time loop, output, ...) and the @p reason; with @p passed the
+ * windows the run had passed before it failed, under "passed_windows" (per
+ * window: pantograph, statistics and assessment as in a completed summary).
+ * Written atomically, as write_run_summary().
  */
 void write_failed_summary(const std::string& file, const std::string& phase,
-                          const std::string& reason);
+                          const std::string& reason,
+                          const std::vector<PassedWindow>& passed = {});
 
 /// The effects the scene assembles, those it leaves out, and the problem size.
 void print_scene(std::ostream& out, const CaseRunner& runner);

@@ -1,10 +1,10 @@
 #pragma once
 
+#include <pantocat/lac/sparse_row.h>
 #include <pantocat/simulation/statistics_parameters.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/lac/sparse_row.h>
 
 #include <optional>
 #include <vector>
@@ -115,11 +115,26 @@ public:
   void resume(const SimulationLayout& layout, CheckpointIn& archive) override;
 
   const ContactForceStatistics& result() const { return statistics; }
+  /**
+   * For a run that stops early (a guard): the statistics of the window if
+   * the pantograph left it at least passed_window_margin seconds before the
+   * last time point recorded, evaluated on the series up to that margin only
+   * (so that neither the low pass nor the uplift sees the steps that failed),
+   * with the uplift at the droppers and steady arms as it was then; nothing
+   * if the window was not passed (or is the whole run).
+   */
+  std::optional<ContactForceStatistics> passed_window() const;
+  /// [s] of series kept after the window for passed_window(): five time
+  /// constants of a 20 Hz low pass and more.
+  static constexpr double passed_window_margin = 0.1;
   const ContactForceSeries& series() const { return recorded; }
   /// lambda_p after the low pass at every time point (= lambda_p if unfiltered).
   const std::vector<double>& filtered_force() const { return filtered; }
 
 private:
+  /// Takes the snapshot of passed_window() once the window lies the margin behind.
+  void remember_passed_window();
+
   StatisticsParameters parameters;
   EvaluationWindow window;
   unsigned int pantograph = 0;
@@ -130,6 +145,10 @@ private:
   std::vector<double> steady_arms; ///< x [m] of the steady arms in the window
   std::vector<double> initial_height, max_uplift; ///< per row of wire_rows
   ContactForceSeries recorded;
+  /// passed_window(): the points recorded and the uplift when the window
+  /// lay passed_window_margin behind (empty before).
+  std::size_t passed_points = 0;
+  std::vector<double> passed_uplift;
   ContactForceStatistics statistics;
   std::vector<double> filtered;
 };

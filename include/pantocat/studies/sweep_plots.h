@@ -1,5 +1,7 @@
 #pragma once
 
+#include <pantocat/simulation/assessment.h>
+
 #include <ostream>
 #include <string>
 #include <vector>
@@ -50,9 +52,13 @@ void print_monte_carlo_summary(std::ostream& out, const SweepTable& table);
  * second axis; sigma below it, with 0.7 @p wave_speed marked); a parameter
  * sweep's one plot per statistic against the first entry (one curve per
  * value of the second); a Monte Carlo study's histograms. One file per
- * pantograph when there are several. Returns the PNG files written.
+ * pantograph when there are several; the speed plot with the force limits
+ * of @p criteria (target F_m against speed, F_max, sigma <= ratio F_m) if
+ * given. Each PNG also as an SVG copy (for the sweep's report). Returns the
+ * files written.
  */
 std::vector<std::string> plot_sweep(const std::string& directory, const std::string& name,
                                     SweepKind kind, const SweepTable& table,
-                                    double wave_speed);
+                                    double wave_speed,
+                                    const AssessmentCriteria* criteria = nullptr);
 } // namespace pantocat

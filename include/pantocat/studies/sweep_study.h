@@ -1,5 +1,6 @@
 #pragma once
 
+#include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/checkpoint_parameters.h>
 #include <pantocat/studies/sweep_parameters.h>
 #include <pantocat/studies/sweep_run.h>
@@ -64,8 +65,9 @@ std::string sweep_rows(const std::vector<std::string>& key, const SweepOutcome& 
 /**
  * Removes from @p directory the results a completed sweep named @p name
  * writes, and those of the default names speed_sweep, parameter_sweep and
- * monte_carlo: <name>.csv, <name>_runs.csv, <name>_distribution.csv and the
- * plots <name>[_<statistic>][_pantograph_<k>].png with their .gp scripts.
+ * monte_carlo: <name>.csv, <name>_runs.csv, <name>_distribution.csv,
+ * <name>_report.html and the plots <name>[_<statistic>][_pantograph_<k>].png
+ * (and .svg) with their .gp scripts.
  * Partial files stay. A file that cannot be removed throws
  * (std::filesystem::filesystem_error names it and why).
  */
@@ -87,8 +89,8 @@ double percentile(const std::vector<double>& sorted, double p);
  * parameters or a damaged one is refused) and runs only the others. At the
  * end it writes <name>.csv (rows in plan order: the same file on any number
  * of ranks), <name>_runs.csv (wall time, steps, rank per run), the plots,
- * and for Monte Carlo <name>_distribution.csv, and removes the partial file
- * last.
+ * for Monte Carlo <name>_distribution.csv, and <name>_report.html, and
+ * removes the partial file last.
  */
 class SweepStudy
 {
@@ -99,6 +101,11 @@ public:
     bool plots = true;
     /// Contact-wire wave speed c [m/s] for the 0.7 c line of the speed plot (0: none).
     double wave_speed = 0.;
+    /// <name>_report.html (sweep_report.h), with the limits of @p criteria.
+    bool report = true;
+    AssessmentCriteria criteria = {};
+    double speed = 0.;            ///< [m/s] the base case's (all but speed sweeps)
+    double filter_cutoff_hz = 0.; ///< Statistics/Low pass cut-off of the runs (0: raw)
   };
 
   SweepStudy(SweepPlan plan, std::function<SweepCase(unsigned int)> make_run,
