@@ -37,13 +37,12 @@ double height_error(const CaseRunner& runner)
 {
   const CatenaryParameters& c = runner.case_data().catenary;
   const StaticEquilibrium s = runner.static_catenary();
+  const std::vector<double> z = c.dropper_target_heights();
   double error = 0.;
   for (unsigned int j = 0; j < c.n_droppers(); ++j)
-  {
-    const double x = c.dropper_positions[j];
-    error = std::max(error, std::abs(runner.contact_wire_displacement(s.q, x) -
-                                     c.presag_height(c.dropper_spans[j], x)));
-  }
+    error = std::max(
+        error,
+        std::abs(runner.contact_wire_displacement(s.q, c.dropper_positions[j]) - z[j]));
   return error;
 }
 } // namespace

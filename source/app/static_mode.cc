@@ -1,5 +1,6 @@
 #include <pantocat/app/run_modes.h>
 #include <pantocat/base/input_error.h>
+#include <pantocat/base/number_format.h>
 #include <pantocat/base/safe_files.h>
 #include <pantocat/io/elasticity_output.h>
 #include <pantocat/io/json_writer.h>
@@ -78,19 +79,43 @@ void write_static_summary(const std::string& file, const ProgramParameters& p,
   json.end_object();
   write_file_atomically(file, text.str());
 }
-/// dropper_lengths.csv: span, dropper (in its span), x, the designed length.
+/// dropper_lengths.csv: span, dropper (in its span), x, the designed length and
+/// the contact wire's target height there.
 void write_dropper_lengths(const std::string& file, const CatenaryParameters& c)
 {
   std::ostringstream csv;
-  csv << "span,dropper,x,length\n" << std::setprecision(12);
+  csv << "span,dropper,x,length,target_height\n" << std::setprecision(12);
+  const std::vector<double> z = c.dropper_target_heights();
   unsigned int in_span = 0;
   for (unsigned int j = 0; j < c.n_droppers(); ++j)
   {
     in_span = j > 0 && c.dropper_spans[j] == c.dropper_spans[j - 1] ? in_span + 1 : 1;
     csv << c.dropper_spans[j] + 1 << ',' << in_span << ',' << c.dropper_positions[j]
-        << ',' << c.dropper_lengths[j] << '\n';
+        << ',' << c.dropper_lengths[j] << ',' << z[j] << '\n';
   }
   write_file_atomically(file, csv.str());
+}
+
+/// The design's targets in words: the Target heights, or the pre-sag and its reference.
+std::string design_targets(const CatenaryParameters& c)
+{
+  if (!c.target_heights.empty())
+    return "the target heights given";
+  return "a pre-sag of " + number_to_string(c.presag) + " m (zero at the " +
+         (c.presag_reference == PresagReference::supports ? "supports"
+                                                          : "first and last dropper") +
+         ")";
+}
+
+/// dropper_lengths.csv of a designed catenary @p c and a line on screen.
+void write_design(const CatenaryParameters& c, const unsigned int iterations,
+                  const std::string& dir, std::ostream& out,
+                  std::vector<std::string>& written)
+{
+  write_dropper_lengths(dir + "/dropper_lengths.csv", c);
+  written.push_back("dropper_lengths.csv");
+  out << "  dropper lengths designed for " << design_targets(c) << " in " << iterations
+      << " iterations (dropper_lengths.csv)\n";
 }
 
 /// The droppers' positions of span @p span (1-based) of @p c.
@@ -204,12 +229,8 @@ void run_static_equilibrium(const ProgramParameters& p, std::ostream& out,
     written.push_back("stitch_wires.csv");
   }
   if (runner.design() && p.catenary.design == DropperDesign::designed)
-  {
-    write_dropper_lengths(dir + "/dropper_lengths.csv", runner.case_data().catenary);
-    written.push_back("dropper_lengths.csv");
-    out << "  dropper lengths designed for a pre-sag of " << p.catenary.presag << " m in "
-        << runner.design()->iterations << " iterations (dropper_lengths.csv)\n";
-  }
+    write_design(runner.case_data().catenary, runner.design()->iterations, dir, out,
+                 written);
   if (elasticity)
     write_elasticity(p, *elasticity, out, written);
   write_static_summary(dir + "/summary.json", p, runner, s, elasticity);

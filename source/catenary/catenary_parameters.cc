@@ -2,8 +2,10 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/catenary/catenary_parameters.h>
 
+#include <deal.II/base/exceptions.h>
 #include <deal.II/base/utilities.h>
 
+#include <algorithm>
 #include <climits>
 #include <cmath>
 #include <sstream>
@@ -67,28 +69,36 @@ std::vector<double> CatenaryParameters::steady_arm_positions() const
   return arms;
 }
 
-namespace
-{
-double parabola(const double presag, const double start, const double l, const double x)
-{
-  const double xi = (x - start) / l;
-  return -4. * presag * xi * (1. - xi);
-}
-} // namespace
-
-double CatenaryParameters::presag_height(const unsigned int k, const double x) const
-{
-  return parabola(presag, support_positions()[k], spans()[k], x);
-}
-
-std::vector<double> CatenaryParameters::dropper_presag_heights() const
+std::vector<std::pair<double, double>> CatenaryParameters::presag_chords() const
 {
   const std::vector<double> start = support_positions(), l = spans();
+  std::vector<std::pair<double, double>> chords(l.size());
+  for (unsigned int k = 0; k < l.size(); ++k)
+    chords[k] = {start[k], l[k]};
+  if (presag_reference == PresagReference::supports)
+    return chords;
+  std::vector<double> first(l.size(), 0.), last(l.size(), 0.);
+  for (unsigned int j = n_droppers(); j-- > 0;) // droppers increase along the section
+    first[dropper_spans[j]] = dropper_positions[j];
+  for (unsigned int j = 0; j < n_droppers(); ++j)
+    last[dropper_spans[j]] = dropper_positions[j];
+  for (unsigned int k = 0; k < l.size(); ++k)
+    chords[k] = {first[k], last[k] - first[k]};
+  return chords;
+}
+
+std::vector<double> CatenaryParameters::dropper_target_heights() const
+{
+  if (!target_heights.empty())
+    return target_heights;
+  const std::vector<std::pair<double, double>> chords = presag_chords();
   std::vector<double> z(n_droppers());
   for (unsigned int j = 0; j < n_droppers(); ++j)
   {
-    const unsigned int k = dropper_spans[j];
-    z[j] = parabola(presag, start[k], l[k], dropper_positions[j]);
+    const auto [start, l] = chords[dropper_spans[j]];
+    Assert(l > 0., dealii::ExcMessage("a pre-sag chord of length 0 (check_targets())"));
+    const double xi = (dropper_positions[j] - start) / l;
+    z[j] = -4. * presag * xi * (1. - xi) + 0.; // + 0.: 0, not -0, at xi = 0
   }
   return z;
 }
@@ -203,6 +213,24 @@ void CatenaryParameters::place_droppers(const std::vector<std::vector<double>>& 
                                      : lengths[j]);
 }
 
+void CatenaryParameters::place_target_heights(const std::vector<double>& given,
+                                              const bool one_list)
+{
+  const unsigned int n = n_droppers();
+  const unsigned int in_span =
+      std::count(dropper_spans.begin(), dropper_spans.end(), 0u); // span 1's droppers
+  const bool reused = one_list && given.size() == in_span && n > 0;
+  if (!given.empty() && !reused && given.size() != n)
+    require(false, "Catenary/Droppers/Target heights", list_to_string(given),
+            std::to_string(given.size()) + " heights given; allowed: one per dropper " +
+                (one_list ? "of a span (" + std::to_string(in_span) + ") or " : "") +
+                "of the section (" + std::to_string(n) +
+                "), or none (the pre-sag's targets)");
+  target_heights.clear();
+  for (unsigned int j = 0; j < n && !given.empty(); ++j)
+    target_heights.push_back(reused ? given[j % in_span] : given[j]);
+}
+
 void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   const CatenaryParameters d;
@@ -240,11 +268,25 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "designed.");
   prm.declare_entry("Design", "given", dealii::Patterns::Selection("given|designed"),
                     "given: the Lengths; designed: lengths from the static design "
-                    "(form-finding) so that the static contact wire lies on the pre-sag "
-                    "at every dropper (doc/catenaries.md).");
+                    "(form-finding) so that the static contact wire lies on its target "
+                    "at every dropper, from the Pre-sag or the Target heights "
+                    "(doc/catenaries.md).");
   prm.declare_entry("Pre-sag", "0", Double(0.),
-                    "Mid-span pre-sag s [m] of the contact wire for Design = designed: "
-                    "targets z = -4 s (x/l)(1 - x/l) at the dropper points.");
+                    "Pre-sag s [m] of the contact wire for Design = designed: targets "
+                    "z = -4 s xi (1 - xi) at the dropper points, xi from 0 to 1 across "
+                    "the Pre-sag reference (s below it midway).");
+  prm.declare_entry("Pre-sag reference", "supports",
+                    dealii::Patterns::Selection("supports|first and last dropper"),
+                    "Where the pre-sag parabola of a span is zero: supports, xi = x/l "
+                    "(x from the span's first support, l its length); first and last "
+                    "dropper, xi = (x - x_first)/(x_last - x_first) (two droppers or "
+                    "more in every span that has droppers).");
+  prm.declare_entry("Target heights", "", List(Double(), 0),
+                    "Target heights [m] of the static contact wire at the droppers for "
+                    "Design = designed (0 at the steady arms, negative below): one per "
+                    "dropper of a span (reused in every span) or one per dropper of the "
+                    "section; they replace the pre-sag (then Pre-sag = 0). Empty: from "
+                    "the pre-sag.");
   prm.declare_entry("Mass per length", "0.14", Double(0.), "rho_d A_d [kg/m].");
   prm.declare_entry("Clamp mass", "0.25", List(Double(0.), 1, 2),
                     "Mass m_s of a clamp [kg], Eq. (4): one value for both wires, or "
@@ -315,6 +357,11 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   design =
       prm.get("Design") == "designed" ? DropperDesign::designed : DropperDesign::given;
   presag = prm.get_double("Pre-sag");
+  presag_reference = prm.get("Pre-sag reference") == "supports"
+                         ? PresagReference::supports
+                         : PresagReference::first_and_last_dropper;
+  const std::vector<double> targets = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("Target heights")));
   dropper_mass_per_length = prm.get_double("Mass per length");
   const std::vector<double> clamps = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Clamp mass")));
@@ -344,6 +391,7 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   rayleigh_beta = prm.get_double("Rayleigh beta");
   prm.leave_subsection();
   place_droppers(positions, lengths);
+  place_target_heights(targets, positions.size() == 1);
   place_stitch_wires(stitch);
   check();
 }
@@ -391,7 +439,34 @@ void CatenaryParameters::check() const
           "Catenary/Stitch wire/Dropper positions", dropper_stitch_wire.size(),
           "every dropper needs the wire it hangs from");
   check_supports();
+  check_targets();
   check_stitch_wires();
+}
+
+void CatenaryParameters::check_targets() const
+{
+  const std::string parameter = "Catenary/Droppers/Target heights";
+  require(target_heights.empty() || target_heights.size() == n_droppers(), parameter,
+          list_to_string(target_heights),
+          "allowed: one per dropper of the section (" + std::to_string(n_droppers()) +
+              "), or none (the pre-sag's targets)");
+  require(target_heights.empty() || presag == 0., "Catenary/Droppers/Pre-sag", presag,
+          "not together with " + parameter + " (" +
+              std::to_string(target_heights.size()) +
+              " heights given): the heights replace the pre-sag; allowed: Pre-sag = 0 "
+              "with Target heights, or no Target heights");
+  if (design != DropperDesign::designed || !target_heights.empty() ||
+      presag_reference != PresagReference::first_and_last_dropper)
+    return;
+  std::vector<unsigned int> in_span(number_of_spans(), 0);
+  for (const unsigned int k : dropper_spans)
+    ++in_span[k];
+  for (unsigned int k = 0; k < in_span.size(); ++k)
+    require(in_span[k] != 1, "Catenary/Droppers/Pre-sag reference",
+            "first and last dropper",
+            "span " + std::to_string(k + 1) +
+                " has 1 dropper, and the parabola is zero at two; allowed: supports, or "
+                "at least 2 droppers in every span that has droppers");
 }
 
 void CatenaryParameters::check_supports() const

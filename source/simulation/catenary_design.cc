@@ -71,11 +71,94 @@ HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameter
     h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
                                      "carrier support " + std::to_string(k + 1)));
   const std::vector<double> z =
-      heights ? c.dropper_presag_heights() : std::vector<double>();
+      heights ? c.dropper_target_heights() : std::vector<double>();
   for (unsigned int j = 0; j < z.size(); ++j)
     h.heights.push_back(hold(h.system, space, Wire::contact_wire, c.dropper_positions[j],
                              z[j], "height at dropper " + std::to_string(j + 1)));
   return h;
+}
+
+/// The entry that set the design's target at a dropper, for a refusal: its
+/// name, its value, the targets in words and which way they can be produced.
+struct TargetEntry
+{
+  std::string parameter, value, targets, producible;
+};
+
+TargetEntry target_entry(const CatenaryParameters& c, const unsigned int j)
+{
+  if (c.target_heights.empty())
+    return {"Catenary/Droppers/Pre-sag", number_to_string(c.presag), "a pre-sag",
+            "smaller"};
+  return {"Catenary/Droppers/Target heights",
+          number_to_string(c.target_heights[j]) + " (dropper " + std::to_string(j + 1) +
+              ")",
+          "targets", "lower"};
+}
+
+/// Refuses the target at dropper @p j when the design gives it a @p length <= 0
+/// or a @p force <= 0 (the dropper would have to push).
+void check_designed_dropper(const CatenaryParameters& c, const unsigned int j,
+                            const double length, const double force)
+{
+  if (length > 0. && force > 0.) // the messages only when they fail: O(n) in all
+    return;
+  const TargetEntry e = target_entry(c, j);
+  const std::string dropper = "dropper " + std::to_string(j + 1) +
+                              " at x = " + number_to_string(c.dropper_positions[j]) +
+                              " m";
+  require(length > 0., e.parameter, e.value,
+          "the design gives " + dropper + " the length " + number_to_string(length) +
+              " m; allowed: " + e.targets + " the droppers can produce (" + e.producible +
+              ", or a larger Encumbrance)");
+  require(false, e.parameter, e.value,
+          "the design needs " + dropper + " to push (" + number_to_string(force) +
+              " N); allowed: " + e.targets + " the droppers can hold in tension");
+}
+
+/**
+ * Step 3 of the design: l_j = w_c(x_j) - z_j (less F_j / k_d for an elastic
+ * dropper), w_c the height of the wire dropper j hangs from in the static
+ * state @p s (the carrier or its stitch wire), z_j its target (@p z); sets
+ * them in @p c and returns the largest change of a length.
+ */
+double update_lengths(const SceneParameters& scene, CatenaryParameters& c,
+                      const CatenaryDiscretisation& space,
+                      const SemiDiscreteSystem& system, const StaticEquilibrium& s,
+                      const std::vector<double>& z, const std::vector<double>& forces)
+{
+  double change = 0.;
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+  {
+    // The height of the dropper's upper clamp: the carrier, or its stitch wire.
+    const double carrier =
+        c.support_height + dropper_upper_row(space, system, j).dot(s.q);
+    // An elastic dropper stretches by F_j / k_d under its tension F_j: its
+    // unstretched length is the distance less the stretch.
+    const double stretch =
+        scene.droppers == DropperModel::elastic ? forces[j] / c.dropper_stiffness : 0.;
+    const double length = carrier - z[j] - stretch;
+    check_designed_dropper(c, j, length, forces[j]);
+    change = std::max(change, std::abs(length - c.dropper_lengths[j]));
+    c.dropper_lengths[j] = length;
+  }
+  return change;
+}
+
+/// The change of the load by the dropper weights since the lengths were @p l0
+/// (add_dropper_weight_change(): the held catenary keeps the load of l0).
+dealii::Vector<double> weight_change_since(const SceneParameters& scene,
+                                           const CatenaryParameters& c,
+                                           const CatenaryDiscretisation& space,
+                                           const SemiDiscreteSystem& system,
+                                           const std::vector<double>& l0)
+{
+  dealii::Vector<double> weights(system.n_dofs());
+  std::vector<double> length_changes(c.n_droppers());
+  for (unsigned int j = 0; j < c.n_droppers(); ++j)
+    length_changes[j] = c.dropper_lengths[j] - l0[j];
+  add_dropper_weight_change(scene, c, space, system, length_changes, weights);
+  return weights;
 }
 
 std::vector<double> multipliers_of(const StaticEquilibrium& s,
@@ -114,19 +197,17 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
   const HeldCatenary h = held_catenary(scene, c, space, designing);
   const StaticEquilibriumSolver solver(h.system, 0., column_budget);
   const std::vector<double> l0 = c.dropper_lengths;
+  const std::vector<double> z =
+      designing ? c.dropper_target_heights() : std::vector<double>();
   double previous_change = std::numeric_limits<double>::infinity();
   for (unsigned int it = 0; it < 50; ++it)
   {
     r.iterations = it + 1;
-    dealii::Vector<double> weights(h.system.n_dofs());
-    std::vector<double> length_changes(c.n_droppers());
-    for (unsigned int j = 0; j < c.n_droppers(); ++j)
-      length_changes[j] = c.dropper_lengths[j] - l0[j];
-    add_dropper_weight_change(scene, c, space, h.system, length_changes, weights);
+    const dealii::Vector<double> weights =
+        weight_change_since(scene, c, space, h.system, l0);
     StaticEquilibrium s = solver.solve(weights);
     if (!designing)
     {
-      r.dropper_forces.clear();
       c.steady_arm_preloads = multipliers_of(s, h.steady_arms);
       c.carrier_support_preloads = multipliers_of(s, h.carrier_springs);
       return r;
@@ -139,35 +220,8 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     s = solver.solve(pull);
     steady_arm_preloads = multipliers_of(s, h.steady_arms);
     carrier_support_preloads = multipliers_of(s, h.carrier_springs);
-    double change = 0.;
-    const std::vector<double> z = c.dropper_presag_heights();
-    for (unsigned int j = 0; j < c.n_droppers(); ++j)
-    {
-      const double x = c.dropper_positions[j];
-      // The height of the dropper's upper clamp: the carrier, or its stitch wire.
-      const double carrier =
-          c.support_height + dropper_upper_row(space, h.system, j).dot(s.q);
-      // An elastic dropper stretches by F_j / k_d under its tension F_j: its
-      // unstretched length is the distance less the stretch.
-      const double stretch = scene.droppers == DropperModel::elastic
-                                 ? r.dropper_forces[j] / c.dropper_stiffness
-                                 : 0.;
-      const double length = carrier - z[j] - stretch;
-      if (!(length > 0.)) // the messages only when they fail: O(n) in all
-        require(false, "Catenary/Droppers/Pre-sag", c.presag,
-                "the design gives dropper " + std::to_string(j + 1) + " at x = " +
-                    number_to_string(x) + " m the length " + number_to_string(length) +
-                    " m; allowed: a pre-sag the droppers can produce (smaller, or a "
-                    "larger Encumbrance)");
-      if (!(r.dropper_forces[j] > 0.))
-        require(false, "Catenary/Droppers/Pre-sag", c.presag,
-                "the design needs dropper " + std::to_string(j + 1) +
-                    " at x = " + number_to_string(x) + " m to push (" +
-                    number_to_string(r.dropper_forces[j]) +
-                    " N); allowed: a pre-sag the droppers can hold in tension");
-      change = std::max(change, std::abs(length - c.dropper_lengths[j]));
-      c.dropper_lengths[j] = length;
-    }
+    const double change =
+        update_lengths(scene, c, space, h.system, s, z, r.dropper_forces);
     // Converged: the lengths move by less than 1e-10 m, or they have reached the
     // round-off of the static solves (the iteration contracts by about 1/250
     // per step; with Hermite elements at h = 0.125 m the solves' round-off

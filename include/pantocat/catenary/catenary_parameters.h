@@ -4,6 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <utility>
 #include <vector>
 
 namespace pantocat
@@ -24,7 +25,14 @@ struct WireParameters
 enum class DropperDesign
 {
   given,   ///< Catenary/Droppers/Lengths as given (the paper's 0.95 m)
-  designed ///< form-finding: the static contact wire on the pre-sag at every dropper
+  designed ///< form-finding: the static contact wire on its target at every dropper
+};
+
+/// Where the pre-sag parabola of a span is zero (Catenary/Droppers/Pre-sag reference).
+enum class PresagReference
+{
+  supports,              ///< at the span's supports (x from its first support)
+  first_and_last_dropper ///< at the span's first and last dropper (the circulated data)
 };
 
 /// How the carrier is held at the supports between spans.
@@ -85,10 +93,19 @@ struct CatenaryParameters
   DropperDesign design = DropperDesign::given;
   /**
    * Pre-sag s [m] of the contact wire, for the design: at the dropper points
-   * the static contact wire lies on z = -4 s (x/l)(1 - x/l) (x from the span's
-   * first support, l the span length), zero at the supports.
+   * the static contact wire lies on z = -4 s xi (1 - xi), zero at the two
+   * ends of its reference (presag_reference): xi = (x - x_0)/(x_1 - x_0) with
+   * x_0, x_1 the span's supports or its first and last dropper
+   * (doc/catenaries.md, "The static design").
    */
   double presag = 0.;
+  PresagReference presag_reference = PresagReference::supports;
+  /**
+   * Target heights z_j [m] of the static contact wire at every dropper of the
+   * section (z = 0 at the steady arms, negative below), for the design; they
+   * replace the pre-sag. Empty: the pre-sag's (dropper_target_heights()).
+   */
+  std::vector<double> target_heights;
 
   /// Point masses (clamps, half droppers, steady arms) in the mass matrix too,
   /// not only as loads (the paper: loads only, Eq. (4)).
@@ -141,10 +158,13 @@ struct CatenaryParameters
   /// Positions of the steady arms (Supports/Steady arm supports), increasing.
   std::vector<double> steady_arm_positions() const;
 
-  /// Target height of the static contact wire at @p x in span @p k (pre-sag parabola).
-  double presag_height(unsigned int k, double x) const;
-  /// presag_height() at every dropper, in O(n) for all of them.
-  std::vector<double> dropper_presag_heights() const;
+  /**
+   * The target height z_j [m] of the static contact wire at every dropper, the
+   * heights the design (Design = designed) puts it on: target_heights when
+   * given, else the pre-sag parabola of each span in its presag_reference. In
+   * O(n) for all of them.
+   */
+  std::vector<double> dropper_target_heights() const;
 
   /// Gravity load of a clamp and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2)
   /// g, Eq. (4), on the wire it hangs from (@p carrier_side: the carrier or its
@@ -180,6 +200,14 @@ private:
   /// Spring supports with a stiffness; steady arms only between spans, in
   /// increasing order (section ends are anchors), and only with a stiffness.
   void check_supports() const;
+  /// Target heights one per dropper, not together with a pre-sag; a pre-sag
+  /// zero at the first and last dropper only in spans with two droppers or more.
+  void check_targets() const;
+  /// Where each span's pre-sag parabola is zero: x_0 and x_1 - x_0 of every span.
+  std::vector<std::pair<double, double>> presag_chords() const;
+  /// The section's target heights from the @p given ones, one per dropper of a
+  /// span (when @p one_list of positions serves every span) or of the section.
+  void place_target_heights(const std::vector<double>& given, bool one_list);
   /// The section's droppers from the per-span @p positions and the @p lengths given.
   void place_droppers(const std::vector<std::vector<double>>& positions,
                       const std::vector<double>& lengths);

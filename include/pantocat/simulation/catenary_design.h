@@ -23,8 +23,9 @@ struct CatenaryDesignResult
  *
  *  - Design = designed: the dropper lengths l_j such that, under gravity, the
  *    clamp masses and the dropper weights, with every dropper taut and the
- *    supports in place, the static contact wire passes through the pre-sag
- *    heights z_j = presag_height() at the droppers and through 0 at the steady
+ *    supports in place, the static contact wire passes through the target
+ *    heights z_j = CatenaryParameters::dropper_target_heights() at the droppers
+ *    (Target heights, or the pre-sag parabola) and through 0 at the steady
  *    arms, and the carrier through l_c at the supports. Step 1 solves the
  *    contact wire with these heights as bilateral constraints: their forces
  *    are the dropper tensions F_j. Step 2 loads the carrier with -F_j at the
@@ -46,7 +47,8 @@ struct CatenaryDesignResult
  * with @p column_budget = 0 (see StaticEquilibriumSolver; the results agree
  * to round-off).
  *
- * Throws InputError when the pre-sag asks for a dropper of length <= 0.
+ * Throws InputError, naming Pre-sag or Target heights, when the targets ask
+ * for a dropper of length <= 0 or one that would have to push.
  */
 CatenaryDesignResult
 design_catenary(const SceneParameters& scene, const CatenaryParameters& catenary,
