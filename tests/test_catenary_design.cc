@@ -11,6 +11,7 @@
 #include "support/case_files.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -80,7 +81,7 @@ TEST(CatenaryDesign, ASectionWithSteadyArmsAndSprungCarrierRestsOnItsDesign)
               "Catenary/Number of spans=3", "Catenary/Droppers/Pre-sag=0.065",
               "Catenary/Supports/Steady arm stiffness=2673.58",
               "Catenary/Supports/Steady arm mass=1",
-              "Catenary/Supports/Carrier support=spring"});
+              "Catenary/Supports/Messenger support=spring"});
     const CaseRunner runner(p.make_case());
     EXPECT_LT(height_error(runner), 1e-9) << method;
     const CatenaryParameters& c = runner.case_data().catenary;
@@ -304,4 +305,38 @@ TEST(CatenaryDesign, TheSaddlePointWayDesignsTheSameSection)
     EXPECT_NEAR(dense.catenary.steady_arm_preloads[k],
                 sparse.catenary.steady_arm_preloads[k], 1e-9)
         << "steady arm " << k + 1;
+}
+
+// The messenger's old names (the paper's "carrier") read as the new ones, on
+// the paper's benchmark: the subsection Catenary/Carrier and the entries
+// Supports/Carrier support (stiffness) give the same values as
+// Catenary/Messenger and Supports/Messenger support (stiffness), and the
+// parameters a run prints (parameters.prm, --print-parameters) hold the new
+// subsection only.
+TEST(CatenaryInput, TheMessengersOldNamesReadAsTheNewOnes)
+{
+  const auto catenary = [](const std::vector<std::string>& settings)
+  { return read_case(source_file("prm/benchmark-32.prm"), settings).catenary; };
+  const CatenaryParameters old_names = catenary(
+      {"Catenary/Carrier/Tension=17000", "Catenary/Supports/Carrier support=spring",
+       "Catenary/Supports/Carrier support stiffness=4e5"});
+  const CatenaryParameters new_names = catenary(
+      {"Catenary/Messenger/Tension=17000", "Catenary/Supports/Messenger support=spring",
+       "Catenary/Supports/Messenger support stiffness=4e5"});
+  EXPECT_EQ(old_names.carrier.tension, 17000.);
+  EXPECT_EQ(new_names.carrier.tension, 17000.);
+  EXPECT_EQ(old_names.carrier_support, CarrierSupport::spring);
+  EXPECT_EQ(new_names.carrier_support, CarrierSupport::spring);
+  EXPECT_EQ(old_names.carrier_support_stiffness, 4e5);
+  EXPECT_EQ(new_names.carrier_support_stiffness, 4e5);
+
+  dealii::ParameterHandler prm;
+  ProgramParameters::declare_parameters(prm);
+  const std::string printed = printed_parameters(prm, dealii::ParameterHandler::PRM);
+  EXPECT_NE(printed.find("  subsection Messenger\n"), std::string::npos);
+  EXPECT_EQ(printed.find("subsection Carrier"), std::string::npos);
+  const nlohmann::json json =
+      nlohmann::json::parse(printed_parameters(prm, dealii::ParameterHandler::JSON));
+  EXPECT_TRUE(json["Catenary"].contains("Messenger"));
+  EXPECT_FALSE(json["Catenary"].contains("Carrier"));
 }

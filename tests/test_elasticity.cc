@@ -36,7 +36,7 @@ ProgramParameters lone_wire(const std::string& method, const unsigned int n,
                             const unsigned int span)
 {
   return static_case(
-      {"Scene/Carrier=rigid", "Scene/Droppers=absent", "Scene/Pantograph=absent",
+      {"Scene/Messenger=rigid", "Scene/Droppers=absent", "Scene/Pantograph=absent",
        std::string("Scene/Contact wire bending=") + (bending ? "true" : "false"),
        "Catenary/Span=20", "Catenary/Number of spans=" + std::to_string(spans),
        "Discretisation/Method=" + method,

@@ -43,12 +43,12 @@ TEST(Robustness, AScenarioWithoutUnknownsIsRefusedWithItsParameters)
 {
   dealii::ParameterHandler prm;
   ProgramParameters::declare_parameters(prm);
-  prm.parse_input_from_string("subsection Scene\n set Carrier = rigid\n"
+  prm.parse_input_from_string("subsection Scene\n set Messenger = rigid\n"
                               " set Contact wire = rigid\n set Pantograph = absent\n"
                               " set Droppers = absent\nend\n");
   ProgramParameters p;
   const std::string message = input_error_of([&] { p.parse_parameters(prm); });
-  EXPECT_EQ(message.rfind("Scene/Pantograph = absent: with Carrier = rigid and Contact "
+  EXPECT_EQ(message.rfind("Scene/Pantograph = absent: with Messenger = rigid and Contact "
                           "wire = rigid the scene has no unknowns",
                           0),
             0u)

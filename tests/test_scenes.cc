@@ -274,10 +274,10 @@ TEST(Scene, ACarrierWithBendingIsAssembledAsTheContactWire)
   {
     ProgramParameters p = shipped_scene(
         "benchmark.prm",
-        {"Scene/Pantograph=absent", "Scene/Carrier bending=true",
-         "Discretisation/Carrier element=cubic Hermite",
+        {"Scene/Pantograph=absent", "Scene/Messenger bending=true",
+         "Discretisation/Messenger element=cubic Hermite",
          "Discretisation/Method=" + method, "Discretisation/Number of intervals=50",
-         "Catenary/Carrier/Bending stiffness=1"});
+         "Catenary/Messenger/Bending stiffness=1"});
     p.catenary.carrier = p.catenary.contact_wire;
     const auto space = create_catenary_discretisation(p.catenary, p.discretisation);
     const BuiltScene s = build_scene(p.scene, p.catenary, *space);
@@ -298,15 +298,15 @@ TEST(Scene, CarrierBendingNeedsAnElementWithSecondDerivatives)
 {
   try
   {
-    shipped_scene("benchmark.prm",
-                  {"Scene/Carrier bending=true", "Catenary/Carrier/Bending stiffness=1",
-                   "Discretisation/Method=fem"});
+    shipped_scene("benchmark.prm", {"Scene/Messenger bending=true",
+                                    "Catenary/Messenger/Bending stiffness=1",
+                                    "Discretisation/Method=fem"});
     FAIL() << "linear Lagrange carrier with bending accepted";
   }
   catch (const InputError& e)
   {
     EXPECT_NE(
-        std::string(e.what()).find("Discretisation/Carrier element = linear Lagrange"),
+        std::string(e.what()).find("Discretisation/Messenger element = linear Lagrange"),
         std::string::npos)
         << e.what();
   }

@@ -374,7 +374,7 @@ TEST(SweepValues, ValuesThatAreTheSameRunAreRefusedNamingTheValue)
   EXPECT_NE(sweep_refusal("parameter sweep",
                           {{"Parameter", "Catenary/Contact wire/Tension"},
                            {"Values", "2e4, 21000"},
-                           {"Second parameter", "Catenary/Carrier/Tension"},
+                           {"Second parameter", "Catenary/Messenger/Tension"},
                            {"Second values", "1.6e4 to 1.8e4 step 1e3, 17000"}})
                 .find("Sweep/Second values = 1.6e4 to 1.8e4 step 1e3, 17000: "),
             std::string::npos);

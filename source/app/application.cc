@@ -34,8 +34,8 @@ void print_parameters(const std::string& format)
 {
   dealii::ParameterHandler prm;
   ProgramParameters::declare_parameters(prm);
-  prm.print_parameters(std::cout, format == "json" ? dealii::ParameterHandler::JSON
-                                                   : dealii::ParameterHandler::PRM);
+  std::cout << printed_parameters(prm, format == "json" ? dealii::ParameterHandler::JSON
+                                                        : dealii::ParameterHandler::PRM);
 }
 
 /// The whole content of @p file, if it is a regular file (not a link) of at most 16 MiB.
@@ -87,11 +87,10 @@ public:
         throw InputError(what + (std::filesystem::path(dir) / name).string() +
                          " is a directory; a run writes a file of that name there");
     previous = content_of(parameters);
-    std::ostringstream text;
-    prm.print_parameters(text, dealii::ParameterHandler::PRM);
     try
     {
-      write_file_atomically(parameters.string(), text.str());
+      write_file_atomically(parameters.string(),
+                            printed_parameters(prm, dealii::ParameterHandler::PRM));
     }
     catch (const SimulationError& e)
     {

@@ -2,6 +2,9 @@
 #include <pantocat/app/parameter_input.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/safe_files.h>
+#include <pantocat/catenary/catenary_parameters.h>
+
+#include <nlohmann/json.hpp>
 
 #include <deal.II/base/exceptions.h>
 #include <deal.II/base/patterns.h>
@@ -295,6 +298,37 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
       message = message.substr(colon + 3);
     throw InputError("--set " + setting + ": " + with_suggestion(prm, message));
   }
+}
+
+std::string printed_parameters(const dealii::ParameterHandler& prm,
+                               const dealii::ParameterHandler::OutputStyle style)
+{
+  std::ostringstream printed;
+  prm.print_parameters(printed, style);
+  const std::string old = CatenaryParameters::old_messenger_subsection;
+  if (style & dealii::ParameterHandler::JSON)
+  {
+    nlohmann::ordered_json json = nlohmann::ordered_json::parse(printed.str());
+    json["Catenary"].erase(old);
+    return json.dump(2) + "\n";
+  }
+  // PRM: drop the lines from "  subsection Carrier" in Catenary to its "  end"
+  // and the blank line after it.
+  std::istringstream in(printed.str());
+  std::string out, line, section;
+  bool skipping = false, after = false;
+  while (std::getline(in, line))
+  {
+    if (line.rfind("subsection ", 0) == 0)
+      section = line.substr(11);
+    if (!skipping && section == "Catenary" && line == "  subsection " + old)
+      skipping = true;
+    else if (skipping && line == "  end")
+      skipping = false, after = true;
+    else if (!skipping && !(after && line.empty()))
+      out += line + "\n", after = false;
+  }
+  return out;
 }
 
 void check_parameter_file(const std::string& file)

@@ -5,6 +5,8 @@
 
 #include <deal.II/base/utilities.h>
 
+#include <iostream>
+
 namespace pantocat
 {
 bool is_sweep(const RunMode mode)
@@ -154,6 +156,7 @@ void read_program_parameters(dealii::ParameterHandler& prm, const std::string& f
   dealii::ParameterHandler first_pass;
   ProgramParameters::declare_parameters(first_pass);
   read_parameter_file(first_pass, file, overrides, true);
+  CatenaryParameters::move_old_names(first_pass, std::cerr);
   const unsigned int n = SceneParameters::number_of_pantographs(first_pass);
   first_pass.enter_subsection("Scene");
   first_pass.set("Number of pantographs", "1");
@@ -162,5 +165,6 @@ void read_program_parameters(dealii::ParameterHandler& prm, const std::string& f
   scene.parse_parameters(first_pass);
   ProgramParameters::declare_parameters(prm, n, scene.pantographs[0]);
   read_parameter_file(prm, file, overrides);
+  CatenaryParameters::move_old_names(prm, std::cerr);
 }
 } // namespace pantocat

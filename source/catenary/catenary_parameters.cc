@@ -124,7 +124,7 @@ void declare_wire(dealii::ParameterHandler& prm, const WireParameters& defaults,
   prm.declare_entry("Bending stiffness", number_to_string(defaults.bending_stiffness),
                     Double(0.),
                     beam ? "E I [N m^2], >= 0 (Euler-Bernoulli beam)."
-                         : "E I [N m^2], >= 0: used only with Scene/Carrier bending = "
+                         : "E I [N m^2], >= 0: used only with Scene/Messenger bending = "
                            "true (the paper's carrier is a string).");
   prm.declare_entry("Damping", number_to_string(defaults.damping), Double(0.),
                     "Viscous damping beta [N s/m^2], >= 0.");
@@ -154,6 +154,44 @@ void parse_wire(dealii::ParameterHandler& prm, WireParameters& wire)
   wire.damping = prm.get_double("Damping");
 }
 } // namespace
+
+void CatenaryParameters::move_old_names(dealii::ParameterHandler& prm,
+                                        std::ostream& warnings)
+{
+  dealii::ParameterHandler defaults;
+  declare_parameters(defaults);
+  defaults.enter_subsection("Catenary");
+  defaults.enter_subsection("Messenger");
+  prm.enter_subsection("Catenary");
+  bool moved = false;
+  for (const char* entry : {"Mass per length", "Tension", "Bending stiffness", "Damping"})
+  {
+    const std::string given = [&]
+    {
+      prm.enter_subsection(old_messenger_subsection);
+      const std::string value = prm.get(entry);
+      prm.set(entry, defaults.get(entry));
+      prm.leave_subsection();
+      return value;
+    }();
+    if (given == defaults.get(entry))
+      continue;
+    prm.enter_subsection("Messenger");
+    if (prm.get(entry) != defaults.get(entry))
+      throw InputError(std::string("Catenary/Carrier/") + entry + " = " + given +
+                       ": the messenger's entry is given under its old name and as "
+                       "Catenary/Messenger/" +
+                       entry + " = " + prm.get(entry) +
+                       "; give it once, as Catenary/Messenger/" + entry);
+    prm.set(entry, given);
+    prm.leave_subsection();
+    moved = true;
+  }
+  prm.leave_subsection();
+  if (moved)
+    warnings << "pantocat-fem: warning: subsection Catenary/Carrier is the old name of "
+                "Catenary/Messenger (accepted; use the new name)\n";
+}
 
 void CatenaryParameters::place_droppers(const std::vector<std::vector<double>>& positions,
                                         const std::vector<double>& lengths)
@@ -249,9 +287,12 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_alias("Encumbrance", "Support height", true);
   prm.declare_entry("Gravity", "9.81", Double(0.),
                     "Gravitational acceleration g [m/s^2].");
-  prm.enter_subsection("Carrier");
-  declare_wire(prm, d.carrier, false);
-  prm.leave_subsection();
+  for (const char* messenger : {"Messenger", old_messenger_subsection})
+  {
+    prm.enter_subsection(messenger);
+    declare_wire(prm, d.carrier, false);
+    prm.leave_subsection();
+  }
   prm.enter_subsection("Contact wire");
   declare_wire(prm, d.contact_wire, true);
   prm.leave_subsection();
@@ -300,12 +341,15 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "paper); true: they (and steady-arm masses) are in the mass matrix "
                     "too.");
   prm.enter_subsection("Supports");
-  prm.declare_entry("Carrier support", "fixed",
+  prm.declare_entry("Messenger support", "fixed",
                     dealii::Patterns::Selection("fixed|spring"),
-                    "The carrier at the supports between spans: fixed at height l_c, or "
-                    "on a vertical spring preloaded to hold it there statically.");
-  prm.declare_entry("Carrier support stiffness", "5e5", Double(0.),
-                    "[N/m], Carrier support = spring.");
+                    "The messenger (the paper's carrier) at the supports between spans: "
+                    "fixed at height l_c, or on a vertical spring preloaded to hold it "
+                    "there statically.");
+  prm.declare_alias("Messenger support", "Carrier support", true);
+  prm.declare_entry("Messenger support stiffness", "5e5", Double(0.),
+                    "[N/m], Messenger support = spring.");
+  prm.declare_alias("Messenger support stiffness", "Carrier support stiffness", true);
   prm.declare_entry("Steady arm stiffness", "0", Double(0.),
                     "Vertical stiffness [N/m] of the steady arm holding the contact wire "
                     "at each support between spans, preloaded so that the static contact "
@@ -341,7 +385,7 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
       dealii::Utilities::split_string_list(prm.get("Span lengths")));
   support_height = prm.get_double("Encumbrance");
   gravity = prm.get_double("Gravity");
-  prm.enter_subsection("Carrier");
+  prm.enter_subsection("Messenger");
   parse_wire(prm, carrier);
   prm.leave_subsection();
   prm.enter_subsection("Contact wire");
@@ -371,9 +415,9 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.leave_subsection();
   point_mass_inertia = prm.get_bool("Point mass inertia");
   prm.enter_subsection("Supports");
-  carrier_support = prm.get("Carrier support") == "spring" ? CarrierSupport::spring
-                                                           : CarrierSupport::fixed;
-  carrier_support_stiffness = prm.get_double("Carrier support stiffness");
+  carrier_support = prm.get("Messenger support") == "spring" ? CarrierSupport::spring
+                                                             : CarrierSupport::fixed;
+  carrier_support_stiffness = prm.get_double("Messenger support stiffness");
   steady_arm_stiffness = prm.get_double("Steady arm stiffness");
   steady_arm_mass = prm.get_double("Steady arm mass");
   steady_arm_supports.clear();
@@ -405,9 +449,9 @@ void CatenaryParameters::check() const
           "be > 0");
   for (const double l : span_lengths)
     require(l > 0., "Catenary/Span lengths", l, "must be > 0");
-  require(carrier.mass_per_length > 0., "Catenary/Carrier/Mass per length",
+  require(carrier.mass_per_length > 0., "Catenary/Messenger/Mass per length",
           carrier.mass_per_length, "must be > 0");
-  require(carrier.tension > 0., "Catenary/Carrier/Tension", carrier.tension,
+  require(carrier.tension > 0., "Catenary/Messenger/Tension", carrier.tension,
           "must be > 0");
   require(contact_wire.mass_per_length > 0., "Catenary/Contact wire/Mass per length",
           contact_wire.mass_per_length, "must be > 0");
@@ -472,9 +516,9 @@ void CatenaryParameters::check_targets() const
 void CatenaryParameters::check_supports() const
 {
   require(carrier_support != CarrierSupport::spring || carrier_support_stiffness > 0.,
-          "Catenary/Supports/Carrier support stiffness", carrier_support_stiffness,
-          "must be > 0 with Carrier support = spring (a spring of stiffness 0 holds "
-          "nothing; Carrier support = fixed holds the carrier rigidly)");
+          "Catenary/Supports/Messenger support stiffness", carrier_support_stiffness,
+          "must be > 0 with Messenger support = spring (a spring of stiffness 0 holds "
+          "nothing; Messenger support = fixed holds the messenger rigidly)");
   require(steady_arm_supports.empty() || steady_arm_stiffness > 0.,
           "Catenary/Supports/Steady arm supports", list_to_string(steady_arm_supports),
           "names supports for steady arms, but Steady arm stiffness = 0 means no steady "

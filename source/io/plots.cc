@@ -167,7 +167,8 @@ PlotScript contact_force_statistics_script(const std::string& dir,
        << gnuplot_output("contact_force_statistics.png") << '\n'
        << "set grid\nset autoscale xfix\nset offsets 0, 0, graph 0.05, graph 0.05\nset "
           "key outside right\n"
-       << "set xlabel 'x_p [m]'\nset ylabel 'lambda_p [N]'\n"
+       << "set xlabel 'pantograph position x_p [m]'\nset ylabel 'contact force lambda_p "
+          "[N]'\n"
        << "set title " << gnuplot_string(title + ": contact force and its statistics")
        << '\n';
     const bool window = f.n_points > 0; // else: no statistics to draw
@@ -182,7 +183,7 @@ PlotScript contact_force_statistics_script(const std::string& dir,
     write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
     if (s.filtered)
       write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
-    gp << "plot $raw using 1:2 with lines lc rgb '#b0b0b0' title 'lambda_p'";
+    gp << "plot $raw using 1:2 with lines lc rgb '#b0b0b0' title 'contact force'";
     if (s.filtered)
       gp << ", $filtered using 1:2 with lines lc rgb '#0060c0' title 'low pass "
          << s.filter_cutoff_hz << " Hz'";
@@ -326,7 +327,7 @@ void plot_over_x(std::ostream& gp, const ForceOverXPlot& p, const std::string& c
   write_datablock(gp, "raw", envelope(data[0], data[1], envelope_bins));
   if (s.filtered)
     write_datablock(gp, "filtered", envelope(data[0], data[2], envelope_bins));
-  gp << "plot $raw using 1:2 with lines lc rgb '#a0a0a0' title 'lambda_p (raw)'";
+  gp << "plot $raw using 1:2 with lines lc rgb '#a0a0a0' title 'contact force (raw)'";
   if (s.filtered)
     gp << ", $filtered using 1:2 with lines lw 1.5 lc rgb '#0060c0' title "
        << gnuplot_string("low pass " + number_to_string(s.filter_cutoff_hz, 4) +
@@ -446,9 +447,10 @@ PlotScript time_series_script(const std::string& dir,
     std::string png, what, ylabel;
     std::vector<std::string> names; ///< of the columns that exist
   };
-  std::vector<Plot> plots{{"contact_force.png", "contact force", "lambda_p [N]", {}},
-                          {"dropper_forces.png", "dropper forces", "lambda_d [N]", {}},
-                          {"pantograph.png", "pantograph", "w [m]", {}}};
+  std::vector<Plot> plots{
+      {"contact_force.png", "contact force", "contact force lambda_p [N]", {}},
+      {"dropper_forces.png", "dropper forces", "dropper force lambda_d [N]", {}},
+      {"pantograph.png", "pantograph", "pantograph displacement w [m]", {}}};
   const std::vector<std::string>* lists[] = {&contact_forces, &dropper_forces,
                                              &coordinates};
   for (unsigned int i = 0; i < plots.size(); ++i)
@@ -467,7 +469,7 @@ PlotScript time_series_script(const std::string& dir,
                          "# The curves of time_series.csv, kept as they are drawn: per "
                          "half pixel\n# the lowest and the highest point.\n");
     gp << "set terminal pngcairo size 900,500 noenhanced\n"
-       << "set grid\nset xlabel 't [s]'\nset key outside right\n";
+       << "set grid\nset xlabel 'time t [s]'\nset key outside right\n";
     std::vector<std::string> plotted;
     for (const Plot& plot : plots)
       plotted.insert(plotted.end(), plot.names.begin(), plot.names.end());

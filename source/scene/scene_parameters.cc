@@ -105,20 +105,25 @@ void SceneParameters::declare_parameters(dealii::ParameterHandler& prm,
                                          const PantographCase& first)
 {
   prm.enter_subsection("Scene");
-  prm.declare_entry("Carrier", "elastic", Selection("elastic|rigid"),
-                    "elastic: the carrier is a string, Eq. (2); rigid: it stays at the "
-                    "support height l_c (no unknowns).");
+  prm.declare_entry("Messenger", "elastic", Selection("elastic|rigid"),
+                    "elastic: the messenger (the paper's carrier) is a string, Eq. (2); "
+                    "rigid: it stays at the support height l_c (no unknowns).");
+  prm.declare_alias("Messenger", "Carrier", true);
   prm.declare_entry("Contact wire", "elastic", Selection("elastic|rigid"),
                     "elastic: the contact wire is an Euler-Bernoulli beam, Eq. (2); "
                     "rigid: it stays at height 0 (no unknowns; e.g. a pantograph "
                     "pressing on a rigid wire).");
-  prm.declare_entry("Carrier tension", "true", Bool(), "Tension T_c of the carrier.");
+  prm.declare_entry("Messenger tension", "true", Bool(),
+                    "Tension T_c of the messenger (the paper's carrier).");
+  prm.declare_alias("Messenger tension", "Carrier tension", true);
   prm.declare_entry("Contact wire tension", "true", Bool(),
                     "Tension T_w of the contact wire.");
-  prm.declare_entry("Carrier bending", "false", Bool(),
-                    "Bending stiffness E I_c (Catenary/Carrier/Bending stiffness) of the "
-                    "carrier: the paper's carrier is a string; with FEM this needs "
-                    "Discretisation/Carrier element = cubic Hermite.");
+  prm.declare_entry(
+      "Messenger bending", "false", Bool(),
+      "Bending stiffness E I_c (Catenary/Messenger/Bending stiffness) of the "
+      "carrier: the paper's carrier is a string; with FEM this needs "
+      "Discretisation/Messenger element = cubic Hermite.");
+  prm.declare_alias("Messenger bending", "Carrier bending", true);
   prm.declare_entry("Contact wire bending", "true", Bool(),
                     "Bending stiffness E I of the contact wire.");
   prm.declare_entry("Gravity", "true", Bool(),
@@ -230,13 +235,13 @@ std::string to_string(const DropperModel model)
 void SceneParameters::parse_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Scene");
-  carrier = prm.get("Carrier") == "rigid" ? WireModel::rigid : WireModel::elastic;
+  carrier = prm.get("Messenger") == "rigid" ? WireModel::rigid : WireModel::elastic;
   contact_wire =
       prm.get("Contact wire") == "rigid" ? WireModel::rigid : WireModel::elastic;
-  carrier_tension = prm.get_bool("Carrier tension");
+  carrier_tension = prm.get_bool("Messenger tension");
   contact_wire_tension = prm.get_bool("Contact wire tension");
   contact_wire_bending = prm.get_bool("Contact wire bending");
-  carrier_bending = prm.get_bool("Carrier bending");
+  carrier_bending = prm.get_bool("Messenger bending");
   gravity = prm.get_bool("Gravity");
   damping = prm.get_bool("Damping");
   clamp_and_dropper_masses = prm.get_bool("Clamp and dropper masses");
@@ -310,9 +315,9 @@ void SceneParameters::check_spacing(const double length, const double margin) co
 void SceneParameters::check() const
 {
   if (carrier == WireModel::elastic)
-    require(carrier_tension || carrier_bending, "Scene/Carrier tension", "false",
-            "with Carrier bending = false the elastic carrier has no stiffness; enable "
-            "one of them or set Carrier = rigid");
+    require(carrier_tension || carrier_bending, "Scene/Messenger tension", "false",
+            "with Messenger bending = false the elastic carrier has no stiffness; enable "
+            "one of them or set Messenger = rigid");
   if (contact_wire == WireModel::elastic)
     require(contact_wire_tension || contact_wire_bending, "Scene/Contact wire tension",
             "false",

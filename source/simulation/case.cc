@@ -60,12 +60,13 @@ void Case::check() const
   scene.check();
   if (scene.carrier_bending && scene.carrier == WireModel::elastic)
   {
-    require(catenary.carrier.bending_stiffness > 0., "Catenary/Carrier/Bending stiffness",
-            catenary.carrier.bending_stiffness, "must be > 0 with Scene/Carrier bending");
+    require(catenary.carrier.bending_stiffness > 0.,
+            "Catenary/Messenger/Bending stiffness", catenary.carrier.bending_stiffness,
+            "must be > 0 with Scene/Messenger bending");
     require(discretisation.method == SpaceMethod::fdm ||
                 discretisation.carrier_element == CarrierElement::cubic_hermite,
-            "Discretisation/Carrier element", "linear Lagrange",
-            "C0 elements have no bending energy: Scene/Carrier bending needs cubic "
+            "Discretisation/Messenger element", "linear Lagrange",
+            "C0 elements have no bending energy: Scene/Messenger bending needs cubic "
             "Hermite (or Method = fdm)");
   }
   // k_d = 0 would be Compliance{0}, a rigid dropper: refused, not reinterpreted.
@@ -125,7 +126,7 @@ void Case::check_dynamics() const
   require(scene.carrier == WireModel::elastic ||
               scene.contact_wire == WireModel::elastic || scene.has_pantograph_body(),
           "Scene/Pantograph", scene.pantographs[0].model,
-          "with Carrier = rigid and Contact wire = rigid the scene has no unknowns, "
+          "with Messenger = rigid and Contact wire = rigid the scene has no unknowns, "
           "nothing to integrate in time; make a wire elastic or choose two-mass | "
           "three-mass | mass-chain");
   const PantographParameters& p = scene.pantographs[0].parameters;

@@ -2,7 +2,6 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/space/discretisation_parameters.h>
 
-
 #include <sstream>
 
 namespace pantocat
@@ -25,11 +24,12 @@ void DiscretisationParameters::declare_parameters(dealii::ParameterHandler& prm)
   prm.declare_entry("Method", "fem", dealii::Patterns::Selection("fem|fdm"),
                     "fem: linear Lagrange carrier and C1 cubic Hermite contact wire "
                     "(Sec. 4.2); fdm: second-order finite differences (Sec. 4.3).");
-  prm.declare_entry("Carrier element", "linear Lagrange",
+  prm.declare_entry("Messenger element", "linear Lagrange",
                     dealii::Patterns::Selection("linear Lagrange|cubic Hermite"),
                     "FEM element of the carrier: linear Lagrange for the string of the "
                     "paper (Sec. 4.2); cubic Hermite (C1, as the contact wire) for a "
-                    "carrier with bending stiffness (Scene/Carrier bending).");
+                    "carrier with bending stiffness (Scene/Messenger bending).");
+  prm.declare_alias("Messenger element", "Carrier element", true);
   prm.declare_entry("Number of intervals", "500", dealii::Patterns::Integer(2),
                     "N + 1: number of cells of the equidistant grid of each wire.");
   prm.declare_entry("Load shape", "smoothed delta",
@@ -46,7 +46,7 @@ void DiscretisationParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.enter_subsection("Discretisation");
   method = space_method_from_string(prm.get("Method"));
   n_intervals = prm.get_integer("Number of intervals");
-  carrier_element = prm.get("Carrier element") == "cubic Hermite"
+  carrier_element = prm.get("Messenger element") == "cubic Hermite"
                         ? CarrierElement::cubic_hermite
                         : CarrierElement::linear_lagrange;
   load_shape =

@@ -230,6 +230,16 @@ std::vector<std::pair<double, double>> curve_points(const SweepTable& t,
   return points;
 }
 
+/// The axis label of statistic @p s of a sweep's table, with its unit.
+std::string statistic_label(const std::string& s)
+{
+  if (s == "contact_loss_percent")
+    return "contact loss [%]";
+  if (s == "max_support_uplift_m")
+    return "max steady-arm uplift [m]";
+  return "contact force: " + s + " [N]";
+}
+
 /**
  * The parameter sweep's plot of statistic @p s for pantograph @p p: one curve
  * per value of the second entry (raw, and filtered if there is a low pass),
@@ -263,8 +273,8 @@ void parameter_script(std::ostream& gp, const std::string& png, const SweepTable
                                                            " = " + second));
     }
   gp << terminal_for(png, 900, 600) << "set grid\nset key below\nset xlabel "
-     << gnuplot_string(t.key_columns[0]) << "\nset ylabel " << gnuplot_string(s)
-     << "\nset title "
+     << gnuplot_string(t.key_columns[0]) << "\nset ylabel "
+     << gnuplot_string(statistic_label(s)) << "\nset title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
      << "\nplot ";
   for (std::size_t k = 0; k < curves.size(); ++k)

@@ -16,7 +16,7 @@ std::unique_ptr<TimeIntegrator> create_time_integrator(const SemiDiscreteSystem&
   if (system.n_dofs() == 0)
     throw InputError("Scene: the scene has no unknowns (both wires rigid, no pantograph "
                      "body), so there is nothing to integrate in time; make a wire "
-                     "elastic (Scene/Carrier, Scene/Contact wire) or choose "
+                     "elastic (Scene/Messenger, Scene/Contact wire) or choose "
                      "Scene/Pantograph = two-mass | three-mass | mass-chain");
   return integrator_entry(p.integrator).create(system, p);
 }

@@ -37,6 +37,14 @@ void apply_parameter_override(dealii::ParameterHandler& prm, const std::string& 
  */
 void check_parameter_file(const std::string& file);
 
+/**
+ * @p prm printed in @p style (PRM or JSON) without the subsections that are
+ * only read under an old name (Catenary/Carrier, now Catenary/Messenger):
+ * what --print-parameters and a run's parameters.prm show.
+ */
+std::string printed_parameters(const dealii::ParameterHandler& prm,
+                               dealii::ParameterHandler::OutputStyle style);
+
 /// The informative part of an exception's message, on one line.
 std::string one_line_message(const std::exception& e);
 

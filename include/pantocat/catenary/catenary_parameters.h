@@ -181,6 +181,15 @@ struct CatenaryParameters
 
   static void declare_parameters(dealii::ParameterHandler& prm);
   void parse_parameters(dealii::ParameterHandler& prm);
+
+  /// The old name of subsection Catenary/Messenger: declared and read, never printed.
+  static constexpr const char* old_messenger_subsection = "Carrier";
+  /**
+   * Moves what a file or --set gave under the old subsection name
+   * Catenary/Carrier to Catenary/Messenger (resetting the old entries), with
+   * one warning on @p warnings; an entry given under both names is refused.
+   */
+  static void move_old_names(dealii::ParameterHandler& prm, std::ostream& warnings);
   /// Cross-checks; throws InputError naming the parameter.
   void check() const;
 

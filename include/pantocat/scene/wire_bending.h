@@ -7,7 +7,7 @@ namespace pantocat
 /**
  * Bending stiffness of the elastic wires: E I int v'' w'' dx in the weak form
  * (16), the operator K_w of (30). The paper's contact wire is a beam; its
- * carrier a string, which a scene may stiffen (Carrier bending, with C1
+ * carrier a string, which a scene may stiffen (Messenger bending, with C1
  * Hermite elements or FDM).
  */
 class WireBending : public SceneEffect

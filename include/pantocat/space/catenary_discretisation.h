@@ -1,12 +1,12 @@
 #pragma once
 
 #include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/lac/sparse_row.h>
 #include <pantocat/space/discretisation_parameters.h>
 #include <pantocat/space/smoothed_delta.h>
 #include <pantocat/space/stitch_wire_space.h>
 #include <pantocat/system/block_operator.h>
 #include <pantocat/system/semi_discrete_system.h>
-#include <pantocat/lac/sparse_row.h>
 
 #include <functional>
 #include <memory>
@@ -64,7 +64,7 @@ public:
   /**
    * True if @p wire's discretisation carries a bending term: always for FDM
    * (the five-point stencil) and for the FEM contact wire (C1 Hermite); the
-   * FEM carrier only with Carrier element = cubic Hermite.
+   * FEM carrier only with Messenger element = cubic Hermite.
    */
   virtual bool has_bending_element(Wire wire) const = 0;
 
