@@ -417,6 +417,21 @@ void print_dropper_slack(std::ostream& out, const RunRecord& r, const bool detai
 }
 } // namespace
 
+namespace
+{
+/// The columns of print_statistics_side_by_side(): each pantograph in contact.
+std::vector<PantographFigures> pantograph_figures(const RunRecord& r)
+{
+  std::vector<PantographFigures> columns;
+  for (unsigned int k = 0; k < r.contacts.size(); ++k)
+    if (const ContactStatistics* c = r.contacts[k])
+      columns.push_back({r.runner.layout().pantographs[k].name, &c->result(),
+                         slack_in_window(r.statistics, c->result()),
+                         k < r.assessments.size() ? &r.assessments[k] : nullptr});
+  return columns;
+}
+} // namespace
+
 void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed)
 {
   const SimulationLayout& layout = r.runner.layout();
@@ -461,6 +476,13 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
   if (detailed)
     out << "  active-set iterations: " << r.result.integrator.active_set_iterations
         << '\n';
+  if (several && !detailed)
+  {
+    print_statistics_side_by_side(out, pantograph_figures(r));
+    out << "  (each pantograph's raw and low-passed figures and every criterion: "
+           "report.html, Output/Verbosity = detailed)\n";
+    return;
+  }
   for (unsigned int k = 0; k < r.contacts.size(); ++k)
     if (r.contacts[k] != nullptr)
     {

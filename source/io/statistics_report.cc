@@ -308,4 +308,103 @@ void print_assessment(std::ostream& out, const Assessment& a)
   out.flags(flags);
   out.precision(precision);
 }
+
+namespace
+{
+/// One row of print_statistics_side_by_side(): @p label, then a cell per column.
+void side_by_side_row(std::ostream& out, const std::string& label,
+                      const std::vector<std::string>& cells)
+{
+  out << "    " << std::left << std::setw(28) << label << std::right;
+  for (const std::string& cell : cells)
+    out << std::setw(16) << cell;
+  out << '\n';
+}
+
+/// " FAILED: sigma 52 N <= 48.5 N, ..." or " passed" (or " not assessed").
+std::string verdict_line(const Assessment* a)
+{
+  if (a == nullptr || a->criteria.empty())
+    return " not assessed";
+  if (a->passed())
+    return " passed";
+  std::ostringstream failed;
+  failed << std::setprecision(4) << " FAILED:";
+  const char* separator = " ";
+  for (const CriterionResult& c : a->criteria)
+    if (!c.passed)
+      failed << separator << c.quantity << ' ' << c.value << ' ' << c.unit
+             << (c.at_most ? " > " : " <= ") << c.limit << ' ' << c.unit,
+          separator = ", ";
+  return failed.str();
+}
+} // namespace
+
+void print_statistics_side_by_side(std::ostream& out,
+                                   const std::vector<PantographFigures>& columns)
+{
+  const auto flags = out.flags();
+  const auto precision = out.precision();
+  const ContactForceStatistics& first = *columns.front().statistics;
+  out << "  contact-force statistics per pantograph"
+      << (first.filtered ? " (" + number_to_string(first.filter_cutoff_hz, 4) +
+                               " Hz low pass; contact loss of the raw force)"
+                         : "")
+      << ":\n";
+  std::vector<std::string> cells;
+  const auto row = [&](const std::string& label, const auto& cell)
+  {
+    cells.clear();
+    for (const PantographFigures& c : columns)
+      cells.push_back(cell(c));
+    side_by_side_row(out, label, cells);
+  };
+  const auto figure = [](const double value)
+  {
+    std::ostringstream text;
+    text << std::fixed << std::setprecision(2) << value;
+    return text.str();
+  };
+  const auto force = [&](double ForceFigures::*member)
+  {
+    return [&, member](const PantographFigures& c)
+    {
+      const ContactForceStatistics& s = *c.statistics;
+      return figure((s.filtered ? *s.filtered : s.raw).*member);
+    };
+  };
+  row("", [](const PantographFigures& c) { return c.name; });
+  row("window x_p [m]",
+      [](const PantographFigures& c)
+      {
+        return "[" + number_to_string(c.statistics->window.start, 6) + ", " +
+               number_to_string(c.statistics->window.end, 6) + "]";
+      });
+  row("mean F_m [N]", force(&ForceFigures::mean));
+  row("std sigma [N]", force(&ForceFigures::std));
+  row("max [N]", force(&ForceFigures::max));
+  row("min [N]", force(&ForceFigures::min));
+  row("F_m - 3 sigma [N]", force(&ForceFigures::mean_minus_3std));
+  row("contact loss, raw [%]", [&](const PantographFigures& c)
+      { return figure(c.statistics->raw.contact_loss_percent); });
+  row("steady-arm uplift [mm]",
+      [&](const PantographFigures& c)
+      {
+        const auto u = c.statistics->max_steady_arm_uplift();
+        return u ? figure(1e3 * *u) : std::string("-");
+      });
+  row("dropper slack events",
+      [](const PantographFigures& c) { return std::to_string(c.slack_in_window.total); });
+  if (std::any_of(columns.begin(), columns.end(),
+                  [](const PantographFigures& c)
+                  { return c.assessment != nullptr && !c.assessment->criteria.empty(); }))
+  {
+    out << "  assessment (criteria of subsection Assessment, EN 50367 / TSI as commonly "
+           "quoted):\n";
+    for (const PantographFigures& c : columns)
+      out << "    " << c.name << ":" << verdict_line(c.assessment) << '\n';
+  }
+  out.flags(flags);
+  out.precision(precision);
+}
 } // namespace pantocat

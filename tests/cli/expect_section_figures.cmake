@@ -8,6 +8,12 @@ execute_process(COMMAND ${EXE} ${PRM} --set "Output/Output directory=${OUTDIR}"
 if(NOT status EQUAL 0)
   message(FATAL_ERROR "${PRM} failed (${status}): ${err}")
 endif()
+# The screen says what matters in at most 40 lines (doc/evaluation.md, "On screen").
+string(REGEX MATCHALL "\n" newlines "${out}")
+list(LENGTH newlines n_lines)
+if(n_lines GREATER 40)
+  message(FATAL_ERROR "${PRM}: the screen has ${n_lines} lines, more than 40:\n${out}")
+endif()
 file(READ ${OUTDIR}/summary.json summary)
 string(JSON n LENGTH "${summary}" pantographs)
 math(EXPR last "${n} - 1")
@@ -24,8 +30,8 @@ foreach(k RANGE ${last})
   endif()
 endforeach()
 # -DASSESSED=ON|OFF: every pantograph's assessment (subsection Assessment)
-# passed or failed, with its criteria in summary.json.
-if(DEFINED ASSESSED)
+# passed or failed, with its criteria in summary.json (-: not checked).
+if(DEFINED ASSESSED AND NOT ASSESSED STREQUAL "-")
   foreach(k RANGE ${last})
     string(JSON passed GET "${summary}" pantographs ${k} assessment passed)
     string(JSON n_criteria LENGTH "${summary}" pantographs ${k} assessment criteria)

@@ -63,6 +63,26 @@ void print_statistics(std::ostream& out, const ContactForceStatistics& statistic
  */
 void write_assessment(JsonWriter& json, const Assessment& assessment);
 
+/// One pantograph's column of print_statistics_side_by_side().
+struct PantographFigures
+{
+  std::string name;
+  const ContactForceStatistics* statistics;
+  DropperSlackEvents slack_in_window;
+  const Assessment* assessment; ///< null or without criteria: not assessed
+};
+
+/**
+ * The window figures of several pantographs in one table, a column each (the
+ * low-passed figures where there are, the contact loss of the raw force, the
+ * uplift at the steady arms and the dropper slack events in the window), then
+ * one line per pantograph with its verdict and the criteria it fails: the
+ * screen of a run with several pantographs (each pantograph's full block:
+ * Output/Verbosity = detailed).
+ */
+void print_statistics_side_by_side(std::ostream& out,
+                                   const std::vector<PantographFigures>& columns);
+
 /// The assessment as a few lines of text: one per criterion, value, limit, pass or fail.
 void print_assessment(std::ostream& out, const Assessment& assessment);
 
