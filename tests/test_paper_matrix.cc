@@ -105,6 +105,13 @@ TEST(PaperMatrix, FemWithTheImplicitMethods)
   }
 }
 
+// IDA on FEM at 32 m/s (order at most 2, Time integration/IDA maximum order:
+// about 20 s here; order 5 takes 227 s).
+TEST(PaperMatrix, FemWithIdaAt32MetresPerSecond)
+{
+  expect_the_papers_statements({32., SpaceMethod::fem, "ida", 500});
+}
+
 TEST(PaperMatrix, FemWithTheHalfExplicitMethodIsRefusedBeforeItStarts)
 {
   // Its step limit 2/omega_max = 5.37e-6 s on this grid (the paper: 5.3e-6 s):

@@ -14,12 +14,32 @@
 
 #include <algorithm>
 #include <memory>
+#include <regex>
 #include <sstream>
 
 namespace pantocat
 {
 namespace
 {
+/**
+ * The unit of entry @p path ("Catenary/Contact wire/Tension" -> "N"): the
+ * first short bracket of its documentation ("Tensile force T [N], > 0."), or
+ * "" without one.
+ */
+std::string unit_of(const dealii::ParameterHandler& prm, const std::string& path)
+{
+  std::ostringstream printed;
+  prm.print_parameters(printed, dealii::ParameterHandler::JSON);
+  std::istringstream in(printed.str());
+  boost::property_tree::ptree tree;
+  boost::property_tree::read_json(in, tree);
+  const auto doc = tree.get_optional<std::string>(
+      boost::property_tree::ptree::path_type(path + "/documentation", '/'));
+  static const std::regex bracket("\\[([^\\]\\[]{1,12})\\]");
+  std::smatch m;
+  return doc && std::regex_search(*doc, m, bracket) ? m[1].str() : "";
+}
+
 /// The entry @p path ("A/B/Name") of the JSON form of @p tree, if declared.
 const boost::property_tree::ptree* find_entry(const boost::property_tree::ptree& tree,
                                               const std::string& path)
@@ -266,7 +286,8 @@ void run_sweep(const ProgramParameters& p, const dealii::ParameterHandler& prm,
   SweepStudy study(plan, make_run, s,
                    {p.output.directory, p.output.plots,
                     p.catenary.contact_wire.wave_speed(), p.output.report, p.assessment,
-                    p.pantograph().speed, p.statistics.low_pass_cutoff});
+                    p.pantograph().speed, p.statistics.low_pass_cutoff,
+                    plan.kind == SweepKind::parameter ? unit_of(prm, s.entries[0]) : ""});
   study.run(out);
 }
 } // namespace pantocat

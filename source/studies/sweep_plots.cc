@@ -247,7 +247,7 @@ std::string statistic_label(const std::string& s)
  * so that the curves are unbroken and the script redraws without the CSV.
  */
 void parameter_script(std::ostream& gp, const std::string& png, const SweepTable& t,
-                      const unsigned int p, const std::string& s)
+                      const unsigned int p, const std::string& s, const std::string& unit)
 {
   const bool filtered = has_filtered(t, p);
   const std::vector<std::string> variants =
@@ -273,8 +273,8 @@ void parameter_script(std::ostream& gp, const std::string& png, const SweepTable
                                                            " = " + second));
     }
   gp << terminal_for(png, 900, 600) << "set grid\nset key below\nset xlabel "
-     << gnuplot_string(t.key_columns[0]) << "\nset ylabel "
-     << gnuplot_string(statistic_label(s)) << "\nset title "
+     << gnuplot_string(t.key_columns[0] + (unit.empty() ? "" : " [" + unit + "]"))
+     << "\nset ylabel " << gnuplot_string(statistic_label(s)) << "\nset title "
      << gnuplot_string("pantograph " + std::to_string(p) + ": " + s + " in the window")
      << "\nplot ";
   for (std::size_t k = 0; k < curves.size(); ++k)
@@ -419,7 +419,8 @@ void print_monte_carlo_summary(std::ostream& out, const SweepTable& t)
 std::vector<std::string> plot_sweep(const std::string& dir, const std::string& name,
                                     const SweepKind kind, const SweepTable& t,
                                     const double wave_speed,
-                                    const AssessmentCriteria* criteria)
+                                    const AssessmentCriteria* criteria,
+                                    const std::string& key_unit)
 {
   const std::string csv = name + ".csv";
   const std::vector<unsigned int> pantographs = t.pantographs();
@@ -446,7 +447,7 @@ std::vector<std::string> plot_sweep(const std::string& dir, const std::string& n
           if (kind == SweepKind::speed)
             speed_script(gp, csv, file, t, p, wave_speed, criteria);
           else if (kind == SweepKind::parameter)
-            parameter_script(gp, file, t, p, statistic);
+            parameter_script(gp, file, t, p, statistic, key_unit);
           else
             monte_carlo_script(gp, csv, file, t, p);
         gp.close();

@@ -459,7 +459,7 @@ void SweepStudy::write(std::ostream& out) const
   {
     const std::vector<std::string> drawn =
         plot_sweep(dir, name(), plan.kind, table, output.wave_speed,
-                   output.criteria.enabled ? &output.criteria : nullptr);
+                   output.criteria.enabled ? &output.criteria : nullptr, output.key_unit);
     for (const std::string& file : drawn)
       (file.size() > 4 && file.compare(file.size() - 4, 4, ".svg") == 0
            ? pictures.push_back(file)

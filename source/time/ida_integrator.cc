@@ -12,11 +12,12 @@ namespace pantocat
 IdaIntegrator::IdaIntegrator(const SemiDiscreteSystem& system, const double output_step,
                              const double relative_tolerance,
                              const double absolute_tolerance,
-                             const IdaLinearSolver solver, const LinearAlgebra algebra)
+                             const IdaLinearSolver solver, const LinearAlgebra algebra,
+                             const unsigned int maximum_order)
     : TimeIntegrator(system), dt(output_step), rtol(relative_tolerance),
-      atol(absolute_tolerance), linear_solver(solver), n(system.n_dofs()),
-      m(system.n_constraints()), M(make_mass_operator(system, algebra)), rows(system),
-      load_scratch(system.n_dofs())
+      atol(absolute_tolerance), max_order(maximum_order), linear_solver(solver),
+      n(system.n_dofs()), m(system.n_constraints()),
+      M(make_mass_operator(system, algebra)), rows(system), load_scratch(system.n_dofs())
 {
   stats.events_localised = true;
 }
@@ -178,6 +179,7 @@ void IdaIntegrator::initialize(const DynamicState& initial)
             IDARootInit(mem, m, Sundials::roots) == IDA_SUCCESS &&
             IDASetMaxNumSteps(mem, max_steps_per_output_step) == IDA_SUCCESS &&
             IDASetMinStep(mem, min_step_per_output_step * dt) == IDA_SUCCESS &&
+            IDASetMaxOrd(mem, static_cast<int>(max_order)) == IDA_SUCCESS &&
             IDASetErrHandlerFn(mem, keep_error_message, &sun->last_error) == IDA_SUCCESS;
   std::vector<int> direction(m, -1); // gaps and forces falling through zero
   // (A scene without constraints has no roots: IDA refuses directions then.)
@@ -317,7 +319,7 @@ IntegratorEntry IdaIntegrator::registry_entry()
         p.ida_linear_solver == "umfpack"        ? IdaLinearSolver::umfpack
         : p.ida_linear_solver == "trilinos-klu" ? IdaLinearSolver::trilinos_klu
                                                 : IdaLinearSolver::sundials_klu,
-        algebra);
+        algebra, p.ida_maximum_order);
   };
   e.create = [make = e.create_with_linear_algebra](const SemiDiscreteSystem& system,
                                                    const TimeIntegrationParameters& p)

@@ -37,6 +37,11 @@ void TimeIntegrationParameters::declare_parameters(dealii::ParameterHandler& prm
                     "ida: relative tolerance of the local error (q, v).");
   prm.declare_entry("IDA absolute tolerance", "1e-8", dealii::Patterns::Double(0.),
                     "ida: absolute tolerance of the local error (q [m], v [m/s]).");
+  prm.declare_entry("IDA maximum order", "2", dealii::Patterns::Integer(1, 5),
+                    "ida: largest order of its BDF formulas, 1-5. Orders above 2 are not "
+                    "A-stable: on the undamped wires of the paper they shrink the steps "
+                    "to the periods of the highest frequencies (FEM at 32 m/s: 2 runs in "
+                    "21 s, 5 in 227 s; doc/dynamics.md).");
   prm.declare_entry(
       "IDA linear solver", "sundials-klu",
       dealii::Patterns::Selection("sundials-klu|trilinos-klu|umfpack"),
@@ -54,6 +59,7 @@ void TimeIntegrationParameters::parse_parameters(dealii::ParameterHandler& prm)
   prm.enter_subsection("Time integration");
   integrator = prm.get("Integrator");
   ida_relative_tolerance = prm.get_double("IDA relative tolerance");
+  ida_maximum_order = prm.get_integer("IDA maximum order");
   ida_absolute_tolerance = prm.get_double("IDA absolute tolerance");
   ida_linear_solver = prm.get("IDA linear solver");
   rho_infinity = prm.get_double("Spectral radius at infinity");

@@ -54,11 +54,12 @@ void print_monte_carlo_summary(std::ostream& out, const SweepTable& table);
  * value of the second); a Monte Carlo study's histograms. One file per
  * pantograph when there are several; the speed plot with the force limits
  * of @p criteria (target F_m against speed, F_max, sigma <= ratio F_m) if
- * given. Each PNG also as an SVG copy (for the sweep's report). Returns the
- * files written.
+ * given; a parameter sweep's x axis with @p key_unit. Each PNG also as an
+ * SVG copy (for the sweep's report). Returns the files written.
  */
 std::vector<std::string> plot_sweep(const std::string& directory, const std::string& name,
                                     SweepKind kind, const SweepTable& table,
                                     double wave_speed,
-                                    const AssessmentCriteria* criteria = nullptr);
+                                    const AssessmentCriteria* criteria = nullptr,
+                                    const std::string& key_unit = "");
 } // namespace pantocat

@@ -106,6 +106,7 @@ public:
     AssessmentCriteria criteria = {};
     double speed = 0.;            ///< [m/s] the base case's (all but speed sweeps)
     double filter_cutoff_hz = 0.; ///< Statistics/Low pass cut-off of the runs (0: raw)
+    std::string key_unit; ///< unit of a parameter sweep's first entry ("N"; "": none)
   };
 
   SweepStudy(SweepPlan plan, std::function<SweepCase(unsigned int)> make_run,

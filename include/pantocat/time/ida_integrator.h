@@ -58,10 +58,17 @@ public:
   /// Its entry in registered_integrators().
   static IntegratorEntry registry_entry();
 
+  /**
+   * @p maximum_order bounds IDA's BDF order (1-5): orders above 2 are not
+   * A-stable, and on an undamped wire with the high frequencies of the C1
+   * Hermite elements they cost steps far below those frequencies' periods
+   * (doc/dynamics.md, "IDA").
+   */
   IdaIntegrator(const SemiDiscreteSystem& system, double output_step,
                 double relative_tolerance, double absolute_tolerance,
                 IdaLinearSolver solver = IdaLinearSolver::sundials_klu,
-                LinearAlgebra algebra = LinearAlgebra::fast);
+                LinearAlgebra algebra = LinearAlgebra::fast,
+                unsigned int maximum_order = 2);
   ~IdaIntegrator() override;
 
   std::string name() const override { return "ida"; }
@@ -108,6 +115,7 @@ private:
 
   double dt;
   double rtol, atol;
+  unsigned int max_order;
   IdaLinearSolver linear_solver;
   unsigned int n, m;
   std::unique_ptr<ConstrainedOperator> M; ///< of the projections

@@ -25,6 +25,7 @@ struct TimeIntegrationParameters
   LinearSolverType linear_solver = LinearSolverType::banded; ///< implicit integrators
   double ida_relative_tolerance = 1e-6;
   double ida_absolute_tolerance = 1e-8;
+  unsigned int ida_maximum_order = 2; ///< of IDA's BDF formulas (1-5)
   /// IDA's sparse direct solver: sundials-klu | trilinos-klu | umfpack.
   std::string ida_linear_solver = "sundials-klu";
   unsigned int max_active_set_iterations = 20;
