@@ -390,6 +390,24 @@ std::string located_episodes(const RunRecord& r, const unsigned int k,
   return s.str();
 }
 
+/**
+ * "; each at most one time step long ...": the note for contact-loss
+ * @p intervals that all last one step @p dt or less (a rigid contact that
+ * chatters at this step, or the grid's answer to an impact), "" otherwise.
+ */
+std::string single_step_note(const std::vector<Interval>& intervals, const double dt)
+{
+  if (intervals.empty() ||
+      std::any_of(intervals.begin(), intervals.end(),
+                  [&](const Interval& i) { return i.second - i.first > 1.5 * dt; }))
+    return "";
+  std::ostringstream s;
+  s << std::setprecision(3) << "; each at most one time step long (dt = " << dt
+    << " s): the contact chatters at this step; rerun with a smaller step (or a "
+       "finer grid after an impact) to tell whether the loss is real";
+  return s.str();
+}
+
 /// The whole run's contact force of pantograph @p k, its extremes with their positions.
 void print_whole_run_force(std::ostream& out, const RunRecord& r, const unsigned int k,
                            const std::string& name)
@@ -469,6 +487,7 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
           << (detailed ? format_intervals(stats.contact_loss_intervals(k),
                                           r.episode_resolution)
                        : located_episodes(r, k, stats.contact_loss_intervals(k)))
+          << single_step_note(stats.contact_loss_intervals(k), r.runner.time_step())
           << '\n';
   out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
