@@ -220,10 +220,12 @@ Plots draw_plots(const std::string& dir, const ProgramParameters& p,
   for (const ForceOverXPlot& plot : over_x)
   {
     plots.asked.push_back(plot.png);
-    plots.figures.push_back({svg_file_of(plot.png),
-                             "Contact force of " + plot.name +
-                                 " over its position: the evaluation window shaded, "
-                                 "its F_m and the assessment's force limits across it."});
+    plots.figures.push_back(
+        {svg_file_of(plot.png),
+         (over_x.size() > 1 ? "Contact force of " + plot.name
+                            : std::string("Contact force")) +
+             " over the pantograph's position: the evaluation window shaded, its F_m and "
+             "the assessment's force limits across it."});
   }
   for (PlotScript& s : line_response_scripts(dir, record, title.str(), plots.figures))
     if (!s.outputs.empty())

@@ -111,8 +111,10 @@ void pantograph_sections(HtmlReport& page, const RunRecord& r)
     if (r.contacts[k] != nullptr)
     {
       const std::string n = std::to_string(k + 1);
-      page.heading("Contact force of " + layout.pantographs[k].name, 2,
-                   "pantograph-" + n);
+      page.heading(layout.contacts().size() > 1
+                       ? "Contact force of " + layout.pantographs[k].name
+                       : std::string("Contact force"),
+                   2, "pantograph-" + n);
       statistics_table(page, r.contacts[k]->result(), "statistics-" + n);
       if (k < r.assessments.size() && !r.assessments[k].criteria.empty())
         assessment_table(page, r.assessments[k], "assessment-" + n);
