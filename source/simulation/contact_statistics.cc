@@ -140,6 +140,7 @@ void ContactStatistics::start(const SimulationLayout& layout)
   recorded = {};
   passed_points = 0;
   passed_uplift.clear();
+  left_window_at = -1.;
   initial_height.clear();
   max_uplift.assign(wire_rows.size(), -std::numeric_limits<double>::infinity());
 }
@@ -165,9 +166,14 @@ void ContactStatistics::remember_passed_window()
 {
   if (passed_points > 0 || window.whole_run() || recorded.x_p.back() <= window.end)
     return;
-  const auto left = std::find_if(recorded.x_p.begin(), recorded.x_p.end(),
-                                 [&](const double x) { return x > window.end; });
-  if (recorded.t.back() >= recorded.t[left - recorded.x_p.begin()] + passed_window_margin)
+  if (left_window_at <
+      0.) // once: the first time point past the window (also after a resume)
+  {
+    const auto left = std::find_if(recorded.x_p.begin(), recorded.x_p.end(),
+                                   [&](const double x) { return x > window.end; });
+    left_window_at = recorded.t[left - recorded.x_p.begin()];
+  }
+  if (recorded.t.back() >= left_window_at + passed_window_margin)
   {
     passed_points = recorded.t.size();
     passed_uplift = max_uplift;

@@ -149,6 +149,7 @@ private:
   /// lay passed_window_margin behind (empty before).
   std::size_t passed_points = 0;
   std::vector<double> passed_uplift;
+  double left_window_at = -1.; ///< [s] the first time point past the window (-1: not yet)
   ContactForceStatistics statistics;
   std::vector<double> filtered;
 };
