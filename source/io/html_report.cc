@@ -1,5 +1,7 @@
+#include <pantocat/base/number_format.h>
 #include <pantocat/io/html_report.h>
 
+#include <cmath>
 #include <regex>
 
 namespace pantocat
@@ -142,5 +144,9 @@ std::string HtmlReport::str() const
          "<head>\n<meta charset=\"utf-8\"/>\n<title>" +
          html_escape(title) + "</title>\n<style>" + style +
          "</style>\n</head>\n<body>\n" + body + "</body>\n</html>\n";
+}
+HtmlReport::Cell HtmlReport::number(const double value, const int digits)
+{
+  return {std::isfinite(value) ? number_to_string(value, digits) : "-", "number"};
 }
 } // namespace pantocat

@@ -13,12 +13,6 @@ namespace
 {
 using Row = std::vector<HtmlReport::Cell>;
 
-/// A number cell with @p digits significant digits ("-" if not finite).
-HtmlReport::Cell number(const double value, const int digits = 5)
-{
-  return {std::isfinite(value) ? number_to_string(value, digits) : "-", "number"};
-}
-
 /// The text of the SVG file @p name in @p dir, empty if it is not a regular file.
 std::string svg_of(const std::string& dir, const std::string& name)
 {
@@ -57,9 +51,9 @@ void statistics_table(HtmlReport& page, const ContactForceStatistics& s,
   std::vector<Row> rows;
   const auto add = [&](const std::string& name, double ForceFigures::*f, int digits)
   {
-    Row row{{name}, number(raw.*f, digits)};
+    Row row{{name}, HtmlReport::number(raw.*f, digits)};
     if (low != nullptr)
-      row.push_back(number(low->*f, digits));
+      row.push_back(HtmlReport::number(low->*f, digits));
     rows.push_back(row);
   };
   add("mean F_m [N]", &ForceFigures::mean, 5);
@@ -153,9 +147,9 @@ void slack_table(HtmlReport& page, const RunRecord& r, const unsigned int k)
     for (const Interval& i : slack[j])
       open += i.second - i.first;
     rows.push_back({{std::to_string(j + 1)},
-                    number(j < x.size() ? x[j] : NAN, 6),
+                    HtmlReport::number(j < x.size() ? x[j] : NAN, 6),
                     {std::to_string(slack[j].size()), "number"},
-                    number(1e3 * open, 3),
+                    HtmlReport::number(1e3 * open, 3),
                     {located(r, k, episodes.front())}});
   }
   if (slackened == 0)

@@ -23,11 +23,6 @@ ForceFigures figures_of(const SweepTable::Row& row, const std::string& prefix)
   return f;
 }
 
-/// A number cell ("-" if not finite).
-HtmlReport::Cell number(const double value, const int digits)
-{
-  return {std::isfinite(value) ? number_to_string(value, digits) : "-", "number"};
-}
 } // namespace
 
 Assessment assess_sweep_row(const SweepTable::Row& row, const double speed,
@@ -91,9 +86,9 @@ void runs_table(HtmlReport& page, const SweepTable& t, const unsigned int p,
     const auto v = [&](const std::string& s)
     { return r.values[SweepTable::statistic(s)]; };
     for (const std::string s : {"mean", "std", "max", "min", "mean_minus_3std"})
-      row.push_back(number(v(f + s), 5));
-    row.push_back(number(v("contact_loss_percent"), 3));
-    row.push_back(number(1e3 * v("max_support_uplift_m"), 4));
+      row.push_back(HtmlReport::number(v(f + s), 5));
+    row.push_back(HtmlReport::number(v("contact_loss_percent"), 3));
+    row.push_back(HtmlReport::number(1e3 * v("max_support_uplift_m"), 4));
     const bool assessed =
         input.criteria != nullptr && input.criteria->enabled && r.status == "completed";
     row.push_back(assessed

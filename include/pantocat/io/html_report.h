@@ -46,6 +46,8 @@ public:
     std::string text;
     std::string css_class = "";
   };
+  /// A number cell, right-aligned, with @p digits significant digits ("-" if not finite).
+  static Cell number(double value, int digits = 5);
   /// A table with one header row; @p id names it (for tests and links).
   HtmlReport& table(const std::vector<std::string>& header,
                     const std::vector<std::vector<Cell>>& rows,
