@@ -13,6 +13,7 @@
 #include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/checkpoint.h>
+#include <pantocat/simulation/line_windows.h>
 
 #include <deal.II/base/timer.h>
 
@@ -296,14 +297,17 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
   std::vector<std::unique_ptr<ContactStatistics>> contacts(layout.pantographs.size());
   if (layout.has_contact())
     observers.push_back(&first);
+  const UpliftPoints uplift = runner.uplift_points();
+  const std::vector<double> window_supports =
+      runner.case_data().window_supports(p.statistics.window_section);
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
       observers.push_back((contacts[k] = std::make_unique<ContactStatistics>(
-                               p.statistics, runner.discretisation(), runner.system(),
-                               SteadyArms::positions(runner.case_data().scene,
-                                                     runner.case_data().catenary),
-                               k))
+                               p.statistics, window_supports, uplift, k))
                               .get());
+  LineWindows line_windows(p.statistics, runner, layout);
+  for (SimulationObserver* o : line_windows.observers())
+    observers.push_back(o);
   if (p.output.energy)
     observers.push_back(&energy);
   if (reference)
@@ -346,6 +350,7 @@ void run_dynamics(const ProgramParameters& p, std::ostream& out, RunPhase& phase
     record.contacts.push_back(c.get());
   record.assessments = assess_windows(p, record);
   record.inputs = p.inputs;
+  record.line = &line_windows;
   const ContactStatistics* first_contact = record.first_contact();
   if (first_contact)
     write_contact_force(dir + "/contact_force.csv", contact_force_columns(record));

@@ -56,6 +56,7 @@ void ProgramParameters::declare_parameters(dealii::ParameterHandler& prm,
   prm.leave_subsection();
   SceneParameters::declare_parameters(prm, n_pantographs, first_pantograph);
   CatenaryParameters::declare_parameters(prm);
+  LineParameters::declare_parameters(prm);
   DiscretisationParameters::declare_parameters(prm);
   TimeIntegrationParameters::declare_parameters(prm);
   OutputParameters::declare_parameters(prm);
@@ -92,6 +93,7 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   scene.parse_parameters(prm);
   scene.start = start;
   catenary.parse_parameters(prm);
+  line.parse_parameters(prm);
   discretisation.parse_parameters(prm);
   time_integration.parse_parameters(prm);
   output.parse_parameters(prm);
@@ -105,6 +107,10 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   fingerprint = critical_parameters(prm);
 
   make_case().check();
+  require(!line.is_line() || mode == RunMode::dynamics, "Run/Mode", m,
+          "a line of " + std::to_string(line.n_sections) +
+              " tension sections runs in Mode = dynamics; the static, eigenfrequency and "
+              "study modes take one section (Line/Number of sections = 1)");
   if (is_study(mode)) // Study/Contact laws = penalty: Scene's law for every run
     make_case().check_contact_damping(study.penalty, "Scene/Contact damping");
   require(mode != RunMode::convergence_study || !study.all_combinations,
@@ -127,14 +133,17 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
   checkpoint.check(time_integration.integrator);
   output.check(time_integration.time_step, catenary.length());
   statistics.check(time_integration.time_step, pantograph().initial_position,
-                   pantograph().final_position, catenary.support_positions());
+                   pantograph().final_position,
+                   make_case().window_supports(statistics.window_section));
   if (mode == RunMode::dynamics)
     make_case().check_dynamics();
 }
 
 Case ProgramParameters::make_case() const
 {
-  return {scene, catenary, discretisation, time_integration, guards};
+  Case c{scene, catenary, discretisation, time_integration, guards};
+  c.line = line;
+  return c;
 }
 
 StudyCase ProgramParameters::make_study_case() const

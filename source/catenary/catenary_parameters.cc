@@ -103,6 +103,49 @@ std::vector<double> CatenaryParameters::dropper_target_heights() const
   return z;
 }
 
+std::vector<double> CatenaryParameters::dropper_target_displacements() const
+{
+  std::vector<double> z = dropper_target_heights();
+  if (!support_heights.empty())
+    for (unsigned int j = 0; j < z.size(); ++j)
+      z[j] -= support_chord(dropper_positions[j]);
+  return z;
+}
+
+double CatenaryParameters::support_chord(const double x,
+                                         const unsigned int derivative) const
+{
+  if (support_heights.empty())
+    return 0.;
+  const std::vector<double> s = support_positions();
+  if (x <= s.front() || x >= s.back())
+    return derivative       ? 0.
+           : x <= s.front() ? support_heights.front()
+                            : support_heights.back();
+  const unsigned int k = std::upper_bound(s.begin(), s.end(), x) - s.begin() - 1;
+  const double slope = (support_heights[k + 1] - support_heights[k]) / (s[k + 1] - s[k]);
+  return derivative ? slope : support_heights[k] + slope * (x - s[k]);
+}
+
+std::vector<double> CatenaryParameters::support_chord_kinks() const
+{
+  const std::vector<double> s = support_positions();
+  std::vector<double> kinks(s.size(), 0.);
+  if (support_heights.empty())
+    return kinks;
+  double left = 0.; // level before the first anchor
+  for (unsigned int k = 0; k < s.size(); ++k)
+  {
+    const double right =
+        k + 1 < s.size()
+            ? (support_heights[k + 1] - support_heights[k]) / (s[k + 1] - s[k])
+            : 0.;
+    kinks[k] = right - left;
+    left = right;
+  }
+  return kinks;
+}
+
 namespace
 {
 template <typename Number>
@@ -322,6 +365,12 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "(x from the span's first support, l its length); first and last "
                     "dropper, xi = (x - x_first)/(x_last - x_first) (two droppers or "
                     "more in every span that has droppers).");
+  prm.declare_entry("Unreachable targets", "refuse",
+                    dealii::Patterns::Selection("refuse|release"),
+                    "A target that a dropper could hold only by pushing (Design = "
+                    "designed): refuse names it; release leaves that dropper at zero "
+                    "force in the static state, the contact wire where its neighbours "
+                    "put it (above the target), with a warning.");
   prm.declare_entry("Target heights", "", List(Double(), 0),
                     "Target heights [m] of the static contact wire at the droppers for "
                     "Design = designed (0 at the steady arms, negative below): one per "
@@ -401,6 +450,7 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   design =
       prm.get("Design") == "designed" ? DropperDesign::designed : DropperDesign::given;
   presag = prm.get_double("Pre-sag");
+  release_unreachable_targets = prm.get("Unreachable targets") == "release";
   presag_reference = prm.get("Pre-sag reference") == "supports"
                          ? PresagReference::supports
                          : PresagReference::first_and_last_dropper;
@@ -482,6 +532,10 @@ void CatenaryParameters::check() const
   require(dropper_stitch_wire.empty() || dropper_stitch_wire.size() == n_droppers(),
           "Catenary/Stitch wire/Dropper positions", dropper_stitch_wire.size(),
           "every dropper needs the wire it hangs from");
+  require(support_heights.empty() || support_heights.size() == number_of_spans() + 1,
+          "Line/Overlap heights", support_heights.size(),
+          "one contact-wire height per support of the section (" +
+              std::to_string(number_of_spans() + 1) + ")");
   check_supports();
   check_targets();
   check_stitch_wires();

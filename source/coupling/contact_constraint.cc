@@ -19,5 +19,6 @@ void ContactConstraint::evaluate(const double t, ConstraintState& s,
   for (std::size_t k = 0; k < minus_head.size(); ++k)
     s.G.add(minus_head.index[k], minus_head.value[k]);
   s.z = s.z_t = s.z_tt = 0.;
+  wire.reference_heights(t, max_order, s.z, s.z_t, s.z_tt);
 }
 } // namespace pantocat

@@ -47,12 +47,13 @@ DropperSlackEvents slack_in_window(const RunStatistics& run,
   return run.dropper_slack_events(s.first_time, s.last_time);
 }
 
+/// The events of the constraints named @p only (every constraint's if empty).
 void write_events(JsonWriter& json, const std::vector<ConstraintEvent>& events,
-                  const std::string& only_constraint = "")
+                  const std::vector<std::string>& only = {})
 {
   json.begin_array("events");
   for (const ConstraintEvent& e : events)
-    if (only_constraint.empty() || e.constraint == only_constraint)
+    if (only.empty() || std::find(only.begin(), only.end(), e.constraint) != only.end())
     {
       json.begin_object()
           .value("t", e.t)
@@ -117,8 +118,19 @@ void write_pantographs(JsonWriter& json, const RunRecord& r,
       json.intervals("contact_loss_intervals", r.statistics.contact_loss_intervals(k));
       write_episodes(json, "contact_loss_episodes",
                      r.statistics.contact_loss_intervals(k), r.episode_resolution);
-      write_impulses(json, "impacts", r.statistics.impulses(p.contact));
-      write_events(json, events, layout.constraint_names[p.contact]);
+      // Over its contact wires (one for a single section).
+      RunStatistics::ImpulseStatistics impacts;
+      std::vector<std::string> names;
+      for (const unsigned int i : p.wire_contacts)
+      {
+        const RunStatistics::ImpulseStatistics& s = r.statistics.impulses(i);
+        impacts.count += s.count;
+        impacts.total += s.total;
+        impacts.max = std::max(impacts.max, s.max);
+        names.push_back(layout.constraint_names[i]);
+      }
+      write_impulses(json, "impacts", impacts);
+      write_events(json, events, names);
     }
     json.end_object();
   }
@@ -197,6 +209,8 @@ void write_run_summary(const std::string& file, const RunRecord& r)
     write_episodes(json, "contact_loss_episodes", stats.contact_loss_intervals(),
                    r.episode_resolution);
   }
+  if (r.line != nullptr && !r.line->evaluations().empty())
+    write_line_windows(json, *r.line, r.runner.layout());
   write_impulses(json, "dropper_impacts", stats.dropper_impulses());
   json.value("max_droppers_slack_at_once",
              static_cast<unsigned long>(stats.max_droppers_slack_at_once()));
@@ -294,10 +308,20 @@ void print_case_summary(std::ostream& out, const CaseRunner& runner)
 {
   const Case& c = runner.case_data();
   const SimulationLayout& layout = runner.layout();
-  const std::size_t arms = SteadyArms::positions(c.scene, c.catenary).size();
-  out << std::setprecision(6) << "  case: " << c.catenary.number_of_spans()
-      << (c.catenary.number_of_spans() == 1 ? " span" : " spans") << " ("
-      << c.catenary.length() << " m), ";
+  std::size_t arms = 0;
+  for (const CatenaryParameters& section : runner.sections())
+    arms += SteadyArms::positions(c.scene, section).size();
+  out << std::setprecision(6) << "  case: ";
+  if (c.line.is_line())
+    out << c.line.n_sections << " tension sections of " << c.catenary.number_of_spans()
+        << " spans (" << c.line_length() << " m) with " << c.line.n_sections - 1
+        << (c.line.n_sections == 2 ? " overlap" : " overlaps") << " of "
+        << c.line.overlap_spans << (c.line.overlap_spans == 1 ? " span" : " spans")
+        << ", ";
+  else
+    out << c.catenary.number_of_spans()
+        << (c.catenary.number_of_spans() == 1 ? " span" : " spans") << " ("
+        << c.catenary.length() << " m), ";
   if (layout.dropper_indices.empty())
     out << "no droppers";
   else
@@ -306,7 +330,8 @@ void print_case_summary(std::ostream& out, const CaseRunner& runner)
   if (arms > 0)
     out << ", " << arms << " steady arms";
   if (!c.catenary.stitch_wires.empty())
-    out << ", " << c.catenary.stitch_wires.size() << " stitch wires";
+    out << ", " << c.catenary.stitch_wires.size() * runner.sections().size()
+        << " stitch wires";
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
   {
     const PantographCase& p = c.scene.pantographs[k];
@@ -344,20 +369,22 @@ void print_scene(std::ostream& out, const CaseRunner& runner)
   out << "  problem size: " << system.n_dofs() << " unknowns (";
   for (const DofBlock& b : system.blocks)
     out << (&b == &system.blocks.front() ? "" : ", ") << b.name << ' ' << b.size;
-  const auto contacts = layout.contacts();
+  std::size_t contacts = 0; // one per pantograph and contact wire it can touch
+  for (const PantographLayout* p : layout.contacts())
+    contacts += p->wire_contacts.size();
   out << "), " << system.n_constraints() << " constraints ("
       << layout.dropper_indices.size() << " droppers";
-  if (contacts.size() == 1)
+  if (contacts == 1)
     out << ", contact";
-  else if (contacts.size() > 1)
-    out << ", " << contacts.size() << " contacts";
+  else if (contacts > 1)
+    out << ", " << contacts << " contacts";
   // The rest are the carrier supports held fixed (CarrierSupports) and the
   // stitch wires' clamps (StitchWires).
   std::size_t clamps = 0;
   for (const std::string& name : layout.constraint_names)
-    clamps += name.rfind("stitch wire ", 0) == 0;
+    clamps += name.find("stitch wire ") != std::string::npos;
   const std::size_t supports =
-      system.n_constraints() - layout.dropper_indices.size() - contacts.size() - clamps;
+      system.n_constraints() - layout.dropper_indices.size() - contacts - clamps;
   if (supports > 0)
     out << ", " << supports << " carrier supports";
   if (clamps > 0)
@@ -460,8 +487,14 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
   if (detailed)
     for (const PantographLayout* p : layout.contacts())
       out << std::setprecision(6) << "  " << (several ? p->name + ": " : "")
-          << "first time point t = " << r.first_point.t
-          << " s: lambda_p = " << r.first_point.lambda[p->contact]
+          << "first time point t = " << r.first_point.t << " s: lambda_p = " <<
+          [&]
+      {
+        double sum = 0.; // over the pantograph's contact wires
+        for (const unsigned int i : p->wire_contacts)
+          sum += r.first_point.lambda[i];
+        return sum;
+      }()
           << " N (lambda_p(0) = " << p->initial_contact_force << " N)\n";
   out << "  " << r.result.integrator.steps << " steps in " << std::setprecision(3)
       << r.result.time_loop_seconds
@@ -489,6 +522,8 @@ void print_run_report(std::ostream& out, const RunRecord& r, const bool detailed
                        : located_episodes(r, k, stats.contact_loss_intervals(k)))
           << single_step_note(stats.contact_loss_intervals(k), r.runner.time_step())
           << '\n';
+  if (r.line != nullptr)
+    print_line_windows(out, *r.line, layout, detailed);
   out << std::setprecision(3) << "  max constraint residual: position "
       << stats.max_position_residual() << " m, velocity " << stats.max_velocity_residual()
       << " m/s\n";

@@ -93,6 +93,55 @@ void write_statistics(JsonWriter& json, const ContactForceStatistics& s,
   json.end_object();
 }
 
+void write_line_windows(JsonWriter& json, const LineWindows& line,
+                        const SimulationLayout& layout)
+{
+  json.begin_array("line_windows");
+  for (const LineWindows::Evaluation& e : line.evaluations())
+  {
+    json.begin_object()
+        .value("pantograph", layout.pantographs[e.pantograph].name)
+        .value("window", e.window)
+        .value("wire", e.wire);
+    write_statistics(json, e.statistics->result(), {});
+    json.end_object();
+  }
+  json.end_array();
+}
+
+namespace
+{
+/// "F_m 163.0, sigma 47.6, F_max 340.1, F_min 21.3" of @p f [N].
+std::string figures_text(const ForceFigures& f)
+{
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << "F_m " << f.mean << ", sigma " << f.std
+    << ", F_max " << f.max << ", F_min " << f.min;
+  return s.str();
+}
+} // namespace
+
+void print_line_windows(std::ostream& out, const LineWindows& line,
+                        const SimulationLayout& layout, const bool detailed)
+{
+  if (line.evaluations().empty())
+    return;
+  out << "  the line's overlaps" << (detailed ? " and contact wires" : "")
+      << " [N] (raw | low-passed; per contact wire in summary.json):\n";
+  for (const LineWindows::Evaluation& e : line.evaluations())
+  {
+    if (!detailed && e.wire != "all wires")
+      continue;
+    const ContactForceStatistics& s = e.statistics->result();
+    out << "    " << layout.pantographs[e.pantograph].name << ", " << e.window << " ("
+        << std::setprecision(6) << s.window.start << "-" << s.window.end << " m)"
+        << (e.wire == "all wires" ? "" : ", " + e.wire) << ": " << figures_text(s.raw);
+    if (s.filtered)
+      out << " | " << figures_text(*s.filtered);
+    out << '\n';
+  }
+}
+
 std::vector<std::string>
 contact_force_column_names(const std::vector<ContactForceColumns>& pantographs)
 {

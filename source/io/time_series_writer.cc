@@ -19,8 +19,13 @@ std::vector<std::string> TimeSeriesWriter::column_names(const SimulationLayout& 
   const auto contacts = l.contacts();
   const auto each_contact = [&](const std::string& column)
   {
+    // One column per contact wire of each pantograph: "lambda_p[1]_w2" is
+    // pantograph 1 on the contact wire of section 2 of a line.
     for (const PantographLayout* p : contacts)
-      names.push_back(column + p->column_suffix);
+      for (std::size_t w = 0; w < p->wire_contacts.size(); ++w)
+        names.push_back(
+            column + p->column_suffix +
+            (p->wire_contacts.size() > 1 ? "_w" + std::to_string(w + 1) : ""));
   };
   const auto each_dropper = [&](const std::string& column)
   {
@@ -56,7 +61,8 @@ void TimeSeriesWriter::take_layout(const SimulationLayout& l)
   layout = l;
   contacts.clear();
   for (const PantographLayout* c : l.contacts())
-    contacts.push_back(c->contact);
+    for (const unsigned int i : c->wire_contacts)
+      contacts.push_back(i);
 }
 
 void TimeSeriesWriter::start(const SimulationLayout& l)

@@ -21,6 +21,6 @@ std::string CarrierBody::describe(const SceneAssembly& a) const
 {
   return std::string("carrier: elastic ") +
          (a.scene.carrier_bending ? "beam, " : "string, ") +
-         std::to_string(a.space.n_dofs(Wire::carrier)) + " unknowns";
+         std::to_string(a.space().n_dofs(Wire::carrier)) + " unknowns";
 }
 } // namespace pantocat

@@ -16,7 +16,7 @@ bool CarrierSupports::enabled(const SceneParameters& scene,
 
 void CarrierSupports::add_terms(SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   if (c.carrier_support != CarrierSupport::spring)
     return;
   const std::vector<double> x = c.interior_supports();
@@ -30,7 +30,7 @@ void CarrierSupports::add_terms(SceneAssembly& a) const
 
 void CarrierSupports::add_constraints(SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   if (c.carrier_support != CarrierSupport::fixed)
     return;
   const std::vector<double> x = c.interior_supports();
@@ -38,14 +38,14 @@ void CarrierSupports::add_constraints(SceneAssembly& a) const
   {
     a.support_indices.push_back(a.system.n_constraints());
     a.system.add_constraint(std::make_unique<FixedConstraint>(
-        "carrier support " + std::to_string(k + 1), Constraint::Kind::bilateral,
-        a.wire_row(Wire::carrier, x[k]), 0.));
+        a.constraint_name("carrier support " + std::to_string(k + 1)),
+        Constraint::Kind::bilateral, a.wire_row(Wire::carrier, x[k]), 0.));
   }
 }
 
 std::string CarrierSupports::describe(const SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   const std::string n = std::to_string(c.interior_supports().size());
   return c.carrier_support == CarrierSupport::fixed
              ? n + " carrier supports, fixed (bilateral constraints)"

@@ -15,7 +15,7 @@ bool ClampAndDropperMasses::enabled(const SceneParameters& scene,
 
 void ClampAndDropperMasses::add_terms(SceneAssembly& a) const
 {
-  const CatenaryParameters& p = a.catenary;
+  const CatenaryParameters& p = a.catenary();
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
   {
     // The upper clamp on the carrier, or on the stitch wire the dropper hangs from.
@@ -32,9 +32,9 @@ void ClampAndDropperMasses::add_terms(SceneAssembly& a) const
 std::string ClampAndDropperMasses::describe(const SceneAssembly& a) const
 {
   return "clamp and dropper masses: point " +
-         std::string(a.catenary.point_mass_inertia ? "masses (inertia and load)"
-                                                   : "loads, Eq. (4),") +
-         " at " + std::to_string(a.catenary.n_droppers()) + " droppers";
+         std::string(a.catenary().point_mass_inertia ? "masses (inertia and load)"
+                                                     : "loads, Eq. (4),") +
+         " at " + std::to_string(a.catenary().n_droppers()) + " droppers";
 }
 
 void add_dropper_weight_change(const SceneParameters& scene,

@@ -20,7 +20,7 @@ void ContactWireBody::add_bodies(SceneAssembly& a) const
 
 std::string ContactWireBody::describe(const SceneAssembly& a) const
 {
-  return "contact wire: elastic, " + std::to_string(a.space.n_dofs(Wire::contact_wire)) +
-         " unknowns";
+  return "contact wire: elastic, " +
+         std::to_string(a.space().n_dofs(Wire::contact_wire)) + " unknowns";
 }
 } // namespace pantocat

@@ -16,9 +16,9 @@ namespace
  */
 void check_dropper_rows(const SceneAssembly& a, const std::vector<SparseRow>& rows)
 {
-  const auto& x = a.catenary.dropper_positions;
+  const auto& x = a.catenary().dropper_positions;
   const std::string parameter = "Discretisation/Number of intervals";
-  const unsigned int n = a.space.n_intervals();
+  const unsigned int n = a.space().n_intervals();
   std::vector<unsigned int> order(rows.size());
   for (unsigned int j = 0; j < rows.size(); ++j)
     order[j] = j;
@@ -60,14 +60,14 @@ bool Droppers::enabled(const SceneParameters& scene, const CatenaryParameters&) 
 
 void Droppers::add_constraints(SceneAssembly& a) const
 {
-  const CatenaryParameters& p = a.catenary;
+  const CatenaryParameters& p = a.catenary();
   // The rows of the elastic wire whose grid holds the dropper (the contact
   // wire's, unless it is rigid).
   const Wire checked =
       a.scene.contact_wire == WireModel::elastic ? Wire::contact_wire : Wire::carrier;
   std::vector<SparseRow> rows;
   for (unsigned int j = 0; j < p.n_droppers(); ++j)
-    rows.push_back(a.space.point_row(checked, p.dropper_positions[j]));
+    rows.push_back(a.space().point_row(checked, p.dropper_positions[j]));
   check_dropper_rows(a, rows);
 
   const Constraint::Kind kind = a.scene.droppers == DropperModel::bilateral
@@ -90,7 +90,7 @@ void Droppers::add_constraints(SceneAssembly& a) const
       row.add(carrier.index[k], -carrier.value[k]);
     a.dropper_indices.push_back(a.system.n_constraints());
     a.system.add_constraint(std::make_unique<FixedConstraint>(
-        "dropper " + std::to_string(j + 1), kind, row,
+        a.constraint_name("dropper " + std::to_string(j + 1)), kind, row,
         p.dropper_lengths[j] - p.support_height, compliance));
   }
 }
@@ -100,9 +100,9 @@ std::string Droppers::describe(const SceneAssembly& a) const
   const std::string model = a.scene.droppers == DropperModel::bilateral ? "bilateral (4)"
                             : a.scene.droppers == DropperModel::elastic
                                 ? "elastic, tension only, k_d = " +
-                                      number_to_string(a.catenary.dropper_stiffness) +
+                                      number_to_string(a.catenary().dropper_stiffness) +
                                       " N/m"
                                 : "unilateral (Sec. 5.3)";
-  return std::to_string(a.catenary.n_droppers()) + " droppers, " + model;
+  return std::to_string(a.catenary().n_droppers()) + " droppers, " + model;
 }
 } // namespace pantocat

@@ -19,7 +19,7 @@ void Gravity::add_terms(SceneAssembly& a) const
   for (const Wire wire : {Wire::carrier, Wire::contact_wire})
   {
     WireTerms t;
-    t.weight = a.wire_parameters(wire).mass_per_length * a.catenary.gravity;
+    t.weight = a.wire_parameters(wire).mass_per_length * a.catenary().gravity;
     a.add_wire_terms(wire, t);
   }
 }
@@ -27,6 +27,6 @@ void Gravity::add_terms(SceneAssembly& a) const
 std::string Gravity::describe(const SceneAssembly& a) const
 {
   return "gravity: weight of the elastic wires, g = " +
-         number_to_string(a.catenary.gravity) + " m/s^2";
+         number_to_string(a.catenary().gravity) + " m/s^2";
 }
 } // namespace pantocat

@@ -40,11 +40,14 @@ bool MovingForce::enabled(const SceneParameters& scene, const CatenaryParameters
 
 void MovingForce::add_constraints(SceneAssembly& a) const
 {
-  const unsigned int wire = a.system.block("contact wire").first;
+  // One section (Case::check() refuses a moving force on a line of several).
+  const CatenaryDiscretisation& space = *a.sections.front().space;
+  const unsigned int wire =
+      a.system.block(space.wire_block_name(Wire::contact_wire)).first;
   for (const ScenePantograph& p : a.pantographs)
     if (p.data->is_moving_force())
       a.system.add_time_dependent_load(std::make_unique<MovingLoad>(
-          WirePointMarker(a.space, wire, p.motion), p.data->moving_force));
+          WirePointMarker(space, wire, p.motion), p.data->moving_force));
 }
 
 std::string MovingForce::describe(const SceneAssembly& a) const

@@ -18,20 +18,20 @@ bool RayleighDamping::enabled(const SceneParameters& scene,
 
 void RayleighDamping::add_terms(SceneAssembly& a) const
 {
-  for (const char* name : {block_name(Wire::carrier), block_name(Wire::contact_wire),
-                           StitchWireSpace::block_name})
-    if (BlockOperator* b = a.body(name))
+  for (BlockOperator* b :
+       {a.wire_body(Wire::carrier), a.wire_body(Wire::contact_wire), a.stitch_body()})
+    if (b != nullptr)
     {
-      b->damping.add(a.catenary.rayleigh_alpha, b->mass);
-      b->damping.add(a.catenary.rayleigh_beta, b->stiffness);
+      b->damping.add(a.catenary().rayleigh_alpha, b->mass);
+      b->damping.add(a.catenary().rayleigh_beta, b->stiffness);
     }
 }
 
 std::string RayleighDamping::describe(const SceneAssembly& a) const
 {
-  return "damping: Rayleigh C = " + number_to_string(a.catenary.rayleigh_alpha) +
-         " M + " + number_to_string(a.catenary.rayleigh_beta) + " K (wires" +
-         std::string(a.catenary.stitch_wires.empty() ? "" : " and stitch wires") +
+  return "damping: Rayleigh C = " + number_to_string(a.catenary().rayleigh_alpha) +
+         " M + " + number_to_string(a.catenary().rayleigh_beta) + " K (wires" +
+         std::string(a.catenary().stitch_wires.empty() ? "" : " and stitch wires") +
          ", without droppers)";
 }
 } // namespace pantocat

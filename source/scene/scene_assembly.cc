@@ -34,38 +34,53 @@ BlockOperator* SceneAssembly::body(const std::string& name)
   return nullptr;
 }
 
+BlockOperator* SceneAssembly::wire_body(const Wire wire)
+{
+  return body(space().wire_block_name(wire));
+}
+
+BlockOperator* SceneAssembly::stitch_body()
+{
+  return body(space().stitch_block_name());
+}
+
+std::string SceneAssembly::constraint_name(const std::string& name) const
+{
+  return catenary().name.empty() ? name : catenary().name + " " + name;
+}
+
 const WireParameters& SceneAssembly::wire_parameters(const Wire wire) const
 {
-  return wire == Wire::carrier ? catenary.carrier : catenary.contact_wire;
+  return wire == Wire::carrier ? catenary().carrier : catenary().contact_wire;
 }
 
 void SceneAssembly::add_wire_body(const Wire wire, const bool with_bending)
 {
   BlockOperator op;
-  space.initialize_operator(wire, with_bending, op);
+  space().initialize_operator(wire, with_bending, op);
   WireTerms mass;
   mass.mass = wire_parameters(wire).mass_per_length;
-  space.add_terms(wire, mass, op);
+  space().add_terms(wire, mass, op);
   bodies.push_back(std::move(op));
 }
 
 void SceneAssembly::add_wire_terms(const Wire wire, const WireTerms& terms)
 {
-  if (BlockOperator* b = body(block_name(wire)))
-    space.add_terms(wire, terms, *b);
+  if (BlockOperator* b = wire_body(wire))
+    space().add_terms(wire, terms, *b);
 }
 
 std::string SceneAssembly::load_shape() const
 {
-  if (space.discretisation_parameters().load_shape == LoadShape::point)
+  if (space().discretisation_parameters().load_shape == LoadShape::point)
     return "point load (15)/(16)";
   return "smoothed delta_eps (25), eps = " +
-         number_to_string(space.smoothed_delta().epsilon()) + " m";
+         number_to_string(space().smoothed_delta().epsilon()) + " m";
 }
 
 SparseRow SceneAssembly::wire_row(const Wire wire, const double x) const
 {
-  return wire_point_row(space, system, wire, x);
+  return wire_point_row(space(), system, wire, x);
 }
 
 namespace
@@ -94,42 +109,42 @@ void add_mass(BlockOperator* b, const SparseRow& h, const double m)
 
 void SceneAssembly::add_point_mass(const Wire wire, const double x, const double m)
 {
-  if (BlockOperator* b = body(block_name(wire)))
-    add_mass(b, space.point_row(wire, x), m);
+  if (BlockOperator* b = wire_body(wire))
+    add_mass(b, space().point_row(wire, x), m);
 }
 
 void SceneAssembly::add_point_spring(const Wire wire, const double x, const double k)
 {
-  if (BlockOperator* b = body(block_name(wire)))
-    add_outer_product(b->stiffness, space.point_row(wire, x), k);
+  if (BlockOperator* b = wire_body(wire))
+    add_outer_product(b->stiffness, space().point_row(wire, x), k);
 }
 
 void SceneAssembly::add_point_force(const Wire wire, const double x, const double force)
 {
-  if (BlockOperator* b = body(block_name(wire)))
-    space.point_row(wire, x).add_transpose_to(b->load, force);
+  if (BlockOperator* b = wire_body(wire))
+    space().point_row(wire, x).add_transpose_to(b->load, force);
 }
 
 SparseRow SceneAssembly::dropper_upper_row(const unsigned int j) const
 {
-  return pantocat::dropper_upper_row(space, system, j);
+  return pantocat::dropper_upper_row(space(), system, j);
 }
 
 void SceneAssembly::add_at_dropper_top(const unsigned int j, const double force,
                                        const double m)
 {
-  const unsigned int s = catenary.stitch_wire_of(j);
-  const double x = catenary.dropper_positions[j];
+  const unsigned int s = catenary().stitch_wire_of(j);
+  const double x = catenary().dropper_positions[j];
   if (s == no_stitch_wire)
   {
     add_point_force(Wire::carrier, x, force);
     add_point_mass(Wire::carrier, x, m);
     return;
   }
-  BlockOperator* b = body(StitchWireSpace::block_name);
+  BlockOperator* b = stitch_body();
   if (b == nullptr)
     return;
-  const SparseRow h = space.stitch_wires().point_row(s, x);
+  const SparseRow h = space().stitch_wires().point_row(s, x);
   h.add_transpose_to(b->load, force);
   add_mass(b, h, m);
 }

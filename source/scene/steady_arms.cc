@@ -24,7 +24,7 @@ std::vector<double> SteadyArms::positions(const SceneParameters& scene,
 
 void SteadyArms::add_terms(SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   const std::vector<double> x = c.steady_arm_positions();
   for (unsigned int k = 0; k < x.size(); ++k)
   {
@@ -40,7 +40,7 @@ void SteadyArms::add_terms(SceneAssembly& a) const
 
 std::string SteadyArms::describe(const SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   return std::to_string(c.steady_arm_positions().size()) +
          " steady arms: k = " + number_to_string(c.steady_arm_stiffness) +
          " N/m, m = " + number_to_string(c.steady_arm_mass) + " kg, preloaded";

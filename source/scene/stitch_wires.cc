@@ -17,15 +17,16 @@ bool StitchWires::enabled(const SceneParameters&,
 void StitchWires::add_bodies(SceneAssembly& a) const
 {
   BlockOperator op;
-  a.space.stitch_wires().initialize_operator(op);
+  a.space().stitch_wires().initialize_operator(op);
+  op.name = a.space().stitch_block_name();
   a.bodies.push_back(std::move(op));
 }
 
 void StitchWires::add_terms(SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   const SceneParameters& scene = a.scene;
-  BlockOperator& op = *a.body(StitchWireSpace::block_name);
+  BlockOperator& op = *a.stitch_body();
   const bool viscous = scene.damping && c.damping == CatenaryDamping::viscous;
   const bool clamp_weights = scene.clamp_and_dropper_masses && scene.gravity;
   for (unsigned int i = 0; i < c.stitch_wires.size(); ++i)
@@ -36,7 +37,7 @@ void StitchWires::add_terms(SceneAssembly& a) const
     terms.tension = s.tension;
     terms.damping = viscous ? s.damping : 0.;
     terms.weight = scene.gravity ? s.mass_per_length * c.gravity : 0.;
-    a.space.stitch_wires().add_terms(i, terms, op);
+    a.space().stitch_wires().add_terms(i, terms, op);
     for (const double x : {s.start(), s.end()})
     {
       if (clamp_weights)
@@ -49,7 +50,7 @@ void StitchWires::add_terms(SceneAssembly& a) const
 
 void StitchWires::add_constraints(SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   for (unsigned int i = 0; i < c.stitch_wires.size(); ++i)
   {
     const StitchWire& s = c.stitch_wires[i];
@@ -57,12 +58,13 @@ void StitchWires::add_constraints(SceneAssembly& a) const
     for (unsigned int e = 0; e < 2; ++e)
     {
       // u_s(x) - u_c(x) = 0: both measured from l_c.
-      SparseRow row = stitch_wire_point_row(a.space, a.system, i, ends[e]);
+      SparseRow row = stitch_wire_point_row(a.space(), a.system, i, ends[e]);
       const SparseRow carrier = a.wire_row(Wire::carrier, ends[e]);
       for (std::size_t k = 0; k < carrier.size(); ++k)
         row.add(carrier.index[k], -carrier.value[k]);
       a.system.add_constraint(std::make_unique<FixedConstraint>(
-          "stitch wire " + std::to_string(i + 1) + " clamp " + std::to_string(e + 1),
+          a.constraint_name("stitch wire " + std::to_string(i + 1) + " clamp " +
+                            std::to_string(e + 1)),
           Constraint::Kind::bilateral, row, 0.));
     }
   }
@@ -70,13 +72,13 @@ void StitchWires::add_constraints(SceneAssembly& a) const
 
 std::string StitchWires::describe(const SceneAssembly& a) const
 {
-  const CatenaryParameters& c = a.catenary;
+  const CatenaryParameters& c = a.catenary();
   unsigned int droppers = 0;
   for (const StitchWire& s : c.stitch_wires)
     droppers += s.droppers.size();
   return std::to_string(c.stitch_wires.size()) +
          " stitch wires: strings clamped to the " + "carrier at both ends, " +
-         std::to_string(a.space.stitch_wires().n_dofs()) + " unknowns, " +
+         std::to_string(a.space().stitch_wires().n_dofs()) + " unknowns, " +
          std::to_string(droppers) + " droppers hang from them";
 }
 } // namespace pantocat

@@ -28,8 +28,8 @@ void ViscousDamping::add_terms(SceneAssembly& a) const
 
 std::string ViscousDamping::describe(const SceneAssembly& a) const
 {
-  return "damping: beta = " + number_to_string(a.catenary.carrier.damping) + ", " +
-         number_to_string(a.catenary.contact_wire.damping) +
+  return "damping: beta = " + number_to_string(a.catenary().carrier.damping) + ", " +
+         number_to_string(a.catenary().contact_wire.damping) +
          " N s/m^2 (carrier, contact wire)";
 }
 } // namespace pantocat

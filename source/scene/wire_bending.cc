@@ -40,11 +40,11 @@ std::string WireBending::describe(const SceneAssembly& a) const
 {
   std::string s = "bending:";
   if (carrier_bending(a.scene))
-    s += " carrier E I_c = " + number_to_string(a.catenary.carrier.bending_stiffness) +
+    s += " carrier E I_c = " + number_to_string(a.catenary().carrier.bending_stiffness) +
          " N m^2";
   if (wire_bending(a.scene))
     s += std::string(carrier_bending(a.scene) ? "," : "") + " contact wire E I = " +
-         number_to_string(a.catenary.contact_wire.bending_stiffness) + " N m^2";
+         number_to_string(a.catenary().contact_wire.bending_stiffness) + " N m^2";
   return s;
 }
 } // namespace pantocat

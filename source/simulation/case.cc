@@ -58,6 +58,8 @@ double Case::end_time() const
 void Case::check() const
 {
   scene.check();
+  line.check(catenary);
+  check_line();
   if (scene.carrier_bending && scene.carrier == WireModel::elastic)
   {
     require(catenary.carrier.bending_stiffness > 0.,
@@ -78,13 +80,48 @@ void Case::check() const
   const double eps = discretisation.load_shape == LoadShape::smoothed_delta
                          ? discretisation.load_half_width
                          : 0.;
-  scene.check_spacing(catenary.length(), eps);
+  scene.check_spacing(line_length(), eps);
   for (const PantographCase& p : scene.pantographs)
   {
-    p.parameters.check(catenary.length(), eps);
+    p.parameters.check(line_length(), eps);
     check_speed_ramp(p.parameters);
     check_contact_damping(p.contact_compliance, p.contact_entry("Contact damping"));
   }
+}
+
+std::vector<double> Case::window_supports(const unsigned int section) const
+{
+  require(section >= 1 && section <= line.n_sections, "Statistics/Window section",
+          section,
+          "sections run from 1 to " + std::to_string(line.n_sections) +
+              " (Line/Number of sections)");
+  const CatenaryParameters c = sections()[section - 1];
+  std::vector<double> x = c.support_positions();
+  for (double& s : x)
+    s += c.start;
+  return x;
+}
+
+void Case::check_line() const
+{
+  if (!line.is_line())
+    return;
+  const std::string n = std::to_string(line.n_sections);
+  for (const PantographCase& p : scene.pantographs)
+    require(!p.is_moving_force(), "Scene/Pantograph", "moving force",
+            "a line of " + n +
+                " sections has two contact wires in each overlap, and a moving force "
+                "on one wire has no law to share itself; allowed: a pantograph model, "
+                "or Line/Number of sections = 1");
+  require(scene.contact_wire == WireModel::elastic && scene.carrier == WireModel::elastic,
+          "Scene/Contact wire",
+          scene.contact_wire == WireModel::elastic ? "elastic" : "rigid",
+          "a line of " + n +
+              " sections needs elastic wires (a rigid wire has no "
+              "sections); allowed: elastic, or Line/Number of sections = 1");
+  require(!installation.any(), "Mode", "monte carlo",
+          "installation deviations are drawn for one section; allowed on a line of 1 "
+          "section");
 }
 
 void Case::check_contact_damping(const Compliance& law,

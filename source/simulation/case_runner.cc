@@ -3,6 +3,7 @@
 #include <pantocat/base/number_format.h>
 #include <pantocat/lac/vector_bounds.h>
 #include <pantocat/scene/scene_builder.h>
+#include <pantocat/scene/steady_arms.h>
 #include <pantocat/simulation/case_runner.h>
 #include <pantocat/simulation/catenary_design.h>
 #include <pantocat/simulation/checkpoint.h>
@@ -42,6 +43,7 @@ SimulationLayout make_layout(const BuiltScene& built, const Measurements& measur
     l.column_suffix = p.column_suffix;
     l.model = p.data->model;
     l.contact = p.contact_index;
+    l.wire_contacts = p.wire_contacts;
     l.initial_contact_force = p.data->parameters.initial_contact_force;
     l.static_force = p.model                     ? p.model->static_force()
                      : p.data->is_moving_force() ? std::abs(p.data->moving_force)
@@ -102,6 +104,25 @@ void warn_about_a_paper_start_shock(const BuiltScene& built, const DynamicState&
 }
 
 /**
+ * Unreachable targets = release: names the droppers that the design left at
+ * zero force because their targets needed a push.
+ */
+void warn_about_released_droppers(const CatenaryParameters& c,
+                                  const std::vector<unsigned int>& released)
+{
+  if (released.empty())
+    return;
+  std::cerr << "pantocat-fem: warning: " << (c.name.empty() ? "the section" : c.name)
+            << ": the target heights at " << released.size()
+            << (released.size() == 1 ? " dropper" : " droppers") << " (x =";
+  for (const unsigned int j : released)
+    std::cerr << ' ' << c.start + c.dropper_positions[j];
+  std::cerr << " m) need a push; those droppers hang at zero force in the static state "
+               "and the contact wire passes above its targets there "
+               "(Catenary/Droppers/Unreachable targets = release)\n";
+}
+
+/**
  * Stops a run that goes unstable: non-finite values, or a displacement (or
  * Hermite slope) beyond @p bound, the length of the domain: no physical state
  * of a wire comes near that, while an unstable mode grows through it within a
@@ -155,31 +176,38 @@ void check_initial_bounded(const DynamicState& s, const double bound)
 
 CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
     : data(c), asked_time_step(c.time_integration.time_step),
-      space(create_catenary_discretisation(data.catenary, data.discretisation)),
       scene(std::make_unique<Scene>())
 {
   // The run ends exactly at t_e: the step is t_e / ceil(t_e / dt).
   data.time_integration.time_step = c.time_integration.step_for(c.end_time());
-  if (needs_design(data.scene, data.catenary))
-  {
-    design_ = design_catenary(data.scene, data.catenary, *space);
-    data.catenary = design_->catenary;
-  }
-  data.installation.apply(data.catenary); // the catenary as installed
-  scene->built = build_scene(data.scene, data.catenary, *space);
+  design_sections();
+  std::vector<SceneSection> line;
+  for (unsigned int k = 0; k < sections_.size(); ++k)
+    line.push_back({&sections_[k], spaces[k].get()});
+  scene->built = build_scene(data.scene, line);
   const BuiltScene& built = scene->built;
   layout_ = make_layout(built, measurements);
   for (const double x : measurements.probe_positions)
   {
+    require(!data.line.is_line(), "Output/Probe positions", x,
+            "probes measure the contact wire of a single section; a line of " +
+                std::to_string(data.line.n_sections) +
+                " sections has two in each overlap; allowed: no probes on a line");
     require(built.system.has_block("contact wire"), "Output/Probe positions", x,
             "probes measure the contact wire, which this scene holds rigid");
     require(x > 0. && x < data.catenary.length(), "Output/Probe positions", x,
             "must lie inside (0, " + number_to_string(data.catenary.length()) +
                 ") m, the wires' domain");
-    probe_rows.push_back(wire_point_row(*space, built.system, Wire::contact_wire, x));
+    probe_rows.push_back(
+        wire_point_row(*spaces.front(), built.system, Wire::contact_wire, x));
   }
+  require(data.scene.initial_shape == InitialShape::static_equilibrium ||
+              !data.line.is_line(),
+          "Scene/Initial shape", "not static equilibrium",
+          "a prescribed initial shape is one section's; allowed on a line: static "
+          "equilibrium");
   if (data.scene.initial_shape != InitialShape::static_equilibrium)
-    initial = shaped_initial_state(built.system, *space, data.scene);
+    initial = shaped_initial_state(built.system, *spaces.front(), data.scene);
   else if (data.scene.start == Start::paper)
   {
     initial = consistent_initial_state(built.catenary_only, built.system,
@@ -191,7 +219,59 @@ CaseRunner::CaseRunner(const Case& c, const Measurements& measurements)
   for (PantographLayout& p : layout_.pantographs)
     if (p.has_contact())
       p.initial_contact_force = initial.lambda[p.contact];
-  check_initial_bounded(initial, data.catenary.length());
+  check_initial_bounded(initial, data.line_length());
+}
+
+UpliftPoints CaseRunner::uplift_points() const
+{
+  UpliftPoints points;
+  if (!system().has_block(discretisation().wire_block_name(Wire::contact_wire)))
+    return points; // a rigid wire: no uplift to measure
+  for (unsigned int k = 0; k < sections_.size(); ++k)
+  {
+    const CatenaryParameters& c = sections_[k];
+    if (data.scene.has_droppers())
+      for (const double x : c.dropper_positions)
+        points.droppers.push_back(
+            wire_point_row(*spaces[k], system(), Wire::contact_wire, x));
+    for (const double x : SteadyArms::positions(data.scene, c))
+    {
+      points.steady_arm_positions.push_back(c.start + x);
+      points.steady_arms.push_back(
+          wire_point_row(*spaces[k], system(), Wire::contact_wire, x));
+    }
+  }
+  return points;
+}
+
+std::vector<double> CaseRunner::dropper_positions() const
+{
+  std::vector<double> x;
+  for (const CatenaryParameters& c : sections_)
+    for (const double d : c.dropper_positions)
+      x.push_back(c.start + d);
+  return x;
+}
+
+void CaseRunner::design_sections()
+{
+  sections_ = data.sections();
+  for (CatenaryParameters& section : sections_)
+  {
+    spaces.push_back(create_catenary_discretisation(section, data.discretisation));
+    if (!needs_design(data.scene, section))
+      continue;
+    CatenaryDesignResult d = design_catenary(data.scene, section, *spaces.back());
+    section = d.catenary; // the grid is the same: only lengths and preloads change
+    warn_about_released_droppers(section, d.released);
+    if (!design_)
+      design_ = std::move(d);
+  }
+  if (!data.line.is_line())
+  {
+    data.installation.apply(sections_.front()); // the catenary as installed
+  }
+  data.catenary = sections_.front();
 }
 
 CaseRunner::~CaseRunner() = default;
@@ -230,14 +310,14 @@ StaticEquilibrium CaseRunner::static_catenary() const
 StaticElasticity
 CaseRunner::static_elasticity(const ElasticityParameters& parameters) const
 {
-  return pantocat::static_elasticity(scene->built.catenary_only, *space,
+  return pantocat::static_elasticity(scene->built.catenary_only, *spaces.front(),
                                      scene->built.dropper_indices, parameters);
 }
 
 double CaseRunner::contact_wire_displacement(const dealii::Vector<double>& q,
                                              const double x) const
 {
-  return wire_point_row(*space, system(), Wire::contact_wire, x).dot(q);
+  return wire_point_row(*spaces.front(), system(), Wire::contact_wire, x).dot(q);
 }
 
 double CaseRunner::explicit_stability_limit() const
@@ -312,7 +392,8 @@ std::string CaseRunner::explicit_damping_problem() const
   std::string parameter =
       "the damping of '" + system().constraints[l.constraint]->name() + "'";
   for (unsigned int k = 0; k < layout_.pantographs.size(); ++k)
-    if (layout_.pantographs[k].contact == l.constraint)
+    if (std::count(layout_.pantographs[k].wire_contacts.begin(),
+                   layout_.pantographs[k].wire_contacts.end(), l.constraint) > 0)
       parameter = data.scene.pantographs[k].contact_entry("Contact damping");
   std::ostringstream m;
   m << std::setprecision(3) << parameter << " = " << number_to_string(l.damping)
@@ -383,7 +464,7 @@ void CaseRunner::check_load_resolution() const
   // It matters for a contact constraint, whose row moves with x_p; a
   // prescribed moving force on a coarse grid is merely less accurate.
   if (d.load_shape != LoadShape::smoothed_delta || !layout_.has_contact() ||
-      !system().has_block("contact wire"))
+      !system().has_block(discretisation().wire_block_name(Wire::contact_wire)))
     return;
   const double h = data.catenary.length() / d.n_intervals;
   if (h < d.load_half_width)
@@ -497,10 +578,10 @@ RunGuard CaseRunner::make_guard() const
     reference_force = std::max(reference_force, p.static_force);
   for (const double l : initial.lambda)
     reference_force = std::max(reference_force, std::abs(l));
-  const auto& c = data.catenary;
-  return RunGuard(data.guards, system(), reference_force,
-                  0.5 * (c.carrier.tension + c.contact_wire.tension) * c.length(),
-                  initial);
+  double tension_length = 0.; // sum of (T_c + T_w) L over the sections
+  for (const CatenaryParameters& c : sections_)
+    tension_length += (c.carrier.tension + c.contact_wire.tension) * c.length();
+  return RunGuard(data.guards, system(), reference_force, 0.5 * tension_length, initial);
 }
 
 CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& observers,
@@ -549,7 +630,7 @@ CaseRunner::Result CaseRunner::run(const std::vector<SimulationObserver*>& obser
     if (!lags)
       notify(initial, nullptr);
   }
-  const double span_length = data.catenary.length(); // the bound of check_bounded()
+  const double span_length = data.line_length(); // the bound of check_bounded()
   for (unsigned long n = first_step; n <= n_steps; ++n)
   {
     integrator->advance();

@@ -55,8 +55,12 @@ struct HeldCatenary
   std::vector<unsigned int> steady_arms, carrier_springs, heights;
 };
 
+/// Marks a dropper without a height hold (released: at zero force).
+constexpr unsigned int no_hold = static_cast<unsigned int>(-1);
+
 HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameters& c,
-                           const CatenaryDiscretisation& space, const bool heights)
+                           const CatenaryDiscretisation& space, const bool heights,
+                           const std::vector<bool>& released)
 {
   BuiltScene built = build_catenary(scene, c, space);
   HeldCatenary h{std::move(built.catenary_only), {}, {}, {}};
@@ -71,10 +75,12 @@ HeldCatenary held_catenary(const SceneParameters& scene, const CatenaryParameter
     h.carrier_springs.push_back(hold(h.system, space, Wire::carrier, supports[k], 0.,
                                      "carrier support " + std::to_string(k + 1)));
   const std::vector<double> z =
-      heights ? c.dropper_target_heights() : std::vector<double>();
+      heights ? c.dropper_target_displacements() : std::vector<double>();
   for (unsigned int j = 0; j < z.size(); ++j)
-    h.heights.push_back(hold(h.system, space, Wire::contact_wire, c.dropper_positions[j],
-                             z[j], "height at dropper " + std::to_string(j + 1)));
+    h.heights.push_back(released[j] ? no_hold
+                                    : hold(h.system, space, Wire::contact_wire,
+                                           c.dropper_positions[j], z[j],
+                                           "height at dropper " + std::to_string(j + 1)));
   return h;
 }
 
@@ -125,7 +131,8 @@ void check_designed_dropper(const CatenaryParameters& c, const unsigned int j,
 double update_lengths(const SceneParameters& scene, CatenaryParameters& c,
                       const CatenaryDiscretisation& space,
                       const SemiDiscreteSystem& system, const StaticEquilibrium& s,
-                      const std::vector<double>& z, const std::vector<double>& forces)
+                      const std::vector<double>& z, const std::vector<double>& forces,
+                      const std::vector<bool>& released)
 {
   double change = 0.;
   for (unsigned int j = 0; j < c.n_droppers(); ++j)
@@ -138,7 +145,8 @@ double update_lengths(const SceneParameters& scene, CatenaryParameters& c,
     const double stretch =
         scene.droppers == DropperModel::elastic ? forces[j] / c.dropper_stiffness : 0.;
     const double length = carrier - z[j] - stretch;
-    check_designed_dropper(c, j, length, forces[j]);
+    if (!released[j]) // a released dropper holds nothing
+      check_designed_dropper(c, j, length, forces[j]);
     change = std::max(change, std::abs(length - c.dropper_lengths[j]));
     c.dropper_lengths[j] = length;
   }
@@ -166,8 +174,40 @@ std::vector<double> multipliers_of(const StaticEquilibrium& s,
 {
   std::vector<double> m;
   for (const unsigned int i : indices)
-    m.push_back(s.multipliers[i]);
+    m.push_back(i == no_hold ? 0. : s.multipliers[i]);
   return m;
+}
+
+/**
+ * Releases the droppers whose held target needs a push (@p forces < 0), if
+ * the section lets the design release them; true if it released one.
+ */
+bool release_pushing_droppers(const CatenaryParameters& c,
+                              const std::vector<double>& forces,
+                              std::vector<bool>& released)
+{
+  if (!c.release_unreachable_targets)
+    return false;
+  bool any = false;
+  for (unsigned int j = 0; j < forces.size(); ++j)
+    if (!released[j] && forces[j] < 0.)
+      released[j] = any = true;
+  return any;
+}
+
+/// The targets @p z with the released droppers' replaced by where the wire
+/// is in the static state @p s (their droppers hold nothing).
+std::vector<double> reached_targets(const CatenaryParameters& c,
+                                    const CatenaryDiscretisation& space,
+                                    const SemiDiscreteSystem& system,
+                                    const StaticEquilibrium& s, std::vector<double> z,
+                                    const std::vector<bool>& released)
+{
+  for (unsigned int j = 0; j < z.size(); ++j)
+    if (released[j])
+      z[j] = wire_point_row(space, system, Wire::contact_wire, c.dropper_positions[j])
+                 .dot(s.q);
+  return z;
 }
 } // namespace
 
@@ -177,28 +217,34 @@ bool needs_design(const SceneParameters& scene, const CatenaryParameters& catena
          has_steady_arms(scene, catenary) || has_carrier_springs(scene, catenary);
 }
 
-CatenaryDesignResult design_catenary(const SceneParameters& scene,
-                                     const CatenaryParameters& catenary,
-                                     const CatenaryDiscretisation& space,
-                                     const double column_budget)
+namespace
 {
-  CatenaryDesignResult r{catenary, {}, 0};
+/// How one fixed-point iteration of the design ended.
+enum class DesignPass
+{
+  converged,
+  released ///< a dropper was released: the iteration starts again
+};
+
+/**
+ * The fixed-point iteration of design_catenary() with the droppers of
+ * @p released at zero force; releases more (and stops) if a held target needs
+ * a push and the section allows it.
+ */
+DesignPass design_pass(const SceneParameters& scene, const CatenaryDiscretisation& space,
+                       const double column_budget, const bool designing,
+                       std::vector<bool>& released, CatenaryDesignResult& r)
+{
   CatenaryParameters& c = r.catenary;
-  // The holds carry the preloads during the design: the catenary is built
-  // without them, and they are set once, at the end.
-  c.steady_arm_preloads.clear();
-  c.carrier_support_preloads.clear();
   std::vector<double> steady_arm_preloads, carrier_support_preloads;
-  const bool designing =
-      catenary.design == DropperDesign::designed && scene.has_droppers();
   // The held catenary is built and factorised once, with the lengths it
   // starts from (l0); only the dropper weights depend on the lengths, and
   // they enter each iteration as a change of the load.
-  const HeldCatenary h = held_catenary(scene, c, space, designing);
+  const HeldCatenary h = held_catenary(scene, c, space, designing, released);
   const StaticEquilibriumSolver solver(h.system, 0., column_budget);
   const std::vector<double> l0 = c.dropper_lengths;
   const std::vector<double> z =
-      designing ? c.dropper_target_heights() : std::vector<double>();
+      designing ? c.dropper_target_displacements() : std::vector<double>();
   double previous_change = std::numeric_limits<double>::infinity();
   for (unsigned int it = 0; it < 50; ++it)
   {
@@ -210,10 +256,17 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     {
       c.steady_arm_preloads = multipliers_of(s, h.steady_arms);
       c.carrier_support_preloads = multipliers_of(s, h.carrier_springs);
-      return r;
+      return DesignPass::converged;
     }
     // Step 2: the droppers' tensions pull the carrier down.
     r.dropper_forces = multipliers_of(s, h.heights);
+    if (release_pushing_droppers(c, r.dropper_forces, released))
+    {
+      c.dropper_lengths = l0;
+      return DesignPass::released;
+    }
+    const std::vector<double> reached =
+        reached_targets(c, space, h.system, s, z, released);
     dealii::Vector<double> pull = weights;
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
       dropper_upper_row(space, h.system, j).add_transpose_to(pull, -r.dropper_forces[j]);
@@ -221,7 +274,7 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     steady_arm_preloads = multipliers_of(s, h.steady_arms);
     carrier_support_preloads = multipliers_of(s, h.carrier_springs);
     const double change =
-        update_lengths(scene, c, space, h.system, s, z, r.dropper_forces);
+        update_lengths(scene, c, space, h.system, s, reached, r.dropper_forces, released);
     // Converged: the lengths move by less than 1e-10 m, or they have reached the
     // round-off of the static solves (the iteration contracts by about 1/250
     // per step; with Hermite elements at h = 0.125 m the solves' round-off
@@ -233,9 +286,33 @@ CatenaryDesignResult design_catenary(const SceneParameters& scene,
     {
       c.steady_arm_preloads = steady_arm_preloads;
       c.carrier_support_preloads = carrier_support_preloads;
-      return r;
+      return DesignPass::converged;
     }
   }
   throw SimulationError("the dropper design did not converge in 50 iterations");
+}
+} // namespace
+
+CatenaryDesignResult design_catenary(const SceneParameters& scene,
+                                     const CatenaryParameters& catenary,
+                                     const CatenaryDiscretisation& space,
+                                     const double column_budget)
+{
+  CatenaryDesignResult r{catenary, {}, 0, {}};
+  CatenaryParameters& c = r.catenary;
+  // The holds carry the preloads during the design: the catenary is built
+  // without them, and they are set once, at the end.
+  c.steady_arm_preloads.clear();
+  c.carrier_support_preloads.clear();
+  const bool designing =
+      catenary.design == DropperDesign::designed && scene.has_droppers();
+  std::vector<bool> released(c.n_droppers(), false);
+  while (design_pass(scene, space, column_budget, designing, released, r) ==
+         DesignPass::released)
+    continue;
+  for (unsigned int j = 0; j < released.size(); ++j)
+    if (released[j])
+      r.released.push_back(j);
+  return r;
 }
 } // namespace pantocat

@@ -129,9 +129,28 @@ ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
     }
 }
 
+ContactStatistics::ContactStatistics(const StatisticsParameters& parameters,
+                                     const std::vector<double>& supports,
+                                     const UpliftPoints& points,
+                                     const unsigned int pantograph,
+                                     const unsigned int wire)
+    : parameters(parameters), window(parameters.evaluation_window(supports)),
+      pantograph(pantograph), wire(wire), wire_rows(points.droppers),
+      n_droppers(points.droppers.size())
+{
+  for (unsigned int k = 0; k < points.steady_arms.size(); ++k)
+    if (window.contains(points.steady_arm_positions[k], position_tolerance))
+    {
+      steady_arms.push_back(points.steady_arm_positions[k]);
+      wire_rows.push_back(points.steady_arms[k]);
+    }
+}
+
 void ContactStatistics::start(const SimulationLayout& layout)
 {
-  contact_index = layout.pantographs.at(pantograph).contact;
+  contact = layout.pantographs.at(pantograph);
+  if (wire != all_wires) // one contact wire's share
+    contact.wire_contacts = {contact.wire_contacts.at(wire)};
   if (layout.dropper_indices.empty() && n_droppers > 0) // a scene without droppers
   {
     wire_rows.erase(wire_rows.begin(), wire_rows.begin() + n_droppers);
@@ -149,8 +168,8 @@ void ContactStatistics::observe_state(const TimePoint& point, const DynamicState
 {
   recorded.t.push_back(point.t);
   recorded.x_p.push_back(point.x_p[pantograph]);
-  recorded.lambda_p.push_back(point.lambda[contact_index]);
-  recorded.in_contact.push_back(point.active[contact_index]);
+  recorded.lambda_p.push_back(contact_force(contact, point));
+  recorded.in_contact.push_back(in_contact(contact, point));
   const bool first = initial_height.empty();
   for (std::size_t j = 0; j < wire_rows.size(); ++j)
   {

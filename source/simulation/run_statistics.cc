@@ -38,6 +38,8 @@ void RunStatistics::start(const SimulationLayout& l)
   layout = l;
   forces.assign(l.pantographs.size(), {});
   intervals.assign(l.constraint_names.size(), {});
+  losses.assign(l.pantographs.size(), {});
+  lost_since.assign(l.pantographs.size(), std::nan(""));
   open_since.assign(l.constraint_names.size(), std::nan(""));
   impacts.assign(l.constraint_names.size(), {});
 }
@@ -58,8 +60,22 @@ void RunStatistics::observe(const TimePoint& p)
 {
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
-      forces[k].add(p.lambda[layout.pantographs[k].contact], p.t,
+      forces[k].add(pantocat::contact_force(layout.pantographs[k], p), p.t,
                     k < p.x_p.size() ? p.x_p[k] : 0.);
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+  {
+    if (!layout.pantographs[k].has_contact())
+      continue;
+    const bool touching = in_contact(layout.pantographs[k], p),
+               lost = !std::isnan(lost_since[k]);
+    if (!touching && !lost)
+      lost_since[k] = p.t;
+    else if (touching && lost)
+    {
+      losses[k].push_back({lost_since[k], p.t});
+      lost_since[k] = std::nan("");
+    }
+  }
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
   unsigned int slack = 0;
@@ -94,6 +110,12 @@ void RunStatistics::observe(const TimePoint& p)
 
 void RunStatistics::finish()
 {
+  for (unsigned int k = 0; k < lost_since.size(); ++k)
+    if (!std::isnan(lost_since[k]))
+    {
+      losses[k].push_back({lost_since[k], last_t});
+      lost_since[k] = std::nan("");
+    }
   for (unsigned int i = 0; i < open_since.size(); ++i)
     if (!std::isnan(open_since[i]))
     {
@@ -127,14 +149,15 @@ DropperSlackEvents RunStatistics::dropper_slack_events(const double from,
 
 std::vector<Interval> RunStatistics::contact_loss_intervals() const
 {
-  const auto contacts = layout.contacts();
-  return contacts.empty() ? std::vector<Interval>{} : intervals[contacts[0]->contact];
+  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
+    if (layout.pantographs[k].has_contact())
+      return losses[k];
+  return {};
 }
 
 std::vector<Interval> RunStatistics::contact_loss_intervals(const unsigned int k) const
 {
-  const PantographLayout& p = layout.pantographs[k];
-  return p.has_contact() ? intervals[p.contact] : std::vector<Interval>{};
+  return layout.pantographs[k].has_contact() ? losses[k] : std::vector<Interval>{};
 }
 
 void RunStatistics::save(CheckpointOut& archive) const
@@ -142,7 +165,8 @@ void RunStatistics::save(CheckpointOut& archive) const
   for (const ForceStatistics& f : forces)
     archive << f.max << f.min << f.mean << f.m2 << f.count << f.max_time << f.max_position
             << f.min_time << f.min_position;
-  archive << max_pos << max_vel << last_t << intervals << open_since << max_slack;
+  archive << max_pos << max_vel << last_t << intervals << open_since << max_slack
+          << losses << lost_since;
   for (const ImpulseStatistics& s : impacts)
     archive << s.count << s.total << s.max;
 }
@@ -154,7 +178,8 @@ void RunStatistics::resume(const SimulationLayout& l, CheckpointIn& archive)
   for (ForceStatistics& f : forces)
     archive >> f.max >> f.min >> f.mean >> f.m2 >> f.count >> f.max_time >>
         f.max_position >> f.min_time >> f.min_position;
-  archive >> max_pos >> max_vel >> last_t >> intervals >> open_since >> max_slack;
+  archive >> max_pos >> max_vel >> last_t >> intervals >> open_since >> max_slack >>
+      losses >> lost_since;
   impacts.assign(l.constraint_names.size(), {});
   for (ImpulseStatistics& s : impacts)
     archive >> s.count >> s.total >> s.max;

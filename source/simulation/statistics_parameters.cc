@@ -45,6 +45,10 @@ void StatisticsParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "Order n of the Butterworth low pass; forward and backward its gain "
                     "is 1/(1 + (f/f_c)^(2n)) (pre-warped: f -> tan(pi f/f_s)), 40 n "
                     "dB/decade. The reference section S55 asks for 4.");
+  prm.declare_entry("Window section", "1", dealii::Patterns::Integer(1),
+                    "On a line of several tension sections (Line/Number of sections): "
+                    "the section whose spans Window spans counts and inside which Window "
+                    "lies. The overlaps are evaluated as windows of their own.");
   prm.declare_entry("Window", "",
                     dealii::Patterns::List(dealii::Patterns::Double(), 0, 2),
                     "Pantograph positions x0, x1 [m] (inside the section) between which "
@@ -75,6 +79,7 @@ void StatisticsParameters::parse_parameters(dealii::ParameterHandler& prm)
   low_pass_cutoff = prm.get_double("Low-pass cut-off");
   low_pass_order = prm.get_integer("Low-pass order");
   episode_resolution = prm.get_double("Episode resolution");
+  window_section = prm.get_integer("Window section");
   window = dealii::Utilities::string_to_double(
       dealii::Utilities::split_string_list(prm.get("Window")));
   window_spans.clear();

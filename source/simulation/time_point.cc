@@ -1,7 +1,25 @@
 #include <pantocat/simulation/time_point.h>
 
+#include <algorithm>
+
 namespace pantocat
 {
+double contact_force(const PantographLayout& p, const TimePoint& point)
+{
+  double sum = 0.;
+  for (const unsigned int i : p.wire_contacts)
+    sum += point.lambda[i];
+  return sum;
+}
+
+bool in_contact(const PantographLayout& p, const TimePoint& point)
+{
+  for (const unsigned int i : p.wire_contacts)
+    if (point.active[i])
+      return true;
+  return false;
+}
+
 bool SimulationLayout::has_contact() const
 {
   return !contacts().empty();
@@ -10,7 +28,8 @@ bool SimulationLayout::has_contact() const
 const PantographLayout* SimulationLayout::contact_owner(const unsigned int i) const
 {
   for (const PantographLayout& p : pantographs)
-    if (p.contact == i)
+    if (std::find(p.wire_contacts.begin(), p.wire_contacts.end(), i) !=
+        p.wire_contacts.end())
       return &p;
   return nullptr;
 }

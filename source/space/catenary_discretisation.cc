@@ -14,7 +14,8 @@ CatenaryDiscretisation::CatenaryDiscretisation(
     : catenary(catenary), discretisation(discretisation),
       delta(discretisation.load_half_width),
       dx(catenary.length() / discretisation.n_intervals),
-      stitch(catenary, dx, discretisation.method == SpaceMethod::fdm)
+      stitch(catenary, dx, discretisation.method == SpaceMethod::fdm),
+      supports(catenary.support_positions()), chord_kinks(catenary.support_chord_kinks())
 {
 }
 
@@ -43,6 +44,46 @@ double CatenaryDiscretisation::displacement(const Wire wire,
   return offset + point_row(wire, x).dot(q);
 }
 
+std::string CatenaryDiscretisation::wire_block_name(const Wire wire) const
+{
+  return catenary.name.empty() ? std::string(block_name(wire))
+                               : catenary.name + " " + block_name(wire);
+}
+
+std::string CatenaryDiscretisation::stitch_block_name() const
+{
+  return catenary.name.empty() ? std::string(StitchWireSpace::block_name)
+                               : catenary.name + " " + StitchWireSpace::block_name;
+}
+
+double CatenaryDiscretisation::reference_height(const double x,
+                                                const unsigned int k) const
+{
+  if (catenary.support_heights.empty())
+    return 0.;
+  const std::vector<double>& s = supports;
+  const std::vector<double>& kinks = chord_kinks;
+  const bool point = discretisation.load_shape == LoadShape::point;
+  if (k == 2)
+  {
+    // h'' = sum of kink_i delta(y - s_i): the load shape at the supports.
+    double sum = 0.;
+    for (unsigned int i = 0; i < s.size() && !point; ++i)
+      sum += kinks[i] * delta.value(s[i] - x);
+    return sum;
+  }
+  if (point)
+    return catenary.support_chord(x, k);
+  // h' is 0 before the first anchor and jumps by kink_i at s_i: weighted by
+  // the load shape, each jump counts with the load's share beyond s_i. h is
+  // the integral of that from the level before the first anchor.
+  double value = k == 0 ? catenary.support_heights.front() : 0.;
+  for (unsigned int i = 0; i < s.size(); ++i)
+    value += kinks[i] * (k == 0 ? delta.first_moment_beyond(s[i] - x)
+                                : 1. - delta.integral_up_to(s[i] - x));
+  return value;
+}
+
 std::vector<double> CatenaryDiscretisation::grid_points() const
 {
   std::vector<double> x(n_intervals() + 1);
@@ -63,10 +104,10 @@ SparseRow wire_point_row(const CatenaryDiscretisation& d,
                          const SemiDiscreteSystem& system, const Wire wire,
                          const double x)
 {
-  if (!system.has_block(block_name(wire)))
+  if (!system.has_block(d.wire_block_name(wire)))
     return {};
   SparseRow row = d.point_row(wire, x);
-  row.shift(system.block(block_name(wire)).first);
+  row.shift(system.block(d.wire_block_name(wire)).first);
   return row;
 }
 
@@ -74,10 +115,10 @@ SparseRow stitch_wire_point_row(const CatenaryDiscretisation& d,
                                 const SemiDiscreteSystem& system, const unsigned int i,
                                 const double x)
 {
-  if (!system.has_block(StitchWireSpace::block_name))
+  if (!system.has_block(d.stitch_block_name()))
     return {};
   SparseRow row = d.stitch_wires().point_row(i, x);
-  row.shift(system.block(StitchWireSpace::block_name).first);
+  row.shift(system.block(d.stitch_block_name()).first);
   return row;
 }
 

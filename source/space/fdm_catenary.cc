@@ -18,7 +18,7 @@ void FdmCatenary::initialize_operator(const Wire wire, const bool with_bending,
 {
   const unsigned int n = n_dofs(wire);
   const unsigned int bandwidth = with_bending ? 2 : 1;
-  op.name = block_name(wire);
+  op.name = wire_block_name(wire);
   dealii::DynamicSparsityPattern dsp(n, n);
   for (unsigned int i = 0; i < n; ++i)
     for (unsigned int j = (i >= bandwidth ? i - bandwidth : 0);

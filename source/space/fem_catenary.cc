@@ -85,7 +85,7 @@ void FemCatenary::initialize_operator(const Wire wire, bool /*with_bending*/,
   // The Hermite pattern already couples all dofs of a cell: bending adds no entries.
   const WireSpace& s = space(wire);
   std::vector<dealii::types::global_dof_index> dofs(s.dofs.get_fe().n_dofs_per_cell());
-  op.name = block_name(wire);
+  op.name = wire_block_name(wire);
   dealii::DynamicSparsityPattern dsp(s.n_free, s.n_free);
   for (const auto& cell : s.dofs.active_cell_iterators())
   {

@@ -2,6 +2,7 @@
 
 #include <pantocat/analysis/elasticity_parameters.h>
 #include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/catenary/line_parameters.h>
 #include <pantocat/io/output_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
 #include <pantocat/simulation/assessment.h>
@@ -48,6 +49,7 @@ struct ProgramParameters
                                                              SpaceMethod::fdm};
   SceneParameters scene; ///< with every pantograph (subsections Pantograph, Pantograph k)
   CatenaryParameters catenary;
+  LineParameters line;
   DiscretisationParameters discretisation;
   TimeIntegrationParameters time_integration;
   OutputParameters output;

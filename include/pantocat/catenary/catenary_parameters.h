@@ -4,6 +4,7 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -69,6 +70,20 @@ enum class CatenaryDamping
  */
 struct CatenaryParameters
 {
+  /**
+   * The section's name in a line of several ("section k"), prefixed to its
+   * bodies and constraints; empty for a case of one section.
+   */
+  std::string name;
+  /// x [m] along the line of the section's first support (its x = 0).
+  double start = 0.;
+  /**
+   * Heights [m] of the contact wire at every support (n + 1, z = 0 the working
+   * height), the messenger l_c above them; between supports both wires'
+   * reference is the straight chord (support_chord()), so that a dropper sees
+   * the same height at both ends. Empty: 0 at every support.
+   */
+  std::vector<double> support_heights;
   double span = 20.0; ///< L [m]: the length of each span (Catenary/Span)
   /// Span lengths [m] of the section, first to last (empty: n_spans x span).
   std::vector<double> span_lengths;
@@ -100,6 +115,12 @@ struct CatenaryParameters
    */
   double presag = 0.;
   PresagReference presag_reference = PresagReference::supports;
+  /**
+   * A target a dropper could hold only by pushing: false, the design refuses
+   * it; true, the design leaves that dropper at zero force and the wire where
+   * its neighbours put it (Catenary/Droppers/Unreachable targets).
+   */
+  bool release_unreachable_targets = false;
   /**
    * Target heights z_j [m] of the static contact wire at every dropper of the
    * section (z = 0 at the steady arms, negative below), for the design; they
@@ -165,6 +186,21 @@ struct CatenaryParameters
    * O(n) for all of them.
    */
   std::vector<double> dropper_target_heights() const;
+  /**
+   * What the design holds the contact wire at: the target heights less the
+   * support chord at every dropper, the displacement from the chord.
+   */
+  std::vector<double> dropper_target_displacements() const;
+
+  /**
+   * The contact wire's reference height h(x) [m] at the section's @p x (the
+   * straight chord between the support heights; beyond an anchor that
+   * anchor's height), or its slope h'(x) for @p derivative = 1.
+   */
+  double support_chord(double x, unsigned int derivative = 0) const;
+  /// The changes of slope of the chord at every support (n + 1; an anchor's
+  /// against the level continuation beyond it).
+  std::vector<double> support_chord_kinks() const;
 
   /// Gravity load of a clamp and half a dropper at dropper j, (m_s + l_j rho_d A_d / 2)
   /// g, Eq. (4), on the wire it hangs from (@p carrier_side: the carrier or its

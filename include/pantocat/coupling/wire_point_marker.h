@@ -1,8 +1,8 @@
 #pragma once
 
 #include <pantocat/base/contact_point_motion.h>
-#include <pantocat/space/catenary_discretisation.h>
 #include <pantocat/lac/sparse_row.h>
+#include <pantocat/space/catenary_discretisation.h>
 
 namespace pantocat
 {
@@ -16,6 +16,10 @@ namespace pantocat
  * with r_k the load rows of the space discretisation (Sec. 4.1). It knows the
  * wire only through CatenaryDiscretisation::load_row(), and nothing of what
  * is attached at the point (a pantograph's head, a prescribed force).
+ *
+ * The motion is along the line; a section of a line sees it from its start.
+ * Where the load does not touch the section's domain the rows are empty:
+ * beyond its anchors a section's contact wire is out of reach.
  */
 class WirePointMarker
 {
@@ -34,9 +38,22 @@ public:
   void rows(double t, SparseRow& row, SparseRow& first, SparseRow& second,
             unsigned int max_order) const;
 
+  /**
+   * The height of the wire's reference (the support chord) at the point,
+   * weighted by the load shape (CatenaryDiscretisation::reference_height()),
+   * and its time derivatives up to @p max_order: what F_w q adds to it is the
+   * wire's height at the point.
+   */
+  void reference_heights(double t, unsigned int max_order, double& z, double& z_t,
+                         double& z_tt) const;
   const ContactPointMotion& motion() const { return motion_; }
 
 private:
+  /// x(t) in the section's coordinate (the motion is along the line).
+  double local_position(double t) const;
+  /// True while the load at @p x touches the section's domain.
+  bool within_reach(double x) const;
+
   const CatenaryDiscretisation& discretisation;
   unsigned int wire_offset;
   ContactPointMotion motion_;

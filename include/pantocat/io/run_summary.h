@@ -5,6 +5,7 @@
 #include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/energy_range.h>
 #include <pantocat/simulation/event_log.h>
+#include <pantocat/simulation/line_windows.h>
 #include <pantocat/simulation/moving_load_comparison.h>
 #include <pantocat/simulation/run_statistics.h>
 
@@ -34,6 +35,8 @@ struct RunRecord
   std::vector<Assessment> assessments = {};
   /// The entries the case file and the command line set ("Subsection/Name" -> value).
   std::map<std::string, std::string> inputs = {};
+  /// The line's overlaps and contact wires (nullptr or empty for a single section).
+  const LineWindows* line = nullptr;
   /// Pantograph 1's contact statistics (the first in contact), or nullptr.
   const ContactStatistics* first_contact() const;
   /// x_p(t) [m] of pantograph @p k (in layout order).

@@ -3,6 +3,7 @@
 #include <pantocat/io/json_writer.h>
 #include <pantocat/simulation/assessment.h>
 #include <pantocat/simulation/contact_statistics.h>
+#include <pantocat/simulation/line_windows.h>
 #include <pantocat/simulation/run_statistics.h>
 
 #include <ostream>
@@ -22,6 +23,22 @@ namespace pantocat
  */
 void write_statistics(JsonWriter& json, const ContactForceStatistics& statistics,
                       const DropperSlackEvents& slack_in_window);
+
+/**
+ * "line_windows" of summary.json on a line of several sections: per
+ * evaluation of @p line its pantograph, window ("window", "overlap k"),
+ * contact wire ("all wires", "section k") and "statistics" as
+ * write_statistics() writes them.
+ */
+void write_line_windows(JsonWriter& json, const LineWindows& line,
+                        const SimulationLayout& layout);
+/**
+ * The line's evaluations on screen, one line each: the window's x, the raw
+ * and low-passed F_m, sigma, F_max and F_min; with @p detailed every contact
+ * wire, else the force on all wires only.
+ */
+void print_line_windows(std::ostream& out, const LineWindows& line,
+                        const SimulationLayout& layout, bool detailed);
 
 /// {"total": n, "per_dropper": [n_1, ...]} under @p key.
 void write_slack_events(JsonWriter& json, const std::string& key,

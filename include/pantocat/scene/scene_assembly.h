@@ -31,8 +31,14 @@ struct ScenePantograph
   std::string block;         ///< name of its block of unknowns
   std::string contact;       ///< name of its contact constraint
   std::string column_suffix; ///< "" with one pantograph, "[k]" with several
-  /// Index of its contact constraint in the system, or invalid_unsigned_int.
+  /**
+   * Index of its contact constraint in the system, or invalid_unsigned_int;
+   * in a line of several sections, its contact with the wire it touches at
+   * t = 0.
+   */
   unsigned int contact_index = dealii::numbers::invalid_unsigned_int;
+  /// Every contact constraint of it, one per contact wire (section) it can touch.
+  std::vector<unsigned int> wire_contacts;
 
   bool has_contact() const
   {
@@ -43,24 +49,40 @@ struct ScenePantograph
 /// The pantographs of @p scene with their models made from the registry.
 std::vector<ScenePantograph> make_scene_pantographs(const SceneParameters& scene);
 
+/// One tension section of a scene's line: its data and its discretisation.
+struct SceneSection
+{
+  const CatenaryParameters* catenary = nullptr;
+  const CatenaryDiscretisation* space = nullptr;
+};
+
 /**
  * What the effects of a scene build together, in three phases (SceneEffect):
  * the bodies' operators, the terms added to them, then the semi-discrete
  * system (35) with its constraints and time-dependent loads.
+ *
+ * A line holds several tension sections; the builder lets the catenary's
+ * effects contribute to each section in turn (select_section()), so that an
+ * effect sees one section through catenary() and space(). The pantographs'
+ * effects see the whole line through sections.
  */
 struct SceneAssembly
 {
-  SceneAssembly(const SceneParameters& scene, const CatenaryParameters& catenary,
-                const CatenaryDiscretisation& space,
+  SceneAssembly(const SceneParameters& scene, std::vector<SceneSection> sections,
                 std::vector<ScenePantograph> pantographs)
-      : scene(scene), catenary(catenary), space(space),
-        pantographs(std::move(pantographs))
+      : scene(scene), sections(std::move(sections)), pantographs(std::move(pantographs))
   {
   }
 
   const SceneParameters& scene;
-  const CatenaryParameters& catenary;
-  const CatenaryDiscretisation& space;
+  /// The tension sections along the line, in order (one for a single section).
+  const std::vector<SceneSection> sections;
+  /// The section the catenary's effects contribute to now.
+  const CatenaryParameters& catenary() const { return *sections[current].catenary; }
+  const CatenaryDiscretisation& space() const { return *sections[current].space; }
+  void select_section(const unsigned int k) { current = k; }
+  /// @p name of a constraint of the current section, after the section's name in a line.
+  std::string constraint_name(const std::string& name) const;
   /// Every pantograph of the scene (the contact effect sets contact_index).
   std::vector<ScenePantograph> pantographs;
 
@@ -68,6 +90,10 @@ struct SceneAssembly
   std::vector<BlockOperator> bodies;
   /// The body named @p name ("carrier", "contact wire", "pantograph", ...), or nullptr.
   BlockOperator* body(const std::string& name);
+  /// The current section's body of @p wire, or nullptr.
+  BlockOperator* wire_body(Wire wire);
+  /// The current section's body of stitch wires, or nullptr.
+  BlockOperator* stitch_body();
 
   /// Phase 3: the system, its blocks set from the bodies.
   SemiDiscreteSystem system;
@@ -110,5 +136,8 @@ struct SceneAssembly
    * its stitch wire): as add_point_mass() and add_point_force().
    */
   void add_at_dropper_top(unsigned int j, double force, double m);
+
+private:
+  unsigned int current = 0;
 };
 } // namespace pantocat

@@ -37,10 +37,15 @@ struct BuiltScene
 };
 
 /**
- * Builds the semi-discrete system of @p scene from its enabled effects only
+ * Builds the semi-discrete system of @p scene on the line of @p sections
+ * (their unknowns and constraints section after section, then the
+ * pantographs' and their contacts) from its enabled effects only
  * (SceneEffect's three phases); the pantographs' models come from the
  * registry. Throws InputError if the grid cannot carry the droppers.
  */
+BuiltScene build_scene(const SceneParameters& scene,
+                       const std::vector<SceneSection>& sections);
+/// build_scene() of a line of one section.
 BuiltScene build_scene(const SceneParameters& scene, const CatenaryParameters& catenary,
                        const CatenaryDiscretisation& space);
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <pantocat/catenary/catenary_parameters.h>
+#include <pantocat/catenary/line_parameters.h>
 #include <pantocat/scene/scene_parameters.h>
 #include <pantocat/simulation/guard_parameters.h>
 #include <pantocat/space/discretisation_parameters.h>
@@ -57,6 +58,19 @@ struct Case
   GuardParameters guards;
   /// Installation errors applied after the design (Monte Carlo); none by default.
   InstallationDeviations installation = {};
+  /// The line: catenary's section once, or several joined by overlaps.
+  LineParameters line = {};
+
+  /// The tension sections along the line (LineParameters::sections()).
+  std::vector<CatenaryParameters> sections() const { return line.sections(catenary); }
+  /**
+   * The supports along the line of section @p section (1-based; the section
+   * itself for a single one), for Statistics/Window section; throws
+   * InputError naming it if there is no such section.
+   */
+  std::vector<double> window_supports(unsigned int section) const;
+  /// The length [m] of the line: the wires' domain along which the pantographs run.
+  double line_length() const { return line.length(catenary); }
 
   /**
    * The end time t_e of a dynamic run: the first pantograph (moving force or
@@ -71,6 +85,9 @@ struct Case
    * InputError naming the parameter, the value and what is allowed.
    */
   void check() const;
+  /// What a line of several sections refuses (a moving force, rigid wires, installation
+  /// deviations).
+  void check_line() const;
   /// A speed ramp of 0 or at least one time step; throws InputError naming it.
   void check_speed_ramp(const PantographParameters& p) const;
   /// A penalty contact's damping within k_c t_e; throws InputError naming @p parameter.

@@ -4,6 +4,7 @@
 #include <pantocat/analysis/static_equilibrium.h>
 #include <pantocat/simulation/case.h>
 #include <pantocat/simulation/catenary_design.h>
+#include <pantocat/simulation/contact_statistics.h>
 #include <pantocat/simulation/run_guard.h>
 #include <pantocat/simulation/time_point.h>
 #include <pantocat/space/catenary_discretisation.h>
@@ -119,7 +120,19 @@ public:
   const SemiDiscreteSystem& system() const;
   const SimulationLayout& layout() const { return layout_; }
   const DynamicState& initial_state() const { return initial; }
-  const CatenaryDiscretisation& discretisation() const { return *space; }
+  /// The discretisation of the (first) section.
+  const CatenaryDiscretisation& discretisation() const { return *spaces.front(); }
+  /**
+   * Where the run's contact statistics record the uplift: the contact wire
+   * at every dropper of every section, and at every steady arm with its
+   * position along the line.
+   */
+  UpliftPoints uplift_points() const;
+  /// The positions along the line of every dropper, in the order of the droppers'
+  /// constraints.
+  std::vector<double> dropper_positions() const;
+  /// The tension sections along the line as designed (one for a single section).
+  const std::vector<CatenaryParameters>& sections() const { return sections_; }
   /// w_w(@p x) of the contact wire in state @p q of system() (0 if it is rigid).
   double contact_wire_displacement(const dealii::Vector<double>& q, double x) const;
   /// The step-size limit 2/omega_max of the explicit method (computed once).
@@ -166,6 +179,9 @@ public:
 
 private:
   struct Scene;
+  /// Makes sections_ and spaces: the line's sections designed (the first one's
+  /// design kept in design_), a single section also installed.
+  void design_sections();
   /// The guards with F_ref from the pantographs and initial forces, E_ref = (T_c + T_w) L
   /// / 2.
   RunGuard make_guard() const;
@@ -188,7 +204,9 @@ private:
   Case data;
   double asked_time_step; ///< Time integration/Time step as given
   std::optional<CatenaryDesignResult> design_;
-  std::unique_ptr<CatenaryDiscretisation> space;
+  /// The tension sections as designed and installed, and their discretisations.
+  std::vector<CatenaryParameters> sections_;
+  std::vector<std::unique_ptr<CatenaryDiscretisation>> spaces;
   std::unique_ptr<Scene> scene;
   SimulationLayout layout_;
   std::vector<SparseRow> probe_rows; ///< rows of w_w at the probe positions

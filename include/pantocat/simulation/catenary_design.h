@@ -15,6 +15,9 @@ struct CatenaryDesignResult
   CatenaryParameters catenary; ///< with the designed lengths and the support preloads
   std::vector<double> dropper_forces; ///< static tension of each dropper [N]
   unsigned int iterations = 0;        ///< fixed-point iterations on the dropper weights
+  /// The droppers (0-based) released at zero force: their targets needed a
+  /// push (CatenaryParameters::release_unreachable_targets).
+  std::vector<unsigned int> released;
 };
 
 /**
@@ -48,7 +51,10 @@ struct CatenaryDesignResult
  * to round-off).
  *
  * Throws InputError, naming Pre-sag or Target heights, when the targets ask
- * for a dropper of length <= 0 or one that would have to push.
+ * for a dropper of length <= 0, or for one that would have to push unless
+ * the section releases such droppers (Unreachable targets = release): each
+ * is then left without its hold, at zero force, the wire where its
+ * neighbours put it, and the iteration starts again.
  */
 CatenaryDesignResult
 design_catenary(const SceneParameters& scene, const CatenaryParameters& catenary,

@@ -88,6 +88,18 @@ ContactForceStatistics evaluate_contact_force(const ContactForceSeries& series,
                                               std::vector<double>* filtered = nullptr);
 
 /**
+ * The points of the contact wires at which a run records the uplift, as rows
+ * w = row . q in the numbering of the system: every dropper, and the steady
+ * arms with their positions along the line.
+ */
+struct UpliftPoints
+{
+  std::vector<SparseRow> droppers;
+  std::vector<double> steady_arm_positions;
+  std::vector<SparseRow> steady_arms;
+};
+
+/**
  * Observer that records the contact-force series of one pantograph's contact
  * (one observer per contact) and the contact-wire displacement w_w(x, t) at
  * every dropper and at every steady arm inside the evaluation window (a
@@ -106,6 +118,17 @@ public:
                     const SemiDiscreteSystem& system,
                     const std::vector<double>& steady_arms = {},
                     unsigned int pantograph = 0);
+  /// Every contact wire of the pantograph: its force is the sum over them.
+  static constexpr unsigned int all_wires = static_cast<unsigned int>(-1);
+  /**
+   * On a line: the window from @p supports (the supports along the line of
+   * the section that Statistics/Window section names), the uplift at
+   * @p points, and the force of pantograph @p pantograph on contact wire
+   * @p wire (its index among the pantograph's wire contacts) or on all.
+   */
+  ContactStatistics(const StatisticsParameters& parameters,
+                    const std::vector<double>& supports, const UpliftPoints& points,
+                    unsigned int pantograph, unsigned int wire = all_wires);
 
   void start(const SimulationLayout& layout) override;
   void observe(const TimePoint&) override {}
@@ -138,7 +161,9 @@ private:
   StatisticsParameters parameters;
   EvaluationWindow window;
   unsigned int pantograph = 0;
-  unsigned int contact_index = 0;
+  unsigned int wire = all_wires;
+  /// The pantograph's layout, with the contacts whose force is recorded.
+  PantographLayout contact;
   /// w_w = row . q at the droppers, then at the steady arms in the window.
   std::vector<SparseRow> wire_rows;
   unsigned int n_droppers = 0;     ///< the first n_droppers of wire_rows

@@ -111,5 +111,9 @@ private:
   std::vector<std::vector<Interval>> intervals;
   std::vector<double> open_since;         ///< start of the open interval, or NaN
   std::vector<ImpulseStatistics> impacts; ///< per constraint
+  /// Per pantograph: the intervals in which it touches no contact wire, and
+  /// the start of the open one (NaN if it touches one).
+  std::vector<std::vector<Interval>> losses;
+  std::vector<double> lost_since;
 };
 } // namespace pantocat

@@ -44,6 +44,9 @@ struct StatisticsParameters
   std::vector<double> window;
   /// The window as spans: first (and last), 1-based; empty: not given so.
   std::vector<long> window_spans;
+  /// On a line: the section (1-based) whose spans Window spans counts and
+  /// inside which Window lies.
+  unsigned int window_section = 1;
   /// Open intervals of one constraint whose reclosure between them is
   /// shorter than this [s] form one episode (SwitchEpisode); 0: none merged.
   double episode_resolution = 1e-3;

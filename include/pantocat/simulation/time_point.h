@@ -16,8 +16,15 @@ struct PantographLayout
   std::string name;          ///< "pantograph", or "pantograph k" with several
   std::string column_suffix; ///< "" with one pantograph, "[k]" with several
   std::string model;         ///< "two-mass", ..., "moving force", "absent"
-  /// Its contact constraint; invalid_unsigned_int without a body in contact.
+  /**
+   * Its contact constraint; invalid_unsigned_int without a body in contact.
+   * On a line of several sections: its contact with the wire it touches at
+   * t = 0.
+   */
   unsigned int contact = dealii::numbers::invalid_unsigned_int;
+  /// Every contact constraint of it: one per contact wire it can touch
+  /// (one per section of the line), in the order of the sections.
+  std::vector<unsigned int> wire_contacts;
   std::vector<std::string> coordinates; ///< names of its q_MBS ("w_p1", ...)
   unsigned int first_coordinate = 0;    ///< where they start in TimePoint::pantograph
   double static_force = 0.;             ///< F_0 of its model, or the moving force [N]
@@ -61,6 +68,11 @@ struct TimePoint
   std::vector<double> probes;     ///< w_w at the probe positions [m]
   double energy = 0.;             ///< if SimulationLayout::energy [J]
 };
+
+/// The contact force of pantograph @p p at @p point: the sum over its contact wires.
+double contact_force(const PantographLayout& p, const TimePoint& point);
+/// True if pantograph @p p touches some contact wire at @p point.
+bool in_contact(const PantographLayout& p, const TimePoint& point);
 
 /// Receives the time points of a run (time series, statistics, plots, ...).
 class SimulationObserver

@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace pantocat
@@ -119,6 +120,24 @@ public:
       load_row(x_c, first_k + r, *rows[r]);
   }
 
+  /**
+   * The name of @p wire's block in the system: block_name(), after the
+   * section's name in a line of several ("section 2 contact wire").
+   */
+  std::string wire_block_name(Wire wire) const;
+  /// The name of the block of the section's stitch wires.
+  std::string stitch_block_name() const;
+
+  /**
+   * The k-th x-derivative (k = 0, 1, 2) of the contact wire's reference
+   * height, the support chord h of CatenaryParameters::support_chord(),
+   * weighted by the load shape as F_w weights the unknowns:
+   * int delta^{(0)}(y - x) h^{(k)}(y) dy (h'' being the chord's kinks), or
+   * h^{(k)}(x) for a point load. The height of the contact point is this plus
+   * F_w q_w (33).
+   */
+  double reference_height(double x, unsigned int k) const;
+
   /// The displacement w(x) of @p wire (with l_c for the carrier) for the unknowns @p q of
   /// that wire.
   double displacement(Wire wire, const dealii::Vector<double>& q, double x) const;
@@ -146,6 +165,8 @@ protected:
   SmoothedDelta delta;
   double dx; ///< L / N
   StitchWireSpace stitch;
+  /// The supports and the support chord's kinks there, for reference_height().
+  std::vector<double> supports, chord_kinks;
 };
 
 /**

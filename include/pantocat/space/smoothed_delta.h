@@ -31,6 +31,12 @@ public:
   /// Antiderivative Phi(xi) = int_{-inf}^{xi} delta_eps: 0 below -eps, 1 above eps.
   double integral_up_to(double xi) const;
 
+  /**
+   * int delta_eps(xi) (xi - d)_+ dxi: the load's lever beyond @p d, which
+   * weights a kink of a piecewise linear height at distance d from the
+   * load's centre (-d for d <= -eps, 0 for d >= eps).
+   */
+  double first_moment_beyond(double d) const;
   /// The knots -eps, 0, eps of the spline, relative to the centre.
   std::array<double, 3> knots() const { return {{-eps, 0., eps}}; }
 
