@@ -52,7 +52,8 @@ PlottedColumns plotted_columns(const SimulationLayout& layout)
 {
   PlottedColumns c;
   for (const PantographLayout* p : layout.contacts())
-    c.contact_forces.push_back("lambda_p" + p->column_suffix);
+    for (const std::string& name : TimeSeriesWriter::contact_columns(*p, "lambda_p"))
+      c.contact_forces.push_back(name);
   // At most 9 droppers, evenly spread (a section has ~90): more lines make the
   // plot unreadable, and gnuplot reads the whole CSV once per line.
   const unsigned int m = layout.dropper_indices.size(), shown = std::min(m, 9u);
@@ -169,8 +170,8 @@ std::vector<PlotScript> line_response_scripts(const std::string& dir,
                                               const std::string& title,
                                               std::vector<ReportFigure>& figures)
 {
-  const Case& c = record.runner.case_data();
-  const LineResponseFrame frame{c.catenary.support_positions(), title};
+  const LineResponseFrame frame{record.runner.support_positions(), title};
+  const std::vector<double> droppers = record.runner.dropper_positions();
   const ContactStatistics& first = *record.first_contact();
   const std::size_t k =
       std::find(record.contacts.begin(), record.contacts.end(), &first) -
@@ -178,9 +179,8 @@ std::vector<PlotScript> line_response_scripts(const std::string& dir,
   const Assessment* assessment =
       k < record.assessments.size() ? &record.assessments[k] : nullptr;
   std::vector<PlotScript> scripts{
-      uplift_script(dir, first.result(), c.catenary.dropper_positions, assessment, frame),
-      dropper_slack_script(dir, c.catenary.dropper_positions,
-                           record.statistics.dropper_slack_intervals(),
+      uplift_script(dir, first.result(), droppers, assessment, frame),
+      dropper_slack_script(dir, droppers, record.statistics.dropper_slack_intervals(),
                            first.result().window, frame)};
   if (!scripts[0].outputs.empty())
     figures.push_back({"uplift.svg", "Uplift of the contact wire: the largest rise over "
@@ -217,7 +217,7 @@ Plots draw_plots(const std::string& dir, const ProgramParameters& p,
   if (!over_x.empty())
     scripts.push_back(contact_force_over_x_script(
         dir, contact_force_column_names(contact_force_columns(record)), over_x,
-        runner.case_data().catenary.support_positions(), title.str()));
+        runner.support_positions(), title.str()));
   for (const ForceOverXPlot& plot : over_x)
   {
     plots.asked.push_back(plot.png);

@@ -133,7 +133,7 @@ std::string located(const RunRecord& r, const unsigned int k, const SwitchEpisod
 void slack_table(HtmlReport& page, const RunRecord& r, const unsigned int k)
 {
   const auto slack = r.statistics.dropper_slack_intervals();
-  const std::vector<double>& x = r.runner.case_data().catenary.dropper_positions;
+  const std::vector<double> x = r.runner.dropper_positions(); // along the line
   std::vector<Row> rows;
   std::size_t slackened = 0;
   for (std::size_t j = 0; j < slack.size(); ++j)

@@ -413,7 +413,9 @@ std::string located_episodes(const RunRecord& r, const unsigned int k,
       << "-" << r.position_at(k, t1) << " m)";
   }
   if (episodes.size() > max_episodes_listed)
-    s << " and " << episodes.size() - max_episodes_listed << " more episodes";
+    s << " and " << episodes.size() - max_episodes_listed
+      << (episodes.size() - max_episodes_listed == 1 ? " more episode"
+                                                     : " more episodes");
   return s.str();
 }
 

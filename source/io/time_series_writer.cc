@@ -13,19 +13,25 @@ TimeSeriesWriter::TimeSeriesWriter(const std::string& file, const unsigned int e
 {
 }
 
+std::vector<std::string> TimeSeriesWriter::contact_columns(const PantographLayout& p,
+                                                           const std::string& column)
+{
+  std::vector<std::string> names;
+  for (std::size_t w = 0; w < p.wire_contacts.size(); ++w)
+    names.push_back(column + p.column_suffix +
+                    (p.wire_contacts.size() > 1 ? "_w" + std::to_string(w + 1) : ""));
+  return names;
+}
+
 std::vector<std::string> TimeSeriesWriter::column_names(const SimulationLayout& l)
 {
   std::vector<std::string> names{"t"};
   const auto contacts = l.contacts();
   const auto each_contact = [&](const std::string& column)
   {
-    // One column per contact wire of each pantograph: "lambda_p[1]_w2" is
-    // pantograph 1 on the contact wire of section 2 of a line.
     for (const PantographLayout* p : contacts)
-      for (std::size_t w = 0; w < p->wire_contacts.size(); ++w)
-        names.push_back(
-            column + p->column_suffix +
-            (p->wire_contacts.size() > 1 ? "_w" + std::to_string(w + 1) : ""));
+      for (const std::string& name : contact_columns(*p, column))
+        names.push_back(name);
   };
   const auto each_dropper = [&](const std::string& column)
   {

@@ -244,6 +244,21 @@ UpliftPoints CaseRunner::uplift_points() const
   return points;
 }
 
+std::vector<double> CaseRunner::support_positions() const
+{
+  std::vector<double> x;
+  for (const CatenaryParameters& c : sections_)
+    for (const double s : c.support_positions())
+      x.push_back(c.start + s);
+  std::sort(x.begin(), x.end());
+  // Shared supports of an overlap coincide to round-off of the sums of spans.
+  x.erase(std::unique(x.begin(), x.end(),
+                      [](const double a, const double b)
+                      { return std::abs(a - b) < 1e-9; }),
+          x.end());
+  return x;
+}
+
 std::vector<double> CaseRunner::dropper_positions() const
 {
   std::vector<double> x;

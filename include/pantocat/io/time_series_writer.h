@@ -23,6 +23,13 @@ class TimeSeriesWriter : public SimulationObserver
 public:
   /// The columns of time_series.csv for @p layout, in order (plots find them by name).
   static std::vector<std::string> column_names(const SimulationLayout& layout);
+  /**
+   * The columns @p column ("lambda_p", "gap_p", "active_p") of pantograph
+   * @p p: one per contact wire it can touch, "lambda_p[1]_w2" for pantograph
+   * 1 on the contact wire of section 2 of a line ("lambda_p[1]" with one).
+   */
+  static std::vector<std::string> contact_columns(const PantographLayout& p,
+                                                  const std::string& column);
 
   TimeSeriesWriter(const std::string& file, unsigned int every_n_points);
   void start(const SimulationLayout& layout) override;

@@ -128,6 +128,8 @@ public:
    * position along the line.
    */
   UpliftPoints uplift_points() const;
+  /// The supports along the line, increasing (an overlap's shared supports once).
+  std::vector<double> support_positions() const;
   /// The positions along the line of every dropper, in the order of the droppers'
   /// constraints.
   std::vector<double> dropper_positions() const;
