@@ -10,18 +10,6 @@
 
 namespace pantocat
 {
-namespace
-{
-/// "100, 200": the list as given, for messages.
-std::string list_text(const std::vector<double>& values)
-{
-  std::string text;
-  for (const double v : values)
-    text += (text.empty() ? "" : ", ") + number_to_string(v);
-  return text;
-}
-} // namespace
-
 void ElasticityParameters::declare_parameters(dealii::ParameterHandler& prm)
 {
   prm.enter_subsection("Elasticity");
@@ -59,7 +47,7 @@ void ElasticityParameters::check(const unsigned int n_spans) const
   require(points >= 2, "Elasticity/Points", points,
           "must be >= 2 (equally spaced over the span, both supports included)");
   for (const double f : forces)
-    require(std::isfinite(f) && f > 0., "Elasticity/Forces", list_text(forces),
+    require(std::isfinite(f) && f > 0., "Elasticity/Forces", list_to_string(forces),
             "every force must be a number > 0 [N] (an upward load)");
   // Compared as written: each names a column.
   std::vector<std::string> names;
@@ -67,7 +55,7 @@ void ElasticityParameters::check(const unsigned int n_spans) const
     names.push_back(number_to_string(f));
   std::sort(names.begin(), names.end());
   require(std::adjacent_find(names.begin(), names.end()) == names.end(),
-          "Elasticity/Forces", list_text(forces),
+          "Elasticity/Forces", list_to_string(forces),
           "the forces must differ (one column of elasticity.csv each)");
 }
 } // namespace pantocat

@@ -111,6 +111,10 @@ void ProgramParameters::parse_parameters(dealii::ParameterHandler& prm)
           "a line of " + std::to_string(line.n_sections) +
               " tension sections runs in Mode = dynamics; the static, eigenfrequency and "
               "study modes take one section (Line/Number of sections = 1)");
+  require(!line.is_line() || output.vtu_interval == 0., "Output/VTU interval",
+          output.vtu_interval,
+          "the VTU frames show the wires of one section; allowed on a line of " +
+              std::to_string(line.n_sections) + " sections: 0 (no frames)");
   if (is_study(mode)) // Study/Contact laws = penalty: Scene's law for every run
     make_case().check_contact_damping(study.penalty, "Scene/Contact damping");
   require(mode != RunMode::convergence_study || !study.all_combinations,

@@ -148,14 +148,6 @@ std::vector<double> CatenaryParameters::support_chord_kinks() const
 
 namespace
 {
-template <typename Number>
-std::string list_to_string(const std::vector<Number>& values)
-{
-  std::ostringstream s;
-  for (unsigned int i = 0; i < values.size(); ++i)
-    s << (i ? ", " : "") << values[i];
-  return s.str();
-}
 
 void declare_wire(dealii::ParameterHandler& prm, const WireParameters& defaults,
                   const bool beam)

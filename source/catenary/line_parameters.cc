@@ -5,19 +5,11 @@
 #include <deal.II/base/utilities.h>
 
 #include <algorithm>
-#include <sstream>
 
 namespace pantocat
 {
 namespace
 {
-std::string list_to_string(const std::vector<double>& values)
-{
-  std::ostringstream s;
-  for (unsigned int i = 0; i < values.size(); ++i)
-    s << (i ? ", " : "") << values[i];
-  return s.str();
-}
 
 /// Linear interpolation through the points (@p x, @p z), x increasing.
 double interpolate(const std::vector<double>& x, const std::vector<double>& z,

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace pantocat
 {
@@ -16,15 +15,6 @@ using dealii::Patterns::List;
 namespace
 {
 const std::string section = "Catenary/Stitch wire/";
-
-template <typename Number>
-std::string list_text(const std::vector<Number>& values)
-{
-  std::ostringstream s;
-  for (unsigned int i = 0; i < values.size(); ++i)
-    s << (i ? ", " : "") << values[i];
-  return s.str();
-}
 
 std::vector<double> doubles(const std::string& text)
 {
@@ -64,7 +54,7 @@ void check_support_numbers(const std::vector<unsigned int>& supports,
                          std::to_string(n) + " spans") +
                   "; allowed: supports between spans, 1.." + std::to_string(n - 1));
     if (i > 0 && k <= supports[i - 1])
-      require(false, section + "Supports", list_text(supports),
+      require(false, section + "Supports", list_to_string(supports),
               "support numbers must be strictly increasing");
   }
 }
@@ -74,7 +64,7 @@ void StitchWireEntries::declare_parameters(dealii::ParameterHandler& prm)
 {
   const StitchWireEntries d;
   prm.declare_entry(
-      "Length", list_text(d.lengths), List(Double(0.), 1),
+      "Length", list_to_string(d.lengths), List(Double(0.), 1),
       "Length [m] of the stitch wire, centred on its support and clamped to "
       "the carrier at both ends; one value for every stitched support or "
       "one per support of Supports; 0: no stitch wire (the default: a "
@@ -84,17 +74,17 @@ void StitchWireEntries::declare_parameters(dealii::ParameterHandler& prm)
                     "stitch wire, increasing, each in 1..n-1; empty: every support "
                     "between spans.");
   prm.declare_entry(
-      "Tension", list_text(d.tensions), List(Double(0.), 1),
+      "Tension", list_to_string(d.tensions), List(Double(0.), 1),
       "Tension T [N] of the stitch wire, > 0; one value or one per support.");
   prm.declare_entry(
-      "Mass per length", list_text(d.masses_per_length), List(Double(0.), 1),
+      "Mass per length", list_to_string(d.masses_per_length), List(Double(0.), 1),
       "rho A [kg/m] of the stitch wire, > 0; one value or one per support.");
-  prm.declare_entry("Damping", list_text(d.dampings), List(Double(0.), 1),
+  prm.declare_entry("Damping", list_to_string(d.dampings), List(Double(0.), 1),
                     "Viscous damping beta [N s/m^2] of the stitch wire (Damping model = "
                     "viscous; with rayleigh it takes C = alpha M + beta K like the "
                     "wires); one value or one per support.");
   prm.declare_entry(
-      "Clamp mass", list_text(d.clamp_masses), List(Double(0.), 1),
+      "Clamp mass", list_to_string(d.clamp_masses), List(Double(0.), 1),
       "Mass [kg] of each of the two clamps that hold the stitch wire on the "
       "carrier; one value or one per support.");
   prm.declare_entry("Dropper positions", "",
@@ -166,7 +156,7 @@ std::vector<unsigned int> hanging_droppers(const CatenaryParameters& c,
   }
   std::sort(droppers.begin(), droppers.end());
   require(std::adjacent_find(droppers.begin(), droppers.end()) == droppers.end(),
-          section + "Dropper positions", list_text(given),
+          section + "Dropper positions", list_to_string(given),
           "a dropper of " + where + " is listed twice");
   return droppers;
 }
@@ -181,12 +171,13 @@ void CatenaryParameters::place_stitch_wires(const StitchWireEntries& given)
     for (unsigned int k = 1; k < n; ++k)
       supports.push_back(k);
   const unsigned int m = supports.size();
-  require_per_support(given.lengths, m, "Length", list_text(given.lengths));
-  require_per_support(given.tensions, m, "Tension", list_text(given.tensions));
+  require_per_support(given.lengths, m, "Length", list_to_string(given.lengths));
+  require_per_support(given.tensions, m, "Tension", list_to_string(given.tensions));
   require_per_support(given.masses_per_length, m, "Mass per length",
-                      list_text(given.masses_per_length));
-  require_per_support(given.dampings, m, "Damping", list_text(given.dampings));
-  require_per_support(given.clamp_masses, m, "Clamp mass", list_text(given.clamp_masses));
+                      list_to_string(given.masses_per_length));
+  require_per_support(given.dampings, m, "Damping", list_to_string(given.dampings));
+  require_per_support(given.clamp_masses, m, "Clamp mass",
+                      list_to_string(given.clamp_masses));
   require_per_support(given.dropper_positions, m, "Dropper positions",
                       std::to_string(given.dropper_positions.size()) + " lists");
   const std::vector<double> x = support_positions();

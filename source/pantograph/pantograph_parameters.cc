@@ -51,13 +51,6 @@ public:
 
 namespace
 {
-std::string list_to_string(const std::vector<double>& values)
-{
-  std::string s;
-  for (const double v : values)
-    s += (s.empty() ? "" : ", ") + number_to_string(v);
-  return s;
-}
 
 std::vector<double> read_list(dealii::ParameterHandler& prm, const std::string& name)
 {

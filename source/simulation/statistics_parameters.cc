@@ -6,19 +6,6 @@
 
 namespace pantocat
 {
-namespace
-{
-/// "a, b" as the prm file has it.
-template <typename Number>
-std::string list_text(const std::vector<Number>& values)
-{
-  std::string text;
-  for (const Number x : values)
-    text += (text.empty() ? "" : ", ") + number_to_string(x);
-  return text;
-}
-} // namespace
-
 std::string EvaluationWindow::describe() const
 {
   if (whole_run())
@@ -98,8 +85,8 @@ void StatisticsParameters::check(const double time_step, const double x_begin,
           "must lie below the Nyquist frequency 1/(2 dt) = " + number_to_string(nyquist) +
               " Hz (or be 0: no filter)");
   require(window.empty() || window_spans.empty(), "Statistics/Window spans",
-          list_text(window_spans),
-          "not together with Statistics/Window = " + list_text(window) +
+          list_to_string(window_spans),
+          "not together with Statistics/Window = " + list_to_string(window) +
               ": give the evaluation window either by span numbers or in metres");
   if (window.empty() && window_spans.empty())
     return;
@@ -109,7 +96,7 @@ void StatisticsParameters::check(const double time_step, const double x_begin,
   const bool by_spans = !window_spans.empty();
   require(w.end >= x_begin && w.start <= x_end,
           by_spans ? "Statistics/Window spans" : "Statistics/Window",
-          by_spans ? list_text(window_spans) : list_text(window),
+          by_spans ? list_to_string(window_spans) : list_to_string(window),
           (by_spans ? "the window x = " + number_to_string(w.start) + " to " +
                           number_to_string(w.end) + " m must"
                     : "must be two positions x0 < x1 [m] that") +
@@ -122,7 +109,7 @@ void StatisticsParameters::check_spans(const std::vector<double>& supports) cons
   if (window_spans.empty())
     return;
   const long n = static_cast<long>(supports.size()) - 1;
-  const std::string text = list_text(window_spans);
+  const std::string text = list_to_string(window_spans);
   require(window_spans.size() <= 2, "Statistics/Window spans", text,
           "one span number, or two: the first and the last span of the window");
   for (const long k : window_spans)
@@ -138,7 +125,7 @@ void StatisticsParameters::check_metres(const std::vector<double>& supports) con
 {
   if (window.empty())
     return;
-  const std::string text = list_text(window);
+  const std::string text = list_to_string(window);
   require(window.size() == 2 && window[0] < window[1], "Statistics/Window", text,
           "must be two positions x0 < x1 [m] (or be empty: the whole run)");
   require(window[0] >= supports.front() && window[1] <= supports.back(),

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace pantocat
 {
@@ -14,6 +15,17 @@ inline std::string number_to_string(const double value, const int digits = 15)
   s.precision(digits);
   s << value;
   return s.str();
+}
+
+/// "a, b, c": a list as a prm file gives it (number_to_string() of each), for
+/// messages that name the value.
+template <typename Number>
+std::string list_to_string(const std::vector<Number>& values)
+{
+  std::string text;
+  for (const Number x : values)
+    text += (text.empty() ? "" : ", ") + number_to_string(static_cast<double>(x));
+  return text;
 }
 
 /// A CSV field of a study table: @p value to 7 significant digits, empty if
