@@ -11,9 +11,10 @@
 // episode), at most 2 ms of a second episode in [0.320, 0.330] s.
 // The half-explicit method on FEM is refused before it starts (its step
 // limit 5.37e-6 s, with the advice). On FEM at 48 m/s the re-tension of
-// dropper 2 opens the contact for a step on N+1 = 500 in every method (the
-// grid's: the impact's M^-1 G^T P on the consistent Hermite mass), so the
-// FEM rows at 48 m/s are checked on N+1 = 1000, where none loses contact.
+// dropper 2 under the head opens the contact for a step on N+1 = 500 in
+// every method (the grid's: the impulse that stops the grid mass under the
+// head vanishes with h), so the FEM rows at 48 m/s are checked on
+// N+1 = 1000, where none loses contact.
 
 #include <pantocat/app/program_parameters.h>
 #include <pantocat/base/input_error.h>

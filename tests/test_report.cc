@@ -182,6 +182,48 @@ TEST(RunReport, S55ReportAgreesWithItsSummary)
   std::filesystem::remove_all(dir);
 }
 
+// A line's report: the overlaps' table has a row per evaluation of
+// summary.json's line_windows, with its raw F_m and low-passed sigma at the
+// printed 4 digits (5e-4 relative), and "-" for a window the run does not
+// reach. L3 with the leader from 800 to 1150 m and the trailer 200 m behind:
+// overlap 1 for the leader, overlap 2 for neither.
+TEST(RunReport, LineReportListsTheOverlapsOfItsSummary)
+{
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "pantocat-report-line";
+  std::filesystem::remove_all(dir);
+  ProgramParameters p = shipped_catenary(
+      "line-three-sections.prm",
+      {"Pantograph/Initial position=800", "Pantograph/Final position=1150",
+       "Output/Plots=false", "Statistics/Window spans="});
+  p.output.directory = dir.string();
+  std::filesystem::create_directories(dir);
+  std::ostringstream screen;
+  RunPhase phase(p.output.directory, false);
+  run_dynamics(p, screen, phase);
+  const ptree html = read_xml_file(dir.string() + "/report.html");
+  const ptree summary = read_json_file(dir.string() + "/summary.json");
+  const ptree& windows = summary.get_child("line_windows");
+  const auto rows = table_rows(html, "overlaps");
+  ASSERT_EQ(rows.size(), windows.size() + 1); // the header and one row each
+  std::size_t i = 1;
+  for (const auto& [unused, w] : windows)
+  {
+    const std::vector<std::string>& row = rows[i++];
+    EXPECT_EQ(row[2], w.get<std::string>("wire"));
+    if (w.get<std::string>("statistics.raw.mean") == "null") // a window the run missed
+    {
+      EXPECT_EQ(row[3], "-") << row[1];
+      continue;
+    }
+    const double mean = w.get<double>("statistics.raw.mean"),
+                 std = w.get<double>("statistics.filtered.std");
+    EXPECT_NEAR(figure_of(row[3]), mean, 5e-4 * std::abs(mean)) << row[1];
+    EXPECT_NEAR(figure_of(row[8]), std, 5e-4 * std::abs(std)) << row[1];
+  }
+  std::filesystem::remove_all(dir);
+}
+
 // A speed sweep's report: one row per run with the window's figures as the
 // CSV holds them, and each verdict against limits worked out by hand from the
 // default criteria: at 250 km/h the target mean force is 0.00097 * 250^2 + 70
@@ -259,10 +301,10 @@ nlohmann::json run_s55(const std::string& dir, const std::vector<std::string>& o
 // S55 stopped by a guard after its window (Guards/Energy bound = 5e-6: 52 J of
 // E_ref = 10.45 MJ; the energy the pantograph feeds in has grown to 47 J when it
 // leaves the window at 330 m and to 56 J at 400 m, so the run stops between)
-// keeps the statistics of the window spans 5-6 it had passed: the raw figures are the completed run's (the same steps: equal to
-// the 12 digits of summary.json), the 20 Hz ones differ only by the low pass
-// run over a series cut 0.1 s after the window (within 0.1 %), and the
-// assessment is the same.
+// keeps the statistics of the window spans 5-6 it had passed: the raw figures are the
+// completed run's (the same steps: equal to the 12 digits of summary.json), the 20 Hz
+// ones differ only by the low pass run over a series cut 0.1 s after the window (within
+// 0.1 %), and the assessment is the same.
 TEST(GuardStop, KeepsTheStatisticsOfTheWindowItHadPassed)
 {
   const std::string base =

@@ -117,6 +117,35 @@ void pantograph_sections(HtmlReport& page, const RunRecord& r)
     }
 }
 
+/// On a line: each overlap's figures per pantograph and contact wire (LineWindows).
+void overlap_table(HtmlReport& page, const RunRecord& r)
+{
+  if (r.line == nullptr || r.line->evaluations().empty())
+    return;
+  std::vector<Row> rows;
+  for (const LineWindows::Evaluation& e : r.line->evaluations())
+  {
+    const ContactForceStatistics& s = e.statistics->result();
+    Row row{{r.runner.layout().pantographs[e.pantograph].name},
+            {e.window + " (" + number_to_string(s.window.start, 6) + "-" +
+             number_to_string(s.window.end, 6) + " m)"},
+            {e.wire}};
+    for (const ForceFigures* f : {&s.raw, s.filtered ? &*s.filtered : nullptr})
+      for (const double x :
+           {f ? f->mean : NAN, f ? f->std : NAN, f ? f->max : NAN, f ? f->min : NAN})
+        row.push_back(HtmlReport::number(x, 4));
+    rows.push_back(row);
+  }
+  page.heading("The overlaps", 2, "overlaps");
+  page.table({"pantograph", "window", "contact wire", "raw F_m [N]", "raw sigma [N]",
+              "raw max [N]", "raw min [N]", "low-pass F_m [N]", "low-pass sigma [N]",
+              "low-pass max [N]", "low-pass min [N]"},
+             rows, "overlaps");
+  page.note("On all wires the pantograph's contact force; on one wire its share. The low "
+            "pass of a force that switches to zero overshoots below 0: a negative "
+            "low-passed minimum is the filter's, not a pushing contact.");
+}
+
 /// Largest number of droppers listed one by one in the report.
 constexpr std::size_t max_slack_rows = 60;
 
@@ -215,12 +244,15 @@ void write_run_report(const std::string& dir, const RunRecord& r,
                       const std::vector<ReportFigure>& figures)
 {
   const Case& c = r.runner.case_data();
-  HtmlReport page("pantocat-fem report: " + std::to_string(c.catenary.number_of_spans()) +
-                  " spans, " +
+  const std::string extent =
+      c.line.is_line() ? std::to_string(c.line.n_sections) + " tension sections"
+                       : std::to_string(c.catenary.number_of_spans()) + " spans";
+  HtmlReport page("pantocat-fem report: " + extent + ", " +
                   number_to_string(3.6 * c.scene.pantographs[0].parameters.speed, 4) +
                   " km/h");
   case_section(page, r);
   pantograph_sections(page, r);
+  overlap_table(page, r);
   page.heading("Along the line", 2, "figures");
   if (figures.empty())
     page.note("No figures: Output/Plots is false or gnuplot is not installed.");
