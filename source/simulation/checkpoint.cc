@@ -20,12 +20,14 @@ namespace
 /**
  * The file starts with this line, then the length of the payload (8 bytes)
  * and its CRC-32 (4 bytes), little endian; the payload, a Boost binary
- * archive, follows. Version 3 (without the positions of the force extremes),
+ * archive, follows. Version 4 (without the pantographs' contact-loss
+ * intervals over all their contact wires), version 3 (without the positions
+ * of the force extremes),
  * version 2 (without the impulses of DynamicState) and version 1 (a Boost
  * archive that began with its own magic string, without length or
  * checksum) are no longer read.
  */
-const std::string checkpoint_magic = "pantocat-fem checkpoint 4\n";
+const std::string checkpoint_magic = "pantocat-fem checkpoint 5\n";
 const std::size_t header_size = checkpoint_magic.size() + 8 + 4;
 /// A checkpoint holds the state and the observers' records: far below this.
 constexpr std::uint64_t max_checkpoint_bytes = std::uint64_t(4) << 30;
@@ -199,7 +201,7 @@ std::string CheckpointReader::verified_payload(const std::string& bytes) const
   if (bytes.compare(0, checkpoint_magic.size(), checkpoint_magic) != 0)
     throw InputError(refusal() + file_name +
                      " is not a checkpoint of this version of pantocat-fem (it does not "
-                     "start with \"pantocat-fem checkpoint 4\"), or it is damaged");
+                     "start with \"pantocat-fem checkpoint 5\"), or it is damaged");
   if (bytes.size() < header_size)
     throw damaged("it ends inside its header");
   const auto length =

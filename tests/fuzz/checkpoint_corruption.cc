@@ -139,7 +139,7 @@ int main(int argc, char** argv)
   }
   const std::string intact = fuzz::read_file((work / "stopped/checkpoint.bin").string());
   const std::string series = fuzz::read_file((work / "stopped/time_series.csv").string());
-  const std::size_t header = std::string("pantocat-fem checkpoint 4\n").size() + 12;
+  const std::size_t header = std::string("pantocat-fem checkpoint 5\n").size() + 12;
 
   // The intact checkpoint resumes to the uninterrupted run's results.
   copy_directory(work / "stopped", work / "case");
