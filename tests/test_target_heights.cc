@@ -108,6 +108,34 @@ TEST(TargetHeights, S55MeetsItsPreSagInBothReferences)
     }
 }
 
+TEST(TargetHeights, S55MeetsItsPreSagBelowTheChordOfRaisedSupports)
+{
+  // S55 on three spans with the contact wire raised to 0.3 m at the two
+  // interior supports (Catenary/Supports/Contact wire heights = 0, 0.3, 0.3,
+  // 0; the messenger 1.2 m above each): both wires run on the straight
+  // chord between the support heights, and the design puts the static
+  // contact wire the pre-sag parabola below it at every dropper, and on the
+  // chord at the steady arms; exact to the static solves' round-off
+  // (1e-9 m asserted, as above).
+  for (const std::string method : {"fem", "fdm"})
+  {
+    const ProgramParameters p =
+        s55(method, {"Catenary/Droppers/Pre-sag=0.055",
+                     "Catenary/Supports/Contact wire heights=0, 0.3, 0.3, 0"});
+    std::vector<double> z;
+    for (unsigned int i = 0; i < s55_droppers.size(); ++i)
+      z.push_back(parabola(0.055, 0., 55., i));
+    const CaseRunner runner(p.make_case());
+    const CatenaryParameters& c = runner.case_data().catenary;
+    EXPECT_NEAR(c.support_chord(27.5), 0.15, 1e-15);
+    EXPECT_NEAR(c.dropper_target_heights()[4], 0.15 - 0.055, 1e-15);
+    EXPECT_LT(largest_miss(runner, z), 1e-9) << method;
+    const StaticEquilibrium s = runner.static_catenary();
+    for (const double x : {55., 110.})
+      EXPECT_NEAR(runner.contact_wire_displacement(s.q, x), 0., 1e-9) << method << x;
+  }
+}
+
 TEST(TargetHeights, S55MeetsTargetsGivenPerDropper)
 {
   // Target heights given per dropper of a span (9, reused in every span) and

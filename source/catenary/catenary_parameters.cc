@@ -98,7 +98,8 @@ std::vector<double> CatenaryParameters::dropper_target_heights() const
     const auto [start, l] = chords[dropper_spans[j]];
     Assert(l > 0., dealii::ExcMessage("a pre-sag chord of length 0 (check_targets())"));
     const double xi = (dropper_positions[j] - start) / l;
-    z[j] = -4. * presag * xi * (1. - xi) + 0.; // + 0.: 0, not -0, at xi = 0
+    // Below the support chord (0 without support heights); + 0.: 0, not -0.
+    z[j] = support_chord(dropper_positions[j]) - 4. * presag * xi * (1. - xi) + 0.;
   }
   return z;
 }
@@ -115,9 +116,9 @@ std::vector<double> CatenaryParameters::dropper_target_displacements() const
 double CatenaryParameters::support_chord(const double x,
                                          const unsigned int derivative) const
 {
-  if (support_heights.empty())
-    return 0.;
   const std::vector<double> s = support_positions();
+  if (support_heights.size() != s.size()) // none, or a list check() refuses
+    return 0.;
   if (x <= s.front() || x >= s.back())
     return derivative       ? 0.
            : x <= s.front() ? support_heights.front()
@@ -131,7 +132,7 @@ std::vector<double> CatenaryParameters::support_chord_kinks() const
 {
   const std::vector<double> s = support_positions();
   std::vector<double> kinks(s.size(), 0.);
-  if (support_heights.empty())
+  if (support_heights.size() != s.size())
     return kinks;
   double left = 0.; // level before the first anchor
   for (unsigned int k = 0; k < s.size(); ++k)
@@ -401,6 +402,13 @@ void CatenaryParameters::declare_parameters(dealii::ParameterHandler& prm)
                     "section ends are anchors); empty: every support between spans.");
   prm.declare_entry("Steady arm mass", "0", Double(0.),
                     "Mass [kg] of a steady arm, lumped on the contact wire.");
+  prm.declare_entry("Contact wire heights", "", List(Double(), 0),
+                    "Heights [m] of the contact wire at every support, the section's "
+                    "start to its end (n + 1 values; z = 0 the working height), the "
+                    "messenger Encumbrance above each; between supports both wires run "
+                    "on the straight chord, from which the pre-sag is measured. Empty: "
+                    "0 at every support. On a line, the overlaps set their supports' "
+                    "heights (Line/Overlap heights).");
   prm.leave_subsection();
   prm.enter_subsection("Stitch wire");
   StitchWireEntries::declare_parameters(prm);
@@ -466,6 +474,8 @@ void CatenaryParameters::parse_parameters(dealii::ParameterHandler& prm)
   for (const int k : dealii::Utilities::string_to_int(
            dealii::Utilities::split_string_list(prm.get("Steady arm supports"))))
     steady_arm_supports.push_back(k);
+  support_heights = dealii::Utilities::string_to_double(
+      dealii::Utilities::split_string_list(prm.get("Contact wire heights")));
   prm.leave_subsection();
   prm.enter_subsection("Stitch wire");
   StitchWireEntries stitch;
@@ -525,9 +535,9 @@ void CatenaryParameters::check() const
           "Catenary/Stitch wire/Dropper positions", dropper_stitch_wire.size(),
           "every dropper needs the wire it hangs from");
   require(support_heights.empty() || support_heights.size() == number_of_spans() + 1,
-          "Line/Overlap heights", support_heights.size(),
-          "one contact-wire height per support of the section (" +
-              std::to_string(number_of_spans() + 1) + ")");
+          "Catenary/Supports/Contact wire heights", list_to_string(support_heights),
+          "one height per support of the section (" +
+              std::to_string(number_of_spans() + 1) + "), or none (0 at every support)");
   check_supports();
   check_targets();
   check_stitch_wires();

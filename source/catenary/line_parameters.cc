@@ -51,16 +51,14 @@ LineParameters::sections(const CatenaryParameters& section) const
   for (double& x : overlap)
     x -= supports[n - o];
   const double D = overlap.back();
-  const std::vector<double> base = section.dropper_target_heights();
   std::vector<CatenaryParameters> line;
   for (unsigned int k = 0; k < n_sections; ++k)
   {
     CatenaryParameters c = section;
     c.name = "section " + std::to_string(k + 1);
     c.start = k * supports[n - o];
-    c.support_heights.assign(n + 1, 0.);
-    c.target_heights = base;
-    c.presag = 0.;
+    if (c.support_heights.empty())
+      c.support_heights.assign(n + 1, 0.);
     const bool incoming = k > 0, outgoing = k + 1 < n_sections;
     for (unsigned int i = 0; i <= o; ++i)
     {
@@ -69,6 +67,9 @@ LineParameters::sections(const CatenaryParameters& section) const
       if (outgoing)
         c.support_heights[n - o + i] = overlap_heights[i];
     }
+    // The section's own targets on its chord, then the overlaps' in their spans.
+    c.target_heights = c.dropper_target_heights();
+    c.presag = 0.;
     for (unsigned int j = 0; j < c.n_droppers(); ++j)
     {
       const double x = c.dropper_positions[j];
