@@ -187,11 +187,16 @@ void check_values_with_braces(const dealii::ParameterHandler& prm,
 }
 
 /**
- * check_values_with_braces() for all of @p prm. Its JSON form holds the
- * values' bytes as they are; the JSON reader wants UTF-8, so bytes above
- * 0x7f are read as '?' (no pattern that refuses '{' accepts them either).
+ * check_values_with_braces() for all of @p prm (parameter_tree(): a byte
+ * above 0x7f, read as '?', is accepted by no pattern that refuses '{' either).
  */
 void check_values_with_braces(const dealii::ParameterHandler& prm)
+{
+  check_values_with_braces(prm, parameter_tree(prm), {});
+}
+} // namespace
+
+boost::property_tree::ptree parameter_tree(const dealii::ParameterHandler& prm)
 {
   std::ostringstream printed;
   prm.print_parameters(printed, dealii::ParameterHandler::JSON);
@@ -202,9 +207,8 @@ void check_values_with_braces(const dealii::ParameterHandler& prm)
   std::istringstream in(json);
   boost::property_tree::ptree tree;
   boost::property_tree::read_json(in, tree);
-  check_values_with_braces(prm, tree, {});
+  return tree;
 }
-} // namespace
 
 namespace
 {

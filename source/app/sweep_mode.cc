@@ -1,3 +1,4 @@
+#include <pantocat/app/parameter_input.h>
 #include <pantocat/app/sweep_mode.h>
 #include <pantocat/base/input_error.h>
 #include <pantocat/base/number_format.h>
@@ -9,7 +10,6 @@
 #include <deal.II/base/patterns.h>
 #include <deal.II/base/utilities.h>
 
-#include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 
 #include <algorithm>
@@ -28,11 +28,7 @@ namespace
  */
 std::string unit_of(const dealii::ParameterHandler& prm, const std::string& path)
 {
-  std::ostringstream printed;
-  prm.print_parameters(printed, dealii::ParameterHandler::JSON);
-  std::istringstream in(printed.str());
-  boost::property_tree::ptree tree;
-  boost::property_tree::read_json(in, tree);
+  const boost::property_tree::ptree tree = parameter_tree(prm);
   const auto doc = tree.get_optional<std::string>(
       boost::property_tree::ptree::path_type(path + "/documentation", '/'));
   static const std::regex bracket("\\[([^\\]\\[]{1,12})\\]");
@@ -217,11 +213,7 @@ void estimate(SweepPlan& plan, const std::function<SweepCase(unsigned int)>& mak
 
 void check_swept_entries(const dealii::ParameterHandler& prm, const SweepParameters& s)
 {
-  std::ostringstream printed;
-  prm.print_parameters(printed, dealii::ParameterHandler::JSON);
-  std::istringstream in(printed.str());
-  boost::property_tree::ptree tree;
-  boost::property_tree::read_json(in, tree);
+  const boost::property_tree::ptree tree = parameter_tree(prm);
   const char* which[] = {"Parameter", "Second parameter"};
   const char* values[] = {"Values", "Second values"};
   for (std::size_t e = 0; e < s.entries.size(); ++e)

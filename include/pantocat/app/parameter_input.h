@@ -2,6 +2,8 @@
 
 #include <deal.II/base/parameter_handler.h>
 
+#include <boost/property_tree/ptree.hpp>
+
 #include <exception>
 #include <string>
 #include <vector>
@@ -44,6 +46,13 @@ void check_parameter_file(const std::string& file);
  */
 std::string printed_parameters(const dealii::ParameterHandler& prm,
                                dealii::ParameterHandler::OutputStyle style);
+
+/**
+ * Every declared entry of @p prm as a tree, read from its JSON form: per
+ * entry "value", "default_value", "documentation", "pattern_description".
+ * The JSON reader wants UTF-8, so bytes above 0x7f are read as '?'.
+ */
+boost::property_tree::ptree parameter_tree(const dealii::ParameterHandler& prm);
 
 /// The informative part of an exception's message, on one line.
 std::string one_line_message(const std::exception& e);
