@@ -56,26 +56,36 @@ RunStatistics::ImpulseStatistics RunStatistics::dropper_impulses() const
   return sum;
 }
 
+namespace
+{
+/**
+ * One interval list as the time points pass: an interval opens at @p t when
+ * @p open begins (@p since = t) and joins @p list when it ends (@p since =
+ * NaN: none open).
+ */
+void track(const bool open, const double t, double& since, std::vector<Interval>& list)
+{
+  const bool was_open = !std::isnan(since);
+  if (open && !was_open)
+    since = t;
+  else if (!open && was_open)
+  {
+    list.push_back({since, t});
+    since = std::nan("");
+  }
+}
+} // namespace
+
 void RunStatistics::observe(const TimePoint& p)
 {
   for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
     if (layout.pantographs[k].has_contact())
+    {
       forces[k].add(pantocat::contact_force(layout.pantographs[k], p), p.t,
                     k < p.x_p.size() ? p.x_p[k] : 0.);
-  for (unsigned int k = 0; k < layout.pantographs.size(); ++k)
-  {
-    if (!layout.pantographs[k].has_contact())
-      continue;
-    const bool touching = in_contact(layout.pantographs[k], p),
-               lost = !std::isnan(lost_since[k]);
-    if (!touching && !lost)
-      lost_since[k] = p.t;
-    else if (touching && lost)
-    {
-      losses[k].push_back({lost_since[k], p.t});
-      lost_since[k] = std::nan("");
+      // Lost: it touches none of its contact wires.
+      track(!in_contact(layout.pantographs[k], p), p.t, lost_since[k], losses[k]);
     }
-  }
   max_pos = std::max(max_pos, p.position_residual);
   max_vel = std::max(max_vel, p.velocity_residual);
   unsigned int slack = 0;
@@ -95,33 +105,17 @@ void RunStatistics::observe(const TimePoint& p)
     }
   }
   for (unsigned int i = 0; i < p.active.size(); ++i)
-  {
-    const bool open = !std::isnan(open_since[i]);
-    if (!p.active[i] && !open)
-      open_since[i] = p.t;
-    else if (p.active[i] && open)
-    {
-      intervals[i].push_back({open_since[i], p.t});
-      open_since[i] = std::nan("");
-    }
-  }
+    track(!p.active[i], p.t, open_since[i], intervals[i]);
   last_t = p.t;
 }
 
 void RunStatistics::finish()
 {
+  // Whatever is open at the end closes with the last time point.
   for (unsigned int k = 0; k < lost_since.size(); ++k)
-    if (!std::isnan(lost_since[k]))
-    {
-      losses[k].push_back({lost_since[k], last_t});
-      lost_since[k] = std::nan("");
-    }
+    track(false, last_t, lost_since[k], losses[k]);
   for (unsigned int i = 0; i < open_since.size(); ++i)
-    if (!std::isnan(open_since[i]))
-    {
-      intervals[i].push_back({open_since[i], last_t});
-      open_since[i] = std::nan("");
-    }
+    track(false, last_t, open_since[i], intervals[i]);
 }
 
 std::vector<std::vector<Interval>> RunStatistics::dropper_slack_intervals() const
