@@ -185,6 +185,10 @@ void RunDistribution::run_queue(
     }
   }
   QueueServer server(runs, size_, finished);
+  // Every other rank gets its first run (or its stop) before rank 0 takes
+  // one: runs shorter than a rank's start-up would otherwise all go to rank 0.
+  for (unsigned int r = 1; r < size_; ++r)
+    server.serve(true);
   const std::function<void()> poll = [&server] { server.serve(false); };
   unsigned int k = 0;
   while (server.take(k))

@@ -34,6 +34,8 @@ public:
   /**
    * A work queue on rank 0 for runs that differ in length (dynamic load
    * balancing): every rank asks rank 0 for its next run when it is free.
+   * Each other rank gets its first run before rank 0 takes one (rank 0 waits
+   * for their start-up), so that every rank works when there are as many runs.
    * Rank 0 works too: it takes runs from the queue itself and serves the other
    * ranks' requests whenever @p execute calls the poll function it is given
    * (every few time steps), so that no rank waits long and 2 ranks keep 2
